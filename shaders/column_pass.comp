@@ -20,6 +20,15 @@ uniform float u_emptyHeight; // height (relative) of a frame with no surface par
 // Bins run from -1 to N (particles a cell beyond either end still reach the edge columns).
 uint binBegin(int slot, int b) { return binStart[slot * (u_N + 3) + b + 1]; }
 
+// Adds the heights and the number of the particles in bin b (ignored outside -1 .. N).
+void addBin(int slot, int b, inout float sum, inout uint count) {
+    if (b < -1 || b > u_N) return;
+    uint first = binBegin(slot, b);
+    uint last = binBegin(slot, b + 1);
+    for (uint p = first; p < last; ++p) sum += particles[p].y;
+    count += last - first;
+}
+
 void main() {
     int n = int(gl_GlobalInvocationID.x);
     int slot = int(gl_GlobalInvocationID.y);
@@ -44,24 +53,15 @@ void main() {
     }
     // Fallback: nearest non-empty bins at distance d >= 2.
     float fallback = u_emptyHeight;
-    for (int d = 2; d <= u_N + 1; ++d) {
+    for (int d = 2; n - d >= -1 || n + d <= u_N; ++d) {
         float sum = 0.0;
         uint count = 0u;
-        int lo = n - d;
-        int hi = n + d;
-        if (lo >= -1) {
-            for (uint p = binBegin(slot, lo); p < binBegin(slot, lo + 1); ++p) sum += particles[p].y;
-            count += binBegin(slot, lo + 1) - binBegin(slot, lo);
-        }
-        if (hi <= u_N) {
-            for (uint p = binBegin(slot, hi); p < binBegin(slot, hi + 1); ++p) sum += particles[p].y;
-            count += binBegin(slot, hi + 1) - binBegin(slot, hi);
-        }
+        addBin(slot, n - d, sum, count);
+        addBin(slot, n + d, sum, count);
         if (count > 0u) {
             fallback = sum / float(count);
             break;
         }
-        if (lo < -1 && hi > u_N) break;
     }
     columns[slot * u_N + n] = vec2(fallback, 0.0);
 }

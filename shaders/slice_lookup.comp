@@ -48,7 +48,8 @@ void main() {
     precise double scaled = x * u_A;
     int s = int(floor(scaled + 0.5LF));                      // eq. (5): nearest integer
     if (u_loop == 1) {
-        s = ((s % u_frameCount) + u_frameCount) % u_frameCount;
+        // GLSL leaves % undefined for negative operands: keep both non-negative.
+        s = s >= 0 ? s % u_frameCount : u_frameCount - 1 - (-(s + 1)) % u_frameCount;
     } else {
         s = clamp(s, 0, u_frameCount - 1);
     }

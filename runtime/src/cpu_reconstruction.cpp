@@ -7,6 +7,25 @@
 
 namespace swell::runtime {
 
+std::vector<int> windowSlices(const Grid& grid, int m) {
+    // z_j - P_z in [-dz, dz)  <=>  -2K <= (j + 1) M - (2m + 1) K < 2K  (exact in integers)
+    const long long M = grid.cellsZ;
+    const long long K = grid.slices;
+    std::vector<int> row;
+    int best = 0;
+    long long bestDistance = -1;
+    for (int j = 0; j < grid.sliceCount(); ++j) {
+        const long long d = (j + 1) * M - (2LL * m + 1) * K;
+        if (d >= -2 * K && d < 2 * K) row.push_back(j);
+        if (bestDistance < 0 || std::llabs(d) < bestDistance) {
+            best = j;
+            bestDistance = std::llabs(d);
+        }
+    }
+    if (row.empty()) row.push_back(best);
+    return row;
+}
+
 CpuReconstruction::CpuReconstruction(const FrameSet& frames, const ReplayParams& params,
                                      const SliceSampler& sampler)
     : m_frames(frames), m_sampler(sampler), m_params(params),
@@ -15,7 +34,6 @@ CpuReconstruction::CpuReconstruction(const FrameSet& frames, const ReplayParams&
     frames.validate();
     const int N = m_grid.cellsX;
     const int M = m_grid.cellsZ;
-    const int K = m_grid.slices;
 
     // Per frame: particles grouped by x bin b = floor((x - xMin) / dx), bins -1 .. N.
     m_binned.resize(frames.frames.size());
@@ -39,22 +57,8 @@ CpuReconstruction::CpuReconstruction(const FrameSet& frames, const ReplayParams&
         }
     }
 
-    // z window of each row: -2K <= (j + 1) M - (2m + 1) K < 2K, else the nearest slice.
     m_rowSlices.resize(static_cast<std::size_t>(M));
-    for (int m = 0; m < M; ++m) {
-        auto& row = m_rowSlices[static_cast<std::size_t>(m)];
-        long long best = -1;
-        long long bestDistance = 0;
-        for (int j = 0; j < m_grid.sliceCount(); ++j) {
-            const long long d = static_cast<long long>(j + 1) * M - static_cast<long long>(2 * m + 1) * K;
-            if (d >= -2LL * K && d < 2LL * K) row.push_back(j);
-            if (best < 0 || std::llabs(d) < bestDistance) {
-                best = j;
-                bestDistance = std::llabs(d);
-            }
-        }
-        if (row.empty()) row.push_back(static_cast<int>(best));
-    }
+    for (int m = 0; m < M; ++m) m_rowSlices[static_cast<std::size_t>(m)] = windowSlices(m_grid, m);
 }
 
 const CpuReconstruction::BinnedFrame& CpuReconstruction::binned(std::uint32_t frame) const {

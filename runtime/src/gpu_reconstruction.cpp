@@ -61,15 +61,11 @@ GpuReplay::GpuReplay(const FrameSet& frames, const ReplayParams& params,
     m_reconstruct = makeEmbeddedProgram("reconstruct.comp");
     GlProgram column = makeEmbeddedProgram("column_pass.comp");
 
-    // Heights are uploaded relative to the mean surface height, which keeps float sums of
-    // eq. (7) accurate to the wave amplitude rather than the absolute level.
-    double sum = 0.0;
-    std::size_t count = 0;
-    for (const cache::Frame& f : frames.frames) {
-        for (std::size_t p = 1; p < f.surface.size(); p += 2) sum += f.surface[p];
-        count += f.surfaceCount();
-    }
-    const double reference = count > 0 ? sum / static_cast<double>(count) : frames.header.domain.yMin;
+    // Heights are uploaded relative to the middle of the domain, which keeps float sums of
+    // eq. (7) accurate; it depends on the header only, so the result does not depend on which
+    // frames are held.
+    const double reference =
+        0.5 * (static_cast<double>(frames.header.domain.yMin) + frames.header.domain.yMax);
     m_reference = static_cast<float>(reference);
     m_missing = static_cast<float>(frames.header.domain.yMin - reference);
 

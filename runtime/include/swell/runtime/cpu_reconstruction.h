@@ -27,6 +27,10 @@
 
 namespace swell::runtime {
 
+/// The slices j in the z window of row m (ascending), or the one nearest slice when the
+/// window holds none (definition above).
+std::vector<int> windowSlices(const Grid& grid, int m);
+
 class CpuReconstruction {
 public:
     /// Keeps references to `frames` and `sampler`, which must outlive it. Throws
