@@ -196,13 +196,15 @@ Reader::Reader(fs::path path) : m_path(std::move(path)) {
         if (e.compressedSize == 0 || e.compressedSize > ZSTD_compressBound(e.rawSize))
             throw bad("compressed size " + std::to_string(e.compressedSize) +
                       " impossible for raw size " + std::to_string(e.rawSize));
+        if (e.offset > indexOffset || e.compressedSize > indexOffset - e.offset)
+            throw bad("offset " + std::to_string(e.offset) + " + size " +
+                      std::to_string(e.compressedSize) + " extends past the frame data (ends at " +
+                      std::to_string(indexOffset) + ")");
         if (e.offset < expectedOffset)
             throw bad(i == 0 ? "starts inside the header" : "overlaps frame " + std::to_string(i - 1));
         if (e.offset > expectedOffset)
             throw bad("unaccounted gap of " + std::to_string(e.offset - expectedOffset) +
                       " bytes before the frame");
-        if (e.compressedSize > indexOffset - e.offset)
-            throw bad("extends past the end of the frame data");
         expectedOffset = e.offset + e.compressedSize;
     }
     if (expectedOffset != indexOffset)
