@@ -10,9 +10,12 @@ layout(local_size_x = 64) in;
 
 layout(std430, binding = 0) readonly buffer Particles { vec2 particles[]; };  // (u, h - ref)
 layout(std430, binding = 1) readonly buffer Bins { uint binStart[]; };        // per slot: N + 3
-layout(std430, binding = 2) writeonly buffer Columns { vec2 columns[]; };     // slot * N + n
+// Columns are grouped by four for reconstruct.comp: for each slot and quad q = n / 4, one vec4 of
+// S (or the fallback) then one vec4 of W; a float index ((slot * Nq + q) * 2 + c) * 4 + n % 4.
+layout(std430, binding = 2) writeonly buffer Columns { float columns[]; };
 
 uniform int u_N;             // columns
+uniform int u_Nq;            // column quads, ceil(N / 4)
 uniform int u_slots;         // resident frames
 uniform float u_sigma;       // Gaussian sigma in cells
 uniform float u_emptyHeight; // height (relative) of a frame with no surface particle
@@ -47,8 +50,10 @@ void main() {
         S += g * q.y;
         W += g;
     }
+    int base = ((slot * u_Nq + n / 4) * 2) * 4 + n % 4;
     if (W > 0.0) {
-        columns[slot * u_N + n] = vec2(S, W);
+        columns[base] = S;
+        columns[base + 4] = W;
         return;
     }
     // Fallback: nearest non-empty bins at distance d >= 2.
@@ -63,5 +68,6 @@ void main() {
             break;
         }
     }
-    columns[slot * u_N + n] = vec2(fallback, 0.0);
+    columns[base] = fallback;
+    columns[base + 4] = 0.0;
 }

@@ -5,7 +5,7 @@
 // with N the fBm noise on the T x K grid, linear in time (period T) and, for an inserted
 // slice, the mean of its two neighbours. Computed in double precision with `precise` so the
 // operations match the CPU reference (runtime/src/slice_sampler.cpp) bit for bit.
-layout(local_size_x = 64) in;
+layout(local_size_x = 256) in;
 
 layout(std430, binding = 0) readonly buffer Noise { double noise[]; };       // N[i * K + k]
 layout(std430, binding = 1) readonly buffer Resident { uint slotOf[]; };     // cache frame -> slot

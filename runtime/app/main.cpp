@@ -1,1 +1,393 @@
-int main() { return 0; }
+// swell-play: headless replay of a .swell cache (paper Sec. 4): bench and height fields.
+// The library does the work; this file parses options, reads the cache, times and prints.
+
+#include "swell/cache/error.h"
+#include "swell/cache/reader.h"
+#include "swell/runtime/cpu_reconstruction.h"
+#include "swell/runtime/egl_context.h"
+#include "swell/runtime/error.h"
+#include "swell/runtime/gpu_reconstruction.h"
+#include "swell/runtime/height_png.h"
+#include "swell/runtime/slice_sampler.h"
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <unistd.h>
+
+namespace {
+
+using namespace swell;
+using namespace swell::runtime;
+using json = nlohmann::json;
+using Clock = std::chrono::steady_clock;
+
+double msSince(Clock::time_point t0) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+/// Options shared by every subcommand.
+struct Options {
+    std::string cache;             ///< input .swell file
+    std::string res = "128x128";   ///< N x M base-mesh cells
+    std::string policy = "loop";   ///< frames outside the cache: clamp or loop
+    std::string filter = "low";    ///< noise band: low, high or none
+    double playbackFps = 30.0;     ///< output frames per simulated second
+    double start = 0.0;            ///< simulated second of the first output frame
+    bool json = false;             ///< one JSON object on stdout
+    ReplayParams params;           ///< the replay itself (paper defaults)
+};
+
+void addCommon(CLI::App* cmd, Options& o) {
+    cmd->add_option("CACHE", o.cache, "input .swell cache")->required();
+    cmd->add_option("--res", o.res, "base mesh N x M cells (x = propagation, z = transverse)")
+        ->capture_default_str();
+    cmd->add_option("--slices", o.params.slices, "K slices (K - 1 more are inserted)")
+        ->capture_default_str();
+    cmd->add_option("--seed", o.params.seed, "noise seed")->capture_default_str();
+    cmd->add_option("--fluctuation,-F", o.params.fluctuation, "F of eq. (5), 0..1")
+        ->capture_default_str();
+    cmd->add_option("--beta", o.params.noise.beta, "noise spectral exponent")->capture_default_str();
+    cmd->add_option("--cutoff", o.params.noise.cutoff, "noise filter cut-off c (wavenumbers)")
+        ->capture_default_str();
+    cmd->add_option("--filter", o.filter, "noise band kept: low, high or none")
+        ->capture_default_str();
+    cmd->add_option("--noise-time", o.params.noise.timeSamples, "T noise samples in time")
+        ->capture_default_str();
+    cmd->add_option("--time-unit", o.params.timeUnitSeconds,
+                    "simulated seconds per animation time unit (A = this / frame time)")
+        ->capture_default_str();
+    cmd->add_option("--policy", o.policy, "frames outside the cache: clamp or loop")
+        ->capture_default_str();
+    cmd->add_option("--sigma", o.params.sigma, "Gaussian sigma of eq. (7), cells")
+        ->capture_default_str();
+    cmd->add_option("--fps", o.playbackFps, "output frames per simulated second")
+        ->capture_default_str();
+    cmd->add_option("--start", o.start, "simulated second of the first frame")
+        ->capture_default_str();
+    cmd->add_flag("--json", o.json, "print one JSON object on stdout");
+}
+
+/// Resolves the string options into o.params and validates everything.
+void finishOptions(Options& o) {
+    int n = 0, m = 0;
+    char x = 0, extra = 0;
+    if (std::sscanf(o.res.c_str(), "%d%c%d%c", &n, &x, &m, &extra) != 3 || (x != 'x' && x != 'X')) {
+        throw std::invalid_argument(fmt::format("--res must look like 128x128, got '{}'", o.res));
+    }
+    o.params.cellsX = n;
+    o.params.cellsZ = m;
+    o.params.policy = framePolicyFromString(o.policy);
+    if (o.filter == "low") {
+        o.params.noise.filter = NoiseFilter::LowPass;
+    } else if (o.filter == "high") {
+        o.params.noise.filter = NoiseFilter::HighPass;
+    } else if (o.filter == "none") {
+        o.params.noise.filter = NoiseFilter::None;
+    } else {
+        throw std::invalid_argument(fmt::format("--filter must be low, high or none, got '{}'", o.filter));
+    }
+    if (!(o.playbackFps > 0.0) || !std::isfinite(o.playbackFps)) {
+        throw std::invalid_argument(fmt::format("--fps must be > 0, got {}", o.playbackFps));
+    }
+    if (!std::isfinite(o.start)) throw std::invalid_argument("--start must be finite");
+    o.params.validate();
+}
+
+/// Animation time of output frame i: simulated time / time unit (eq. 5's tau).
+double tauOf(const Options& o, std::size_t i) {
+    return (o.start + static_cast<double>(i) / o.playbackFps) / o.params.timeUnitSeconds;
+}
+
+/// The frames that `taus` select, decoded from the cache (no other frame is read).
+FrameSet loadUsed(const cache::Reader& reader, const SliceSampler& sampler,
+                  const std::vector<double>& taus) {
+    FrameSet set;
+    set.header = reader.header();
+    set.frameCount = reader.frameCount();
+    set.ids = sampler.framesUsed(taus);
+    set.frames.reserve(set.ids.size());
+    for (std::uint32_t id : set.ids) set.frames.push_back(reader.readFrame(id));
+    return set;
+}
+
+/// Mean water depth of the held frames: mean surface height above the domain's bottom.
+double waterDepth(const FrameSet& set) {
+    double sum = 0.0;
+    std::size_t count = 0;
+    for (const cache::Frame& f : set.frames) {
+        for (std::size_t p = 1; p < f.surface.size(); p += 2) sum += f.surface[p];
+        count += f.surfaceCount();
+    }
+    const double bottom = set.header.domain.yMin;
+    return count > 0 ? sum / static_cast<double>(count) - bottom
+                     : static_cast<double>(set.header.domain.yMax) - bottom;
+}
+
+json paramsJson(const Options& o, const FrameSet& set, double A) {
+    const ReplayParams& p = o.params;
+    return {{"mode", "surging"},
+            {"cache", o.cache},
+            {"res", {p.cellsX, p.cellsZ}},
+            {"slices", p.slices},
+            {"slices_total", 2 * p.slices - 1},
+            {"seed", p.seed},
+            {"fluctuation", p.fluctuation},
+            {"beta", p.noise.beta},
+            {"cutoff", p.noise.cutoff},
+            {"filter", o.filter},
+            {"noise_time_samples", p.noise.timeSamples},
+            {"sigma_cells", p.sigma},
+            {"window_cells", {3, 2}},
+            {"policy", o.policy},
+            {"time_unit_seconds", p.timeUnitSeconds},
+            {"A_frames_per_time_unit", A},
+            {"playback_fps", o.playbackFps},
+            {"start_seconds", o.start},
+            {"frames_in_cache", set.frameCount},
+            {"frames_decoded", set.ids.size()}};
+}
+
+double percentile(std::vector<double> v, double q) {
+    std::sort(v.begin(), v.end());
+    const double pos = q * static_cast<double>(v.size() - 1);
+    const auto lo = static_cast<std::size_t>(std::floor(pos));
+    const auto hi = std::min(lo + 1, v.size() - 1);
+    return v[lo] + (pos - static_cast<double>(lo)) * (v[hi] - v[lo]);
+}
+
+int runBench(Options& o, int frames, int warmup, int errorFrames, int cpuFrames) {
+    finishOptions(o);
+    if (frames < 1) throw std::invalid_argument("--frames must be >= 1");
+    const cache::Reader reader(o.cache);
+    const double A = framesPerTimeUnit(reader.header(), o.params);
+    const SliceSampler sampler(o.params, reader.frameCount(), A);
+
+    std::vector<double> taus(static_cast<std::size_t>(warmup + frames));
+    for (std::size_t i = 0; i < taus.size(); ++i) taus[i] = tauOf(o, i);
+    auto t0 = Clock::now();
+    const FrameSet set = loadUsed(reader, sampler, taus);
+    const double decodeMs = msSince(t0);
+
+    const EglContext context;
+    t0 = Clock::now();
+    GpuReplay gpu(set, o.params, sampler);
+    const double uploadMs = msSince(t0);
+
+    for (int i = 0; i < warmup; ++i) {
+        gpu.update(taus[static_cast<std::size_t>(i)]);
+        gpu.finish();
+    }
+    // Synced frames: each one waits for the GPU (glFinish) before the clock stops.
+    std::vector<double> frameMs(static_cast<std::size_t>(frames));
+    const auto all0 = Clock::now();
+    for (int i = 0; i < frames; ++i) {
+        const auto f0 = Clock::now();
+        gpu.update(taus[static_cast<std::size_t>(warmup + i)]);
+        gpu.finish();
+        frameMs[static_cast<std::size_t>(i)] = msSince(f0);
+    }
+    const double totalMs = msSince(all0);
+
+    // Per-stage GPU times from timer queries, in a separate run (queries cost a little).
+    const int timed = std::min(frames, 200);
+    double lookupMs = 0.0, reconstructMs = 0.0;
+    gpu.setTiming(true);
+    for (int i = 0; i < timed; ++i) {
+        gpu.update(taus[static_cast<std::size_t>(warmup + i)]);
+        const StageTimes st = gpu.stageTimes();
+        lookupMs += st.sliceLookupMs;
+        reconstructMs += st.reconstructMs;
+    }
+    gpu.setTiming(false);
+
+    // Error against the double-precision CPU reference on evenly spread frames.
+    const CpuReconstruction cpu(set, o.params, sampler);
+    double maxAbs = 0.0, sumSq = 0.0;
+    std::size_t cells = 0;
+    bool framesExact = true;
+    const int errorCount = std::min(errorFrames, frames);
+    for (int e = 0; e < errorCount; ++e) {
+        const double tau = taus[static_cast<std::size_t>(warmup + (e * frames) / errorCount)];
+        gpu.update(tau);
+        framesExact = framesExact && gpu.readSliceFrames() == sampler.frames(tau);
+        const HeightField g = gpu.readHeights();
+        const HeightField r = cpu.heights(tau);
+        for (std::size_t i = 0; i < g.heights.size(); ++i) {
+            const double d = std::isfinite(g.heights[i]) ? std::abs(g.heights[i] - r.heights[i])
+                                                          : std::numeric_limits<double>::infinity();
+            maxAbs = std::max(maxAbs, d);
+            sumSq += d * d;
+        }
+        cells += g.heights.size();
+    }
+    const double rms = cells > 0 ? std::sqrt(sumSq / static_cast<double>(cells)) : 0.0;
+    const double depth = waterDepth(set);
+
+    // The CPU reference's own speed, for comparison.
+    double cpuMs = 0.0;
+    const int cpuCount = std::min(cpuFrames, frames);
+    if (cpuCount > 0) {
+        t0 = Clock::now();
+        for (int i = 0; i < cpuCount; ++i) (void)cpu.heights(taus[static_cast<std::size_t>(warmup + i)]);
+        cpuMs = msSince(t0) / cpuCount;
+    }
+
+    const double meanMs = totalMs / frames;
+    json out = paramsJson(o, set, A);
+    out.update({{"renderer", context.renderer()},
+                {"gl_version", context.version()},
+                {"egl_platform", context.platform()},
+                {"frames", frames},
+                {"warmup", warmup},
+                {"synced", true},
+                {"fps", 1000.0 / meanMs},
+                {"frame_ms_mean", meanMs},
+                {"frame_ms_median", percentile(frameMs, 0.5)},
+                {"frame_ms_p95", percentile(frameMs, 0.95)},
+                {"stage_gpu_ms",
+                 {{"slice_lookup", lookupMs / timed},
+                  {"reconstruct", reconstructMs / timed},
+                  {"column_pass_once", gpu.columnPassMs()}}},
+                {"timed_frames", timed},
+                {"decode_ms", decodeMs},
+                {"upload_ms", uploadMs},
+                {"uploaded_bytes", gpu.uploadedBytes()},
+                {"error_frames", errorCount},
+                {"frames_exact", framesExact},
+                {"max_abs_error", maxAbs},
+                {"rms_error", rms},
+                {"water_depth", depth},
+                {"max_rel_error", maxAbs / depth},
+                {"cpu_reference_frames", cpuCount},
+                {"cpu_reference_ms", cpuMs},
+                {"cpu_reference_fps", cpuMs > 0.0 ? 1000.0 / cpuMs : 0.0}});
+    if (o.json) {
+        std::cout << out.dump() << "\n";
+    } else {
+        std::cout << fmt::format(
+            "swell-play bench  {}  ({}, EGL {})\n"
+            "  {}x{} cells, K = {} ({} slices), seed {}, F {}, {} of {} cache frames decoded\n"
+            "  {:.1f} fps synced over {} frames: median {:.3f} ms, p95 {:.3f} ms\n"
+            "  GPU stages: slice lookup {:.4f} ms, reconstruct {:.4f} ms; column pass once {:.2f} ms\n"
+            "  error vs CPU reference ({} frames): max {:.3g} m, rms {:.3g} m, max {:.3g} of depth "
+            "{:.3g} m; frame choice {}\n"
+            "  CPU reference: {:.1f} fps ({:.2f} ms/frame)\n",
+            context.renderer(), context.version(), context.platform(), o.params.cellsX,
+            o.params.cellsZ, o.params.slices, 2 * o.params.slices - 1, o.params.seed,
+            o.params.fluctuation, set.ids.size(), set.frameCount, 1000.0 / meanMs, frames,
+            percentile(frameMs, 0.5), percentile(frameMs, 0.95), lookupMs / timed,
+            reconstructMs / timed, gpu.columnPassMs(), errorCount, maxAbs, rms, maxAbs / depth,
+            depth, framesExact ? "exact" : "DIFFERS", cpuMs > 0 ? 1000.0 / cpuMs : 0.0, cpuMs);
+    }
+    if (!framesExact || !(maxAbs <= 1e-4 * depth)) {
+        std::cerr << "swell-play: GPU result differs from the CPU reference beyond 1e-4 of the depth\n";
+        return 2;
+    }
+    return 0;
+}
+
+int runHeights(Options& o, const std::string& outDir, double seconds) {
+    finishOptions(o);
+    if (!(seconds > 0.0) || !std::isfinite(seconds)) {
+        throw std::invalid_argument(fmt::format("--seconds must be > 0, got {}", seconds));
+    }
+    const cache::Reader reader(o.cache);
+    const double A = framesPerTimeUnit(reader.header(), o.params);
+    const SliceSampler sampler(o.params, reader.frameCount(), A);
+    const auto count = static_cast<std::size_t>(std::max(1.0, std::round(seconds * o.playbackFps)));
+    std::vector<double> taus(count);
+    for (std::size_t i = 0; i < count; ++i) taus[i] = tauOf(o, i);
+    const FrameSet set = loadUsed(reader, sampler, taus);
+
+    std::filesystem::create_directories(outDir);
+    const EglContext context;
+    GpuReplay gpu(set, o.params, sampler);
+    const cache::Domain& d = set.header.domain;
+    const HeightScale scale{d.yMin, (static_cast<double>(d.yMax) - d.yMin) / 65535.0};
+    json frames = json::array();
+    const bool progress = ::isatty(2) != 0 && !o.json;
+    const auto t0 = Clock::now();
+    for (std::size_t i = 0; i < count; ++i) {
+        gpu.update(taus[i]);
+        const std::string name = fmt::format("height_{:05d}.png", i);
+        writeHeightPng(std::filesystem::path(outDir) / name, gpu.readHeights(), scale);
+        frames.push_back({{"file", name}, {"tau", taus[i]}, {"seconds", o.start + i / o.playbackFps}});
+        if (progress) {
+            const double eta = msSince(t0) / 1000.0 * static_cast<double>(count - i - 1) / (i + 1);
+            std::cerr << fmt::format("\rswell-play heights: {}/{} frames, ETA {:.0f} s ", i + 1, count, eta);
+        }
+    }
+    if (progress) std::cerr << "\n";
+    json meta = paramsJson(o, set, A);
+    meta.update({{"renderer", context.renderer()},
+                 {"format", "16-bit greyscale PNG; height_m = offset + value * scale"},
+                 {"scale", {{"offset", scale.offset}, {"scale", scale.scale}, {"units", "m"}}},
+                 {"layout", "column n = x cell (x = x0 + (n + 0.5) dx), row m = z cell"},
+                 {"x0", gpu.grid().x0},
+                 {"dx", gpu.grid().dx},
+                 {"dz", gpu.grid().dz},
+                 {"count", count},
+                 {"frames", frames}});
+    const auto metaPath = std::filesystem::path(outDir) / "heights.json";
+    std::ofstream(metaPath) << meta.dump(2) << "\n";
+    if (o.json) {
+        std::cout << json{{"out", outDir}, {"count", count}, {"frames_decoded", set.ids.size()},
+                          {"renderer", context.renderer()}, {"seed", o.params.seed}}
+                         .dump()
+                  << "\n";
+    } else {
+        std::cout << fmt::format("swell-play heights: {} frames ({}x{}) in {}, metadata {}\n", count,
+                                 o.params.cellsX, o.params.cellsZ, outDir, metaPath.string());
+    }
+    return 0;
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{"swell-play: headless replay of a .swell cache (stochastic slices, eq. 5-7)"};
+    app.require_subcommand(1);
+
+    Options bench;
+    int frames = 1000, warmup = 50, errorFrames = 8, cpuFrames = 3;
+    auto* benchCmd = app.add_subcommand("bench", "time the GPU replay and check it against the CPU reference");
+    addCommon(benchCmd, bench);
+    benchCmd->add_option("--frames", frames, "timed frames")->capture_default_str();
+    benchCmd->add_option("--warmup", warmup, "untimed frames first")->capture_default_str()
+        ->check(CLI::Range(0, 1000000));
+    benchCmd->add_option("--error-frames", errorFrames, "frames compared with the CPU reference")
+        ->capture_default_str()->check(CLI::Range(0, 100000));
+    benchCmd->add_option("--cpu-frames", cpuFrames, "frames timed on the CPU reference (0: skip)")
+        ->capture_default_str()->check(CLI::Range(0, 100000));
+
+    Options heights;
+    std::string outDir;
+    double seconds = 2.0;
+    auto* heightsCmd = app.add_subcommand("heights", "write height fields (16-bit PNG + JSON)");
+    addCommon(heightsCmd, heights);
+    heightsCmd->add_option("--out", outDir, "output folder")->required();
+    heightsCmd->add_option("--seconds", seconds, "simulated seconds to write")->capture_default_str();
+
+    CLI11_PARSE(app, argc, argv);
+    try {
+        if (*benchCmd) return runBench(bench, frames, warmup, errorFrames, cpuFrames);
+        return runHeights(heights, outDir, seconds);
+    } catch (const cache::CacheError& e) {
+        std::cerr << "swell-play: " << e.what() << "\n";
+    } catch (const RuntimeError& e) {
+        std::cerr << "swell-play: " << e.what() << "\n";
+    } catch (const std::invalid_argument& e) {
+        std::cerr << "swell-play: " << e.what() << "\n";
+    } catch (const std::exception& e) {
+        std::cerr << "swell-play: " << e.what() << "\n";
+    }
+    return 1;
+}

@@ -14,8 +14,10 @@
 namespace swell::runtime {
 namespace {
 
-constexpr GLuint kGroup1D = 64;  // local_size_x of slice_lookup.comp and column_pass.comp
-constexpr GLuint kGroup2D = 8;   // local_size_x/y of reconstruct.comp
+constexpr GLuint kGroup1D = 64;      // local_size_x of column_pass.comp
+constexpr GLuint kGroupLookup = 256; // local_size_x of slice_lookup.comp
+constexpr GLuint kGroup2DX = 32;   // local_size_x of reconstruct.comp (column quads)
+constexpr GLuint kGroup2DY = 1;  // local_size_y of reconstruct.comp
 
 GLuint groups(long long count, GLuint size) {
     return static_cast<GLuint>((count + size - 1) / size);
@@ -27,16 +29,22 @@ GLint location(const GlProgram& program, const char* name) {
     return loc;
 }
 
+// GL_TIMESTAMP queries: llvmpipe reports GL_TIME_ELAPSED as 0 for compute dispatches, while
+// timestamps around each pass work on llvmpipe and on GPU drivers alike.
 GlQuery makeQuery() {
     GLuint q = 0;
-    glCreateQueries(GL_TIME_ELAPSED, 1, &q);
+    glCreateQueries(GL_TIMESTAMP, 1, &q);
     return GlQuery(q);
 }
 
-double queryMs(const GlQuery& q) {
+std::uint64_t queryNs(const GlQuery& q) {
     GLuint64 ns = 0;
     glGetQueryObjectui64v(q.get(), GL_QUERY_RESULT, &ns);
-    return static_cast<double>(ns) * 1e-6;
+    return ns;
+}
+
+double spanMs(const GlQuery& from, const GlQuery& to) {
+    return static_cast<double>(queryNs(to) - queryNs(from)) * 1e-6;
 }
 
 } // namespace
@@ -107,25 +115,27 @@ GpuReplay::GpuReplay(const FrameSet& frames, const ReplayParams& params,
     if (m_heldFrames == 0) binStart.assign(static_cast<std::size_t>(N + 3), 0);
     GlBuffer particleBuffer = makeStorageBuffer(particles.size() * sizeof(float), particles.data());
     GlBuffer binBuffer = makeStorageBuffer(binStart.size() * sizeof(GLuint), binStart.data());
-    m_columns = makeStorageBuffer(S * static_cast<std::size_t>(N) * 2 * sizeof(float), nullptr);
+    const int Nq = (N + 3) / 4; // columns in quads of four (column_pass.comp)
+    const std::vector<float> zeros(S * static_cast<std::size_t>(Nq) * 8, 0.0f);
+    m_columns = makeStorageBuffer(zeros.size() * sizeof(float), zeros.data());
 
     // ---- column pass: x half of eq. (7) per held frame and column, once
     glProgramUniform1i(column.get(), location(column, "u_N"), N);
+    glProgramUniform1i(column.get(), location(column, "u_Nq"), Nq);
     glProgramUniform1i(column.get(), location(column, "u_slots"), static_cast<GLint>(m_heldFrames));
     glProgramUniform1f(column.get(), location(column, "u_sigma"), static_cast<float>(params.sigma));
     glProgramUniform1f(column.get(), location(column, "u_emptyHeight"), m_missing);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, particleBuffer.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, binBuffer.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, m_columns.get());
-    m_queries[0] = makeQuery();
-    m_queries[1] = makeQuery();
+    for (GlQuery& q : m_queries) q = makeQuery();
     if (m_heldFrames > 0) {
         glUseProgram(column.get());
-        glBeginQuery(GL_TIME_ELAPSED, m_queries[0].get());
+        glQueryCounter(m_queries[0].get(), GL_TIMESTAMP);
         glDispatchCompute(groups(N, kGroup1D), static_cast<GLuint>(m_heldFrames), 1);
-        glEndQuery(GL_TIME_ELAPSED);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-        m_columnPassMs = queryMs(m_queries[0]);
+        glQueryCounter(m_queries[1].get(), GL_TIMESTAMP);
+        m_columnPassMs = spanMs(m_queries[0], m_queries[1]);
     }
     checkGl("running the column pass");
 
@@ -191,6 +201,7 @@ GpuReplay::GpuReplay(const FrameSet& frames, const ReplayParams& params,
     m_weights = makeStorageBuffer(weights.size() * sizeof(float), weights.data());
     const GLuint rp = m_reconstruct.get();
     glProgramUniform1i(rp, location(m_reconstruct, "u_N"), N);
+    glProgramUniform1i(rp, location(m_reconstruct, "u_Nq"), Nq);
     glProgramUniform1i(rp, location(m_reconstruct, "u_M"), M);
     glProgramUniform1i(rp, location(m_reconstruct, "u_rowStride"), m_rowStride);
     glProgramUniform1f(rp, location(m_reconstruct, "u_reference"), m_reference);
@@ -206,7 +217,7 @@ GpuReplay::GpuReplay(const FrameSet& frames, const ReplayParams& params,
     glTextureParameteri(tex, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
 
     m_uploadedBytes = particles.size() * sizeof(float) + binStart.size() * sizeof(GLuint) +
-                      S * static_cast<std::size_t>(N) * 2 * sizeof(float) +
+                      zeros.size() * sizeof(float) +
                       noiseValues.size() * sizeof(double) + slotOf.size() * sizeof(GLuint) +
                       rows.size() * sizeof(GLint) + weights.size() * sizeof(float);
     glFinish(); // the particle and bin buffers are released when this returns
@@ -225,10 +236,10 @@ void GpuReplay::update(double tau) {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, m_slotOf.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, m_slices.get());
     glUseProgram(m_lookup.get());
-    if (m_timing) glBeginQuery(GL_TIME_ELAPSED, m_queries[0].get());
-    glDispatchCompute(groups(m_grid.sliceCount(), kGroup1D), 1, 1);
-    if (m_timing) glEndQuery(GL_TIME_ELAPSED);
+    if (m_timing) glQueryCounter(m_queries[0].get(), GL_TIMESTAMP);
+    glDispatchCompute(groups(m_grid.sliceCount(), kGroupLookup), 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    if (m_timing) glQueryCounter(m_queries[1].get(), GL_TIMESTAMP);
 
     // Pass 2, eq. (7): every cell from the column sums of the slices in its z window.
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, m_slices.get());
@@ -237,16 +248,15 @@ void GpuReplay::update(double tau) {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, m_weights.get());
     glBindImageTexture(0, m_height.get(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
     glUseProgram(m_reconstruct.get());
-    if (m_timing) glBeginQuery(GL_TIME_ELAPSED, m_queries[1].get());
-    glDispatchCompute(groups(m_grid.cellsX, kGroup2D), groups(m_grid.cellsZ, kGroup2D), 1);
-    if (m_timing) glEndQuery(GL_TIME_ELAPSED);
+    glDispatchCompute(groups((m_grid.cellsX + 3) / 4, kGroup2DX), groups(m_grid.cellsZ, kGroup2DY), 1);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |
                     GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    if (m_timing) glQueryCounter(m_queries[2].get(), GL_TIMESTAMP);
 }
 
 StageTimes GpuReplay::stageTimes() const {
     if (!m_timedUpdate) throw std::logic_error("GpuReplay::stageTimes: no timed update yet");
-    return StageTimes{queryMs(m_queries[0]), queryMs(m_queries[1])};
+    return StageTimes{spanMs(m_queries[0], m_queries[1]), spanMs(m_queries[1], m_queries[2])};
 }
 
 void GpuReplay::finish() const { glFinish(); }

@@ -21,7 +21,7 @@
 
 namespace swell::runtime {
 
-/// GPU time of each stage of the last update(), from GL timer queries (milliseconds).
+/// GPU time of each stage of the last update(), from GL timestamp queries (milliseconds).
 struct StageTimes {
     double sliceLookupMs = 0.0; ///< eq. (5)-(6), slice_lookup.comp
     double reconstructMs = 0.0; ///< eq. (7), reconstruct.comp
@@ -37,7 +37,7 @@ public:
     /// Slices whose frame is not held read as the domain's yMin (hold every frame that
     /// SliceSampler::framesUsed names for the taus you play).
     void update(double tau);
-    /// Wraps each pass of update() in a GL_TIME_ELAPSED query (adds a little overhead).
+    /// Puts a GL timestamp query around each pass of update() (adds a little overhead).
     void setTiming(bool on) { m_timing = on; }
     /// Stage times of the last timed update(); waits for the GPU.
     StageTimes stageTimes() const;
@@ -86,7 +86,7 @@ private:
     GlBuffer m_rows;
     GlBuffer m_weights;
     GlTexture m_height;
-    GlQuery m_queries[2];
+    GlQuery m_queries[3];
     int m_lookupTau = -1;
 };
 
