@@ -376,7 +376,16 @@ int main(int argc, char** argv) {
     heightsCmd->add_option("--out", outDir, "output folder")->required();
     heightsCmd->add_option("--seconds", seconds, "simulated seconds to write")->capture_default_str();
 
-    CLI11_PARSE(app, argc, argv);
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::CallForHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForAllHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::ParseError& e) {
+        std::cerr << "swell-play: " << e.what() << " (see --help)\n";
+        return e.get_exit_code() != 0 ? e.get_exit_code() : 1;
+    }
     try {
         if (*benchCmd) return runBench(bench, frames, warmup, errorFrames, cpuFrames);
         return runHeights(heights, outDir, seconds);
