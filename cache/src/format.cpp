@@ -42,6 +42,12 @@ float dequantize(std::uint16_t q, float lo, float hi) {
     return static_cast<float>(lo + (static_cast<double>(hi) - lo) * (q / 65535.0));
 }
 
+/// memcpy that accepts empty ranges (whose pointers may be null).
+void copyBytes(void* dst, const void* src, std::size_t n) {
+    if (n)
+        std::memcpy(dst, src, n);
+}
+
 } // namespace
 
 std::uint64_t rawRecordSize(Encoding enc, std::uint64_t ns, std::uint64_t nsp) {
@@ -52,8 +58,8 @@ void encodeRecord(const Header& h, const Frame& f, std::vector<std::uint8_t>& ou
     const std::size_t ns = f.surfaceCount(), nsp = f.splashCount();
     out.resize(rawRecordSize(h.encoding, ns, nsp));
     if (h.encoding == Encoding::Float32) {
-        std::memcpy(out.data(), f.surface.data(), ns * 8);
-        std::memcpy(out.data() + ns * 8, f.splash.data(), nsp * 16);
+        copyBytes(out.data(), f.surface.data(), ns * 8);
+        copyBytes(out.data() + ns * 8, f.splash.data(), nsp * 16);
         return;
     }
     const Domain& d = h.domain;
@@ -78,8 +84,8 @@ Frame decodeRecord(const Header& h, std::span<const std::uint8_t> raw, std::uint
     f.surface.resize(std::size_t{ns} * 2);
     f.splash.resize(std::size_t{nsp} * 4);
     if (h.encoding == Encoding::Float32) {
-        std::memcpy(f.surface.data(), raw.data(), std::size_t{ns} * 8);
-        std::memcpy(f.splash.data(), raw.data() + std::size_t{ns} * 8, std::size_t{nsp} * 16);
+        copyBytes(f.surface.data(), raw.data(), std::size_t{ns} * 8);
+        copyBytes(f.splash.data(), raw.data() + std::size_t{ns} * 8, std::size_t{nsp} * 16);
         return f;
     }
     const Domain& d = h.domain;
