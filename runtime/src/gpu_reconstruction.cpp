@@ -113,6 +113,24 @@ GpuReplay::GpuReplay(const FrameSet& frames, const ReplayParams& params,
         }
     }
     if (m_heldFrames == 0) binStart.assign(static_cast<std::size_t>(N + 3), 0);
+    // Driver limits: one shader-storage block per buffer, one work group row per held frame.
+    GLint64 maxBlock = 0;
+    glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &maxBlock);
+    GLint maxGroupsY = 0;
+    glGetIntegeri_v(GL_MAX_COMPUTE_WORK_GROUP_COUNT, 1, &maxGroupsY);
+    const std::size_t columnBytes = S * static_cast<std::size_t>((N + 3) / 4) * 8 * sizeof(float);
+    for (const std::size_t bytes : {particles.size() * sizeof(float), columnBytes}) {
+        if (static_cast<GLint64>(bytes) > maxBlock) {
+            throw RuntimeError(fmt::format(
+                "the replay needs a {:.0f} MB buffer ({} held frames at {} columns), above this "
+                "driver's {:.0f} MB shader-storage limit: lower --res or replay fewer seconds",
+                bytes / 1e6, m_heldFrames, N, static_cast<double>(maxBlock) / 1e6));
+        }
+    }
+    if (m_heldFrames > static_cast<std::size_t>(maxGroupsY)) {
+        throw RuntimeError(fmt::format("{} held frames exceed this driver's {} work groups per axis",
+                                       m_heldFrames, maxGroupsY));
+    }
     GlBuffer particleBuffer = makeStorageBuffer(particles.size() * sizeof(float), particles.data());
     GlBuffer binBuffer = makeStorageBuffer(binStart.size() * sizeof(GLuint), binStart.data());
     const int Nq = (N + 3) / 4; // columns in quads of four (column_pass.comp)
