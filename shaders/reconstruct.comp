@@ -7,14 +7,18 @@
 // G_z-weighted mean of the slices' column fallbacks, so no cell is a hole or NaN.
 // One work group per row segment: m comes from gl_WorkGroupID only, so the row's slice list
 // and weights are the same for every invocation of a group (uniform loads on llvmpipe). Each
-// invocation computes four neighbouring cells n = 4q .. 4q + 3 with vec4 arithmetic.
-layout(local_size_x = 32, local_size_y = 1) in;
+// invocation computes four neighbouring cells n = 4q .. 4q + 3 with vec4 arithmetic. The host
+// sets the group width to fit the row (llvmpipe pays per work group, and per idle lane).
+#ifndef SWELL_QUADS_PER_GROUP
+#define SWELL_QUADS_PER_GROUP 32
+#endif
+layout(local_size_x = SWELL_QUADS_PER_GROUP, local_size_y = 1) in;
 
 layout(std430, binding = 0) readonly buffer Slices { ivec2 slices[]; };       // (frame, slot)
 layout(std430, binding = 1) readonly buffer Columns { vec4 columns[]; };      // see column_pass
 layout(std430, binding = 2) readonly buffer Rows { ivec2 rows[]; };           // (first j, count)
 layout(std430, binding = 3) readonly buffer RowWeights { float weights[]; };  // G_z per (m, i)
-layout(r32f, binding = 0) writeonly uniform image2D u_height;
+layout(std430, binding = 4) writeonly buffer Heights { float heights[]; };    // m * N + n
 
 uniform int u_N;             // cells along x
 uniform int u_Nq;            // column quads, ceil(N / 4)
@@ -51,6 +55,6 @@ void main() {
     vec4 h = mix(F / G, S / W, greaterThan(W, vec4(0.0)));
     for (int c = 0; c < 4; ++c) {
         int n = 4 * q + c;
-        if (n < u_N) imageStore(u_height, ivec2(n, m), vec4(h[c] + u_reference, 0.0, 0.0, 0.0));
+        if (n < u_N) heights[m * u_N + n] = h[c] + u_reference;
     }
 }

@@ -1,6 +1,7 @@
 #include "swell/runtime/gpu_reconstruction.h"
 
 #include "swell/runtime/error.h"
+#include "swell/shaders/shaders.h"
 
 #define GL_GLEXT_PROTOTYPES
 #include <GL/glcorearb.h>
@@ -10,14 +11,13 @@
 #include <cstdlib>
 #include <fmt/format.h>
 #include <stdexcept>
+#include <string>
 
 namespace swell::runtime {
 namespace {
 
 constexpr GLuint kGroup1D = 64;      // local_size_x of column_pass.comp
 constexpr GLuint kGroupLookup = 256; // local_size_x of slice_lookup.comp
-constexpr GLuint kGroup2DX = 32;   // local_size_x of reconstruct.comp (column quads)
-constexpr GLuint kGroup2DY = 1;  // local_size_y of reconstruct.comp
 
 GLuint groups(long long count, GLuint size) {
     return static_cast<GLuint>((count + size - 1) / size);
@@ -66,7 +66,14 @@ GpuReplay::GpuReplay(const FrameSet& frames, const ReplayParams& params,
     m_heldFrames = frames.frames.size();
 
     m_lookup = makeEmbeddedProgram("slice_lookup.comp");
-    m_reconstruct = makeEmbeddedProgram("reconstruct.comp");
+    // reconstruct.comp: one work group per row, as few groups as fit the row's column quads.
+    const GLuint quads = static_cast<GLuint>((N + 3) / 4);
+    m_quadsPerGroup = 32;
+    while (m_quadsPerGroup < quads && m_quadsPerGroup < 256) m_quadsPerGroup *= 2;
+    std::string source(shaders::get("reconstruct.comp"));
+    source.insert(source.find('\n') + 1,
+                  fmt::format("#define SWELL_QUADS_PER_GROUP {}\n", m_quadsPerGroup));
+    m_reconstruct = makeComputeProgram("reconstruct.comp", source);
     GlProgram column = makeEmbeddedProgram("column_pass.comp");
 
     // Heights are uploaded relative to the middle of the domain, which keeps float sums of
@@ -225,6 +232,7 @@ GpuReplay::GpuReplay(const FrameSet& frames, const ReplayParams& params,
     glProgramUniform1f(rp, location(m_reconstruct, "u_reference"), m_reference);
     glProgramUniform1f(rp, location(m_reconstruct, "u_missing"), m_missing);
 
+    m_heights = makeStorageBuffer(static_cast<std::size_t>(N) * static_cast<std::size_t>(M) * sizeof(float), nullptr);
     GLuint tex = 0;
     glCreateTextures(GL_TEXTURE_2D, 1, &tex);
     m_height = GlTexture(tex);
@@ -264,11 +272,13 @@ void GpuReplay::update(double tau) {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, m_columns.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, m_rows.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, m_weights.get());
-    glBindImageTexture(0, m_height.get(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, m_heights.get());
     glUseProgram(m_reconstruct.get());
-    glDispatchCompute(groups((m_grid.cellsX + 3) / 4, kGroup2DX), groups(m_grid.cellsZ, kGroup2DY), 1);
-    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |
-                    GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    glDispatchCompute(groups((m_grid.cellsX + 3) / 4, m_quadsPerGroup),
+                      static_cast<GLuint>(m_grid.cellsZ), 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT |
+                    GL_PIXEL_BUFFER_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+    m_textureStale = true;
     if (m_timing) glQueryCounter(m_queries[2].get(), GL_TIMESTAMP);
 }
 
@@ -279,14 +289,27 @@ StageTimes GpuReplay::stageTimes() const {
 
 void GpuReplay::finish() const { glFinish(); }
 
+GlName GpuReplay::heightTexture() {
+    if (m_textureStale) {
+        // Buffer -> texture copy on the GPU side (a pixel-unpack buffer), only when asked.
+        glBindBuffer(GL_PIXEL_UNPACK_BUFFER, m_heights.get());
+        glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+        glTextureSubImage2D(m_height.get(), 0, 0, 0, m_grid.cellsX, m_grid.cellsZ, GL_RED, GL_FLOAT,
+                            nullptr);
+        glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
+        checkGl("copying the heights into the height texture");
+        m_textureStale = false;
+    }
+    return m_height.get();
+}
+
 HeightField GpuReplay::readHeights() const {
     HeightField out;
     out.cellsX = m_grid.cellsX;
     out.cellsZ = m_grid.cellsZ;
     std::vector<float> texels(static_cast<std::size_t>(out.cellsX) * static_cast<std::size_t>(out.cellsZ));
-    glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glGetTextureImage(m_height.get(), 0, GL_RED, GL_FLOAT,
-                      static_cast<GLsizei>(texels.size() * sizeof(float)), texels.data());
+    glGetNamedBufferSubData(m_heights.get(), 0, static_cast<GLsizeiptr>(texels.size() * sizeof(float)),
+                            texels.data());
     checkGl("reading the height field back");
     out.heights.assign(texels.begin(), texels.end());
     return out;

@@ -4,6 +4,9 @@
 
 #include "synthetic_frames.h"
 
+#define GL_GLEXT_PROTOTYPES
+#include <GL/glcorearb.h>
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -203,6 +206,27 @@ TEST_F(GpuReconstruction, DifferentSeedsGiveVisiblyDifferentSurfaces) {
     }
     // The surfaces differ by a sizeable fraction of the wave's own variation.
     EXPECT_GT(std::sqrt(rms), 0.3 * std::sqrt(spread));
+}
+
+TEST_F(GpuReconstruction, HeightTextureHoldsTheLatestHeights) {
+    const FrameSet set = FrameSet::whole(test::syntheticHeader(), test::syntheticFrames(120, 200, 4));
+    ReplayParams p;
+    p.cellsX = 45;
+    p.cellsZ = 38;
+    p.slices = 50;
+    const SliceSampler s(p, set.frameCount, framesPerTimeUnit(set.header, p));
+    GpuReplay gpu(set, p, s);
+    for (double tau : {0.05, 0.2}) {
+        gpu.update(tau);
+        const GlName texture = gpu.heightTexture();
+        std::vector<float> texels(45 * 38);
+        glPixelStorei(GL_PACK_ALIGNMENT, 1);
+        glGetTextureImage(texture, 0, GL_RED, GL_FLOAT, static_cast<GLsizei>(texels.size() * 4), texels.data());
+        const HeightField h = gpu.readHeights();
+        for (int m = 0; m < 38; ++m) {
+            for (int n = 0; n < 45; ++n) ASSERT_EQ(texels[m * 45 + n], static_cast<float>(h.at(n, m)));
+        }
+    }
 }
 
 TEST_F(GpuReconstruction, StageTimesComeFromTimerQueries) {

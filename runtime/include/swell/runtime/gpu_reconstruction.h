@@ -7,7 +7,8 @@
 // the separable eq. (7) sums, per frame and column (shaders/column_pass.comp). Each update(tau)
 // then runs two small passes, no upload and no readback:
 //   1. slice_lookup.comp: s_j for the 2K - 1 slices (fp64, matches SliceSampler exactly);
-//   2. reconstruct.comp: each cell combines the column sums of the slices in its z window.
+//   2. reconstruct.comp: each cell combines the column sums of the slices in its z window,
+//      into a float buffer (heightBuffer(); a texture copy on request, heightTexture()).
 // Definitions of the window and the fallback: cpu_reconstruction.h.
 
 #include "swell/runtime/frame_set.h"
@@ -46,12 +47,16 @@ public:
     /// Blocks until every command issued so far has finished (glFinish).
     void finish() const;
 
-    /// R32F texture of N x M texels; texel (n, m) is the height (m, cache y) at the centre of
-    /// cell (n, m), x = x0 + (n + 1/2) dx, z = (m + 1/2) dz. Valid after update().
-    GlName heightTexture() const { return m_height.get(); }
+    /// SSBO of N x M floats, [m * N + n] = the height (metres, cache y) at the centre of cell
+    /// (n, m), x = x0 + (n + 1/2) dx, z = (m + 1/2) dz: what update() writes. Bind it as a
+    /// shader-storage buffer or as a GL_TEXTURE_BUFFER (R32F) for texelFetch.
+    GlName heightBuffer() const { return m_heights.get(); }
+    /// The same heights as an R32F 2D texture (N x M, linear filtering, clamp to edge) for
+    /// sampling: copied from heightBuffer() on the first call after each update(), on the GPU.
+    GlName heightTexture();
     /// SSBO of 2K - 1 ivec2: (cache frame, held-frame slot or -1) shown by slice j, at z_j.
     GlName sliceBuffer() const { return m_slices.get(); }
-    /// Reads the height texture back (blocks).
+    /// Reads the heights back (blocks).
     HeightField readHeights() const;
     /// Reads the frame of every slice back (blocks).
     std::vector<std::uint32_t> readSliceFrames() const;
@@ -73,6 +78,7 @@ private:
     float m_reference = 0.0f;
     float m_missing = 0.0f;
     int m_rowStride = 0;
+    std::uint32_t m_quadsPerGroup = 32;
     bool m_timing = false;
     bool m_timedUpdate = false;
     double m_columnPassMs = 0.0;
@@ -85,7 +91,9 @@ private:
     GlBuffer m_columns;
     GlBuffer m_rows;
     GlBuffer m_weights;
+    GlBuffer m_heights;
     GlTexture m_height;
+    bool m_textureStale = true;
     GlQuery m_queries[3];
     int m_lookupTau = -1;
 };
