@@ -91,7 +91,9 @@ EglContext::EglContext() {
 }
 
 EglContext::~EglContext() {
-    eglMakeCurrent(m_display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+    if (eglGetCurrentContext() == m_context) {
+        eglMakeCurrent(m_display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+    }
     eglDestroyContext(m_display, m_context);
     // eglTerminate is not called: displays are shared per process (EGL 1.5), and terminating
     // one would pull it from under another context in the same process.

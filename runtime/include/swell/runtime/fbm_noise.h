@@ -32,7 +32,8 @@ public:
     /// Synthesises a T x K field (T = params.timeSamples): complex white noise from
     /// SplitMix64(seed), amplitude |f|^(-beta/2), filter, inverse real FFT, scaled to
     /// max |N| = 1. Throws std::invalid_argument on bad parameters or a filter that removes
-    /// every frequency.
+    /// every frequency. Plans an FFTW transform: FFTW's planner is not thread-safe, so do not
+    /// construct two FbmNoise at once on different threads.
     FbmNoise(const NoiseParams& params, int slices, std::uint64_t seed);
 
     int timeSamples() const { return m_T; }
