@@ -35,14 +35,14 @@ double msSince(Clock::time_point t0) {
 
 /// Options shared by every subcommand.
 struct Options {
-    std::string cache;             ///< input .swell file
-    std::string res = "128x128";   ///< N x M base-mesh cells
-    std::string policy = "loop";   ///< frames outside the cache: clamp or loop
-    std::string filter = "low";    ///< noise band: low, high or none
-    double playbackFps = 30.0;     ///< output frames per simulated second
-    double start = 0.0;            ///< simulated second of the first output frame
-    bool json = false;             ///< one JSON object on stdout
-    ReplayParams params;           ///< the replay itself (paper defaults)
+    std::string cache;           ///< input .swell file
+    std::string res = "128x128"; ///< N x M base-mesh cells
+    std::string policy = "loop"; ///< frames outside the cache: clamp or loop
+    std::string filter = "low";  ///< noise band: low, high or none
+    double playbackFps = 30.0;   ///< output frames per simulated second
+    double start = 0.0;          ///< simulated second of the first output frame
+    bool json = false;           ///< one JSON object on stdout
+    ReplayParams params;         ///< the replay itself (paper defaults)
 };
 
 void addCommon(CLI::App* cmd, Options& o) {
@@ -54,7 +54,8 @@ void addCommon(CLI::App* cmd, Options& o) {
     cmd->add_option("--seed", o.params.seed, "noise seed")->capture_default_str();
     cmd->add_option("--fluctuation,-F", o.params.fluctuation, "F of eq. (5), 0..1")
         ->capture_default_str();
-    cmd->add_option("--beta", o.params.noise.beta, "noise spectral exponent")->capture_default_str();
+    cmd->add_option("--beta", o.params.noise.beta, "noise spectral exponent")
+        ->capture_default_str();
     cmd->add_option("--cutoff", o.params.noise.cutoff, "noise filter cut-off c (wavenumbers)")
         ->capture_default_str();
     cmd->add_option("--filter", o.filter, "noise band kept: low, high or none")
@@ -92,12 +93,14 @@ void finishOptions(Options& o) {
     } else if (o.filter == "none") {
         o.params.noise.filter = NoiseFilter::None;
     } else {
-        throw std::invalid_argument(fmt::format("--filter must be low, high or none, got '{}'", o.filter));
+        throw std::invalid_argument(
+            fmt::format("--filter must be low, high or none, got '{}'", o.filter));
     }
     if (!(o.playbackFps > 0.0) || !std::isfinite(o.playbackFps)) {
         throw std::invalid_argument(fmt::format("--fps must be > 0, got {}", o.playbackFps));
     }
-    if (!std::isfinite(o.start)) throw std::invalid_argument("--start must be finite");
+    if (!std::isfinite(o.start))
+        throw std::invalid_argument("--start must be finite");
     o.params.validate();
 }
 
@@ -114,7 +117,8 @@ FrameSet loadUsed(const cache::Reader& reader, const SliceSampler& sampler,
     set.frameCount = reader.frameCount();
     set.ids = sampler.framesUsed(taus);
     set.frames.reserve(set.ids.size());
-    for (std::uint32_t id : set.ids) set.frames.push_back(reader.readFrame(id));
+    for (std::uint32_t id : set.ids)
+        set.frames.push_back(reader.readFrame(id));
     return set;
 }
 
@@ -123,7 +127,8 @@ double waterDepth(const FrameSet& set) {
     double sum = 0.0;
     std::size_t count = 0;
     for (const cache::Frame& f : set.frames) {
-        for (std::size_t p = 1; p < f.surface.size(); p += 2) sum += f.surface[p];
+        for (std::size_t p = 1; p < f.surface.size(); p += 2)
+            sum += f.surface[p];
         count += f.surfaceCount();
     }
     const double bottom = set.header.domain.yMin;
@@ -165,13 +170,15 @@ double percentile(std::vector<double> v, double q) {
 
 int runBench(Options& o, int frames, int warmup, int errorFrames, int cpuFrames) {
     finishOptions(o);
-    if (frames < 1) throw std::invalid_argument("--frames must be >= 1");
+    if (frames < 1)
+        throw std::invalid_argument("--frames must be >= 1");
     const cache::Reader reader(o.cache);
     const double A = framesPerTimeUnit(reader.header(), o.params);
     const SliceSampler sampler(o.params, reader.frameCount(), A);
 
     std::vector<double> taus(static_cast<std::size_t>(warmup + frames));
-    for (std::size_t i = 0; i < taus.size(); ++i) taus[i] = tauOf(o, i);
+    for (std::size_t i = 0; i < taus.size(); ++i)
+        taus[i] = tauOf(o, i);
     auto t0 = Clock::now();
     const FrameSet set = loadUsed(reader, sampler, taus);
     const double decodeMs = msSince(t0);
@@ -222,7 +229,7 @@ int runBench(Options& o, int frames, int warmup, int errorFrames, int cpuFrames)
         const HeightField r = cpu.heights(tau);
         for (std::size_t i = 0; i < g.heights.size(); ++i) {
             const double d = std::isfinite(g.heights[i]) ? std::abs(g.heights[i] - r.heights[i])
-                                                          : std::numeric_limits<double>::infinity();
+                                                         : std::numeric_limits<double>::infinity();
             maxAbs = std::max(maxAbs, d);
             sumSq += d * d;
         }
@@ -236,7 +243,8 @@ int runBench(Options& o, int frames, int warmup, int errorFrames, int cpuFrames)
     const int cpuCount = std::min(cpuFrames, frames);
     if (cpuCount > 0) {
         t0 = Clock::now();
-        for (int i = 0; i < cpuCount; ++i) (void)cpu.heights(taus[static_cast<std::size_t>(warmup + i)]);
+        for (int i = 0; i < cpuCount; ++i)
+            (void)cpu.heights(taus[static_cast<std::size_t>(warmup + i)]);
         cpuMs = msSince(t0) / cpuCount;
     }
 
@@ -276,7 +284,8 @@ int runBench(Options& o, int frames, int warmup, int errorFrames, int cpuFrames)
             "swell-play bench  {}  ({}, EGL {})\n"
             "  {}x{} cells, K = {} ({} slices), seed {}, F {}, {} of {} cache frames decoded\n"
             "  {:.1f} fps synced over {} frames: median {:.3f} ms, p95 {:.3f} ms\n"
-            "  GPU stages: slice lookup {:.4f} ms, reconstruct {:.4f} ms; column pass once {:.2f} ms\n"
+            "  GPU stages: slice lookup {:.4f} ms, reconstruct {:.4f} ms; column pass once {:.2f} "
+            "ms\n"
             "  error vs CPU reference ({} frames): max {:.3g} m, rms {:.3g} m, max {:.3g} of depth "
             "{:.3g} m; frame choice {}\n"
             "  CPU reference: {:.1f} fps ({:.2f} ms/frame)\n",
@@ -288,7 +297,8 @@ int runBench(Options& o, int frames, int warmup, int errorFrames, int cpuFrames)
             depth, framesExact ? "exact" : "DIFFERS", cpuMs > 0 ? 1000.0 / cpuMs : 0.0, cpuMs);
     }
     if (!framesExact || !(maxAbs <= 1e-4 * depth)) {
-        std::cerr << "swell-play: GPU result differs from the CPU reference beyond 1e-4 of the depth\n";
+        std::cerr
+            << "swell-play: GPU result differs from the CPU reference beyond 1e-4 of the depth\n";
         return 2;
     }
     return 0;
@@ -304,7 +314,8 @@ int runHeights(Options& o, const std::string& outDir, double seconds) {
     const SliceSampler sampler(o.params, reader.frameCount(), A);
     const auto count = static_cast<std::size_t>(std::max(1.0, std::round(seconds * o.playbackFps)));
     std::vector<double> taus(count);
-    for (std::size_t i = 0; i < count; ++i) taus[i] = tauOf(o, i);
+    for (std::size_t i = 0; i < count; ++i)
+        taus[i] = tauOf(o, i);
     const FrameSet set = loadUsed(reader, sampler, taus);
 
     std::filesystem::create_directories(outDir);
@@ -319,13 +330,16 @@ int runHeights(Options& o, const std::string& outDir, double seconds) {
         gpu.update(taus[i]);
         const std::string name = fmt::format("height_{:05d}.png", i);
         writeHeightPng(std::filesystem::path(outDir) / name, gpu.readHeights(), scale);
-        frames.push_back({{"file", name}, {"tau", taus[i]}, {"seconds", o.start + i / o.playbackFps}});
+        frames.push_back(
+            {{"file", name}, {"tau", taus[i]}, {"seconds", o.start + i / o.playbackFps}});
         if (progress) {
             const double eta = msSince(t0) / 1000.0 * static_cast<double>(count - i - 1) / (i + 1);
-            std::cerr << fmt::format("\rswell-play heights: {}/{} frames, ETA {:.0f} s ", i + 1, count, eta);
+            std::cerr << fmt::format("\rswell-play heights: {}/{} frames, ETA {:.0f} s ", i + 1,
+                                     count, eta);
         }
     }
-    if (progress) std::cerr << "\n";
+    if (progress)
+        std::cerr << "\n";
     json meta = paramsJson(o, set, A);
     meta.update({{"renderer", context.renderer()},
                  {"format", "16-bit greyscale PNG; height_m = offset + value * scale"},
@@ -339,13 +353,17 @@ int runHeights(Options& o, const std::string& outDir, double seconds) {
     const auto metaPath = std::filesystem::path(outDir) / "heights.json";
     std::ofstream(metaPath) << meta.dump(2) << "\n";
     if (o.json) {
-        std::cout << json{{"out", outDir}, {"count", count}, {"frames_decoded", set.ids.size()},
-                          {"renderer", context.renderer()}, {"seed", o.params.seed}}
+        std::cout << json{{"out", outDir},
+                          {"count", count},
+                          {"frames_decoded", set.ids.size()},
+                          {"renderer", context.renderer()},
+                          {"seed", o.params.seed}}
                          .dump()
                   << "\n";
     } else {
-        std::cout << fmt::format("swell-play heights: {} frames ({}x{}) in {}, metadata {}\n", count,
-                                 o.params.cellsX, o.params.cellsZ, outDir, metaPath.string());
+        std::cout << fmt::format("swell-play heights: {} frames ({}x{}) in {}, metadata {}\n",
+                                 count, o.params.cellsX, o.params.cellsZ, outDir,
+                                 metaPath.string());
     }
     return 0;
 }
@@ -358,15 +376,19 @@ int main(int argc, char** argv) {
 
     Options bench;
     int frames = 1000, warmup = 50, errorFrames = 8, cpuFrames = 3;
-    auto* benchCmd = app.add_subcommand("bench", "time the GPU replay and check it against the CPU reference");
+    auto* benchCmd =
+        app.add_subcommand("bench", "time the GPU replay and check it against the CPU reference");
     addCommon(benchCmd, bench);
     benchCmd->add_option("--frames", frames, "timed frames")->capture_default_str();
-    benchCmd->add_option("--warmup", warmup, "untimed frames first")->capture_default_str()
+    benchCmd->add_option("--warmup", warmup, "untimed frames first")
+        ->capture_default_str()
         ->check(CLI::Range(0, 1000000));
     benchCmd->add_option("--error-frames", errorFrames, "frames compared with the CPU reference")
-        ->capture_default_str()->check(CLI::Range(0, 100000));
+        ->capture_default_str()
+        ->check(CLI::Range(0, 100000));
     benchCmd->add_option("--cpu-frames", cpuFrames, "frames timed on the CPU reference (0: skip)")
-        ->capture_default_str()->check(CLI::Range(0, 100000));
+        ->capture_default_str()
+        ->check(CLI::Range(0, 100000));
 
     Options heights;
     std::string outDir;
@@ -374,7 +396,8 @@ int main(int argc, char** argv) {
     auto* heightsCmd = app.add_subcommand("heights", "write height fields (16-bit PNG + JSON)");
     addCommon(heightsCmd, heights);
     heightsCmd->add_option("--out", outDir, "output folder")->required();
-    heightsCmd->add_option("--seconds", seconds, "simulated seconds to write")->capture_default_str();
+    heightsCmd->add_option("--seconds", seconds, "simulated seconds to write")
+        ->capture_default_str();
 
     try {
         app.parse(argc, argv);
@@ -387,7 +410,8 @@ int main(int argc, char** argv) {
         return e.get_exit_code() != 0 ? e.get_exit_code() : 1;
     }
     try {
-        if (*benchCmd) return runBench(bench, frames, warmup, errorFrames, cpuFrames);
+        if (*benchCmd)
+            return runBench(bench, frames, warmup, errorFrames, cpuFrames);
         return runHeights(heights, outDir, seconds);
     } catch (const cache::CacheError& e) {
         std::cerr << "swell-play: " << e.what() << "\n";

@@ -11,8 +11,10 @@ std::string toString(FramePolicy policy) {
 }
 
 FramePolicy framePolicyFromString(const std::string& name) {
-    if (name == "clamp") return FramePolicy::Clamp;
-    if (name == "loop") return FramePolicy::Loop;
+    if (name == "clamp")
+        return FramePolicy::Clamp;
+    if (name == "loop")
+        return FramePolicy::Loop;
     throw std::invalid_argument(fmt::format("policy must be clamp or loop, got '{}'", name));
 }
 
@@ -46,9 +48,8 @@ void ReplayParams::validate() const {
 Grid makeGrid(const cache::Header& header, const ReplayParams& params) {
     const double width = static_cast<double>(header.domain.xMax) - header.domain.xMin;
     if (!(width > 0.0)) {
-        throw std::invalid_argument(
-            fmt::format("cache domain has no width (xMin {}, xMax {})", header.domain.xMin,
-                        header.domain.xMax));
+        throw std::invalid_argument(fmt::format("cache domain has no width (xMin {}, xMax {})",
+                                                header.domain.xMin, header.domain.xMax));
     }
     Grid g;
     g.cellsX = params.cellsX;
@@ -64,9 +65,9 @@ Grid makeGrid(const cache::Header& header, const ReplayParams& params) {
 double framesPerTimeUnit(const cache::Header& header, const ReplayParams& params) {
     const double frameTime = header.dt * header.frameInterval;
     if (!(frameTime > 0.0) || !std::isfinite(frameTime)) {
-        throw std::invalid_argument(fmt::format(
-            "cache frame time dt * frame_interval = {} * {} is not positive", header.dt,
-            header.frameInterval));
+        throw std::invalid_argument(
+            fmt::format("cache frame time dt * frame_interval = {} * {} is not positive", header.dt,
+                        header.frameInterval));
     }
     return params.timeUnitSeconds / frameTime;
 }

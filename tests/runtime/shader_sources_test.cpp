@@ -15,7 +15,10 @@ TEST(ShaderSources, EveryEmbeddedShaderCompilesAndLinks) {
     for (const shaders::Source& s : shaders::all()) {
         SCOPED_TRACE(std::string(s.name));
         EXPECT_NE(s.text.find("#version 450 core"), std::string_view::npos);
-        EXPECT_NO_THROW({ GlProgram p = makeComputeProgram(s.name, s.text); EXPECT_NE(p.get(), 0u); });
+        EXPECT_NO_THROW({
+            GlProgram p = makeComputeProgram(s.name, s.text);
+            EXPECT_NE(p.get(), 0u);
+        });
     }
 }
 

@@ -35,11 +35,11 @@ TEST(SliceSampler, APerTimeUnitFromThePaper) {
 TEST(SliceSampler, WithoutNoiseEverySliceShowsTheNearestFrame) {
     const SliceSampler s(params(0.0), 100, 4.0);
     EXPECT_EQ(s.noise(), nullptr); // F = 0 builds no noise
-    EXPECT_EQ(s.sliceCount(), 63);  // K real + K - 1 inserted
+    EXPECT_EQ(s.sliceCount(), 63); // K real + K - 1 inserted
     for (int j = 0; j < s.sliceCount(); ++j) {
-        EXPECT_EQ(s.frame(0.125, j), 1u);  // 0.5 rounds up
-        EXPECT_EQ(s.frame(0.124, j), 0u);  // 0.496
-        EXPECT_EQ(s.frame(2.6, j), 10u);   // 10.4
+        EXPECT_EQ(s.frame(0.125, j), 1u); // 0.5 rounds up
+        EXPECT_EQ(s.frame(0.124, j), 0u); // 0.496
+        EXPECT_EQ(s.frame(2.6, j), 10u);  // 10.4
     }
 }
 
@@ -111,7 +111,8 @@ TEST(SliceSampler, FramesUsedIsTheUnionOverTaus) {
     const std::vector<double> taus = {0.0, 0.1, 0.2, 0.9, 1.3};
     std::set<std::uint32_t> expected;
     for (double t : taus) {
-        for (std::uint32_t f : s.frames(t)) expected.insert(f);
+        for (std::uint32_t f : s.frames(t))
+            expected.insert(f);
     }
     const std::vector<std::uint32_t> used = s.framesUsed(taus);
     EXPECT_EQ(std::vector<std::uint32_t>(expected.begin(), expected.end()), used);
@@ -125,7 +126,8 @@ TEST(SliceSampler, SeedChangesTheFrames) {
     const SliceSampler sa(a, 100000, 400.0), sb(b, 100000, 400.0);
     int differ = 0;
     const auto fa = sa.frames(50.3), fb = sb.frames(50.3);
-    for (std::size_t j = 0; j < fa.size(); ++j) differ += fa[j] != fb[j];
+    for (std::size_t j = 0; j < fa.size(); ++j)
+        differ += fa[j] != fb[j];
     EXPECT_GT(differ, static_cast<int>(fa.size()) / 2);
 }
 

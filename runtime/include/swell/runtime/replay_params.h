@@ -22,16 +22,17 @@ std::string toString(FramePolicy policy);
 FramePolicy framePolicyFromString(const std::string& name);
 
 struct ReplayParams {
-    int cellsX = 128;                      ///< N: base-mesh cells along x, propagation (paper 128)
-    int cellsZ = 128;                      ///< M: base-mesh cells along z, transverse (paper 128)
-    int slices = 256;                      ///< K: real slices along z; K - 1 more are inserted (paper 256)
-    double fluctuation = 0.3;              ///< F of eq. (5); 0 <= F <= 1 is eq. (6) (paper 0.3 surging)
-    double timeUnitSeconds = 4.0;          ///< simulated seconds per animation time unit: A = this / frame time (paper: A = 4/dt steps)
+    int cellsX = 128;             ///< N: base-mesh cells along x, propagation (paper 128)
+    int cellsZ = 128;             ///< M: base-mesh cells along z, transverse (paper 128)
+    int slices = 256;             ///< K: real slices along z; K - 1 more are inserted (paper 256)
+    double fluctuation = 0.3;     ///< F of eq. (5); 0 <= F <= 1 is eq. (6) (paper 0.3 surging)
+    double timeUnitSeconds = 4.0; ///< simulated seconds per animation time unit: A = this / frame
+                                  ///< time (paper: A = 4/dt steps)
     FramePolicy policy = FramePolicy::Loop; ///< frames outside the cache (see FramePolicy)
-    double sigma = 2.0;                    ///< Gaussian sigma of eq. (7), in cells (paper 2.0)
-    double extentZ = 0.0;                  ///< transverse extent in metres; 0: cellsZ * dx (square cells)
-    std::uint64_t seed = 1;                ///< noise seed
-    NoiseParams noise;                     ///< T, beta, c, filter of N (paper: 16, 2.0, 128, low-pass)
+    double sigma = 2.0;                     ///< Gaussian sigma of eq. (7), in cells (paper 2.0)
+    double extentZ = 0.0;   ///< transverse extent in metres; 0: cellsZ * dx (square cells)
+    std::uint64_t seed = 1; ///< noise seed
+    NoiseParams noise;      ///< T, beta, c, filter of N (paper: 16, 2.0, 128, low-pass)
 
     /// Throws std::invalid_argument naming the key, e.g. "fluctuation F = 1.5 breaks eq. (6)".
     void validate() const;
@@ -53,9 +54,7 @@ struct Grid {
 
     int sliceCount() const { return 2 * slices - 1; }
     /// z of slice j in cell units.
-    double sliceZCells(int j) const {
-        return static_cast<double>(j + 1) * cellsZ / (2.0 * slices);
-    }
+    double sliceZCells(int j) const { return static_cast<double>(j + 1) * cellsZ / (2.0 * slices); }
 };
 
 /// The geometry of `params` over the cache's domain. Throws std::invalid_argument for an
