@@ -330,10 +330,12 @@ int runHeights(Options& o, const std::string& outDir, double seconds) {
         gpu.update(taus[i]);
         const std::string name = fmt::format("height_{:05d}.png", i);
         writeHeightPng(std::filesystem::path(outDir) / name, gpu.readHeights(), scale);
-        frames.push_back(
-            {{"file", name}, {"tau", taus[i]}, {"seconds", o.start + i / o.playbackFps}});
+        frames.push_back({{"file", name},
+                          {"tau", taus[i]},
+                          {"seconds", o.start + static_cast<double>(i) / o.playbackFps}});
         if (progress) {
-            const double eta = msSince(t0) / 1000.0 * static_cast<double>(count - i - 1) / (i + 1);
+            const double eta = msSince(t0) / 1000.0 * static_cast<double>(count - i - 1) /
+                               static_cast<double>(i + 1);
             std::cerr << fmt::format("\rswell-play heights: {}/{} frames, ETA {:.0f} s ", i + 1,
                                      count, eta);
         }

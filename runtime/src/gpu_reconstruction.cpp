@@ -137,7 +137,8 @@ GpuReplay::GpuReplay(const FrameSet& frames, const ReplayParams& params,
             throw RuntimeError(fmt::format(
                 "the replay needs a {:.0f} MB buffer ({} held frames at {} columns), above this "
                 "driver's {:.0f} MB shader-storage limit: lower --res or replay fewer seconds",
-                bytes / 1e6, m_heldFrames, N, static_cast<double>(maxBlock) / 1e6));
+                static_cast<double>(bytes) / 1e6, m_heldFrames, N,
+                static_cast<double>(maxBlock) / 1e6));
         }
     }
     if (m_heldFrames > static_cast<std::size_t>(maxGroupsY)) {
