@@ -140,6 +140,7 @@ json paramsJson(const Options& o, const FrameSet& set, double A) {
     const ReplayParams& p = o.params;
     return {{"mode", "surging"},
             {"cache", o.cache},
+            {"params", toJson(p)},
             {"res", {p.cellsX, p.cellsZ}},
             {"slices", p.slices},
             {"slices_total", 2 * p.slices - 1},
@@ -363,9 +364,9 @@ int runHeights(Options& o, const std::string& outDir, double seconds) {
                          .dump()
                   << "\n";
     } else {
-        std::cout << fmt::format("swell-play heights: {} frames ({}x{}) in {}, metadata {}\n",
-                                 count, o.params.cellsX, o.params.cellsZ, outDir,
-                                 metaPath.string());
+        std::cout << fmt::format("swell-play heights: {} frames ({}x{}) in {}, metadata {} ({})\n",
+                                 count, o.params.cellsX, o.params.cellsZ, outDir, metaPath.string(),
+                                 context.renderer());
     }
     return 0;
 }

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 #include <stdexcept>
 
 namespace swell::runtime {
@@ -43,6 +44,100 @@ void ReplayParams::validate() const {
         throw std::invalid_argument(fmt::format("extent_z must be >= 0 m, got {}", extentZ));
     }
     noise.validate();
+}
+
+namespace {
+
+std::string filterName(NoiseFilter f) {
+    return f == NoiseFilter::LowPass ? "low" : f == NoiseFilter::HighPass ? "high" : "none";
+}
+
+NoiseFilter filterFromName(const std::string& name) {
+    if (name == "low")
+        return NoiseFilter::LowPass;
+    if (name == "high")
+        return NoiseFilter::HighPass;
+    if (name == "none")
+        return NoiseFilter::None;
+    throw std::invalid_argument(
+        fmt::format("noise.filter must be low, high or none, got '{}'", name));
+}
+
+/// Reads j[key] into `out` if present; names `prefix + key` in every error.
+template <class T>
+void read(const nlohmann::json& j, const char* key, const std::string& prefix, T& out) {
+    if (!j.contains(key))
+        return;
+    try {
+        out = j.at(key).get<T>();
+    } catch (const nlohmann::json::exception& e) {
+        throw std::invalid_argument(fmt::format("{}{}: {}", prefix, key, e.what()));
+    }
+}
+
+void rejectUnknown(const nlohmann::json& j, std::initializer_list<const char*> known,
+                   const std::string& prefix) {
+    if (!j.is_object()) {
+        throw std::invalid_argument(fmt::format("{}: expected a JSON object",
+                                                prefix.empty() ? "replay parameters" : prefix));
+    }
+    for (const auto& item : j.items()) {
+        bool ok = false;
+        for (const char* k : known)
+            ok = ok || item.key() == k;
+        if (!ok)
+            throw std::invalid_argument(fmt::format("unknown key {}{}", prefix, item.key()));
+    }
+}
+
+} // namespace
+
+nlohmann::json toJson(const ReplayParams& p) {
+    return {{"cells_x", p.cellsX},
+            {"cells_z", p.cellsZ},
+            {"slices", p.slices},
+            {"fluctuation", p.fluctuation},
+            {"time_unit_seconds", p.timeUnitSeconds},
+            {"policy", toString(p.policy)},
+            {"sigma", p.sigma},
+            {"extent_z", p.extentZ},
+            {"seed", p.seed},
+            {"noise",
+             {{"time_samples", p.noise.timeSamples},
+              {"beta", p.noise.beta},
+              {"cutoff", p.noise.cutoff},
+              {"filter", filterName(p.noise.filter)}}}};
+}
+
+ReplayParams replayParamsFromJson(const nlohmann::json& j) {
+    rejectUnknown(j,
+                  {"cells_x", "cells_z", "slices", "fluctuation", "time_unit_seconds", "policy",
+                   "sigma", "extent_z", "seed", "noise"},
+                  "");
+    ReplayParams p;
+    read(j, "cells_x", "", p.cellsX);
+    read(j, "cells_z", "", p.cellsZ);
+    read(j, "slices", "", p.slices);
+    read(j, "fluctuation", "", p.fluctuation);
+    read(j, "time_unit_seconds", "", p.timeUnitSeconds);
+    read(j, "sigma", "", p.sigma);
+    read(j, "extent_z", "", p.extentZ);
+    read(j, "seed", "", p.seed);
+    std::string policy = toString(p.policy);
+    read(j, "policy", "", policy);
+    p.policy = framePolicyFromString(policy);
+    if (j.contains("noise")) {
+        const nlohmann::json& n = j.at("noise");
+        rejectUnknown(n, {"time_samples", "beta", "cutoff", "filter"}, "noise.");
+        read(n, "time_samples", "noise.", p.noise.timeSamples);
+        read(n, "beta", "noise.", p.noise.beta);
+        read(n, "cutoff", "noise.", p.noise.cutoff);
+        std::string filter = filterName(p.noise.filter);
+        read(n, "filter", "noise.", filter);
+        p.noise.filter = filterFromName(filter);
+    }
+    p.validate();
+    return p;
 }
 
 Grid makeGrid(const cache::Header& header, const ReplayParams& params) {

@@ -1,6 +1,7 @@
 #include "swell/runtime/slice_sampler.h"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -20,6 +21,33 @@ ReplayParams params(double F, FramePolicy policy = FramePolicy::Clamp, int K = 3
 }
 
 } // namespace
+
+TEST(ReplayParams, JsonRoundTripAndKeyedErrors) {
+    ReplayParams p;
+    p.cellsX = 97;
+    p.policy = FramePolicy::Clamp;
+    p.noise.filter = NoiseFilter::HighPass;
+    p.seed = 1234567890123ULL;
+    const nlohmann::json j = toJson(p);
+    EXPECT_EQ(j["policy"], "clamp");
+    EXPECT_EQ(j["noise"]["filter"], "high");
+    const ReplayParams q = replayParamsFromJson(j);
+    EXPECT_EQ(toJson(q), j);
+    EXPECT_EQ(replayParamsFromJson(nlohmann::json::object()).slices, 256); // paper defaults
+    auto message = [](const nlohmann::json& bad) {
+        try {
+            replayParamsFromJson(bad);
+        } catch (const std::invalid_argument& e) {
+            return std::string(e.what());
+        }
+        return std::string("no error");
+    };
+    EXPECT_NE(message({{"slicez", 3}}).find("slicez"), std::string::npos);
+    EXPECT_NE(message({{"fluctuation", 2.0}}).find("eq. (6)"), std::string::npos);
+    EXPECT_NE(message({{"noise", {{"filter", "band"}}}}).find("noise.filter"), std::string::npos);
+    EXPECT_NE(message({{"noise", {{"beta", "x"}}}}).find("noise.beta"), std::string::npos);
+    EXPECT_NE(message({{"policy", "bounce"}}).find("policy"), std::string::npos);
+}
 
 TEST(SliceSampler, APerTimeUnitFromThePaper) {
     cache::Header h;

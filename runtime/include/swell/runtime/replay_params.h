@@ -6,6 +6,7 @@
 #include "swell/runtime/fbm_noise.h"
 
 #include <cstdint>
+#include <nlohmann/json_fwd.hpp>
 #include <string>
 
 namespace swell::runtime {
@@ -37,6 +38,14 @@ struct ReplayParams {
     /// Throws std::invalid_argument naming the key, e.g. "fluctuation F = 1.5 breaks eq. (6)".
     void validate() const;
 };
+
+/// `params` as JSON, keys in snake_case and enums as names:
+/// {"cells_x", "cells_z", "slices", "fluctuation", "time_unit_seconds", "policy", "sigma",
+///  "extent_z", "seed", "noise": {"time_samples", "beta", "cutoff", "filter"}}.
+nlohmann::json toJson(const ReplayParams& params);
+/// Reads the keys present over the defaults, then validate(). An unknown key, a wrong type or
+/// a bad value throws std::invalid_argument naming the key.
+ReplayParams replayParamsFromJson(const nlohmann::json& j);
 
 /// The base mesh I_XZ and the slices (Sec. 4.2). x spans the cache domain [xMin, xMax];
 /// z spans [0, extentZ]. Cell (n, m) covers [x0 + n dx, x0 + (n+1) dx) x [m dz, (m+1) dz) and
