@@ -382,7 +382,9 @@ int main(int argc, char** argv) {
     auto* benchCmd =
         app.add_subcommand("bench", "time the GPU replay and check it against the CPU reference");
     addCommon(benchCmd, bench);
-    benchCmd->add_option("--frames", frames, "timed frames")->capture_default_str();
+    benchCmd->add_option("--frames", frames, "timed frames")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 10000000));
     benchCmd->add_option("--warmup", warmup, "untimed frames first")
         ->capture_default_str()
         ->check(CLI::Range(0, 1000000));
