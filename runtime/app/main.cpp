@@ -35,18 +35,22 @@ double msSince(Clock::time_point t0) {
 
 /// Options shared by every subcommand.
 struct Options {
-    std::string cache;           ///< input .swell file
-    std::string res = "128x128"; ///< N x M base-mesh cells
-    std::string policy = "loop"; ///< frames outside the cache: clamp or loop
-    std::string filter = "low";  ///< noise band: low, high or none
-    double playbackFps = 30.0;   ///< output frames per simulated second
-    double start = 0.0;          ///< simulated second of the first output frame
-    bool json = false;           ///< one JSON object on stdout
-    ReplayParams params;         ///< the replay itself (paper defaults)
+    std::string cache;            ///< input .swell file
+    std::string res = "128x128";  ///< N x M base-mesh cells
+    std::string policy = "loop";  ///< frames outside the cache: clamp or loop
+    std::string filter = "low";   ///< noise band: low, high or none
+    std::string mode = "surging"; ///< slice layout; ripple and whirlpool come with issue 6
+    double playbackFps = 30.0;    ///< output frames per simulated second
+    double start = 0.0;           ///< simulated second of the first output frame
+    bool json = false;            ///< one JSON object on stdout
+    ReplayParams params;          ///< the replay itself (paper defaults)
 };
 
 void addCommon(CLI::App* cmd, Options& o) {
     cmd->add_option("CACHE", o.cache, "input .swell cache")->required();
+    cmd->add_option("--mode", o.mode, "slice layout (only surging so far)")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"surging"}));
     cmd->add_option("--res", o.res, "base mesh N x M cells (x = propagation, z = transverse)")
         ->capture_default_str();
     cmd->add_option("--slices", o.params.slices, "K slices (K - 1 more are inserted)")
@@ -138,7 +142,7 @@ double waterDepth(const FrameSet& set) {
 
 json paramsJson(const Options& o, const FrameSet& set, double A) {
     const ReplayParams& p = o.params;
-    return {{"mode", "surging"},
+    return {{"mode", o.mode},
             {"cache", o.cache},
             {"params", toJson(p)},
             {"res", {p.cellsX, p.cellsZ}},

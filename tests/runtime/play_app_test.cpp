@@ -46,10 +46,11 @@ protected:
     }
     static void TearDownTestSuite() { fs::remove_all(s_dir); }
 
-    static Result run(const std::string& args) {
+    /// Runs swell-play with `args`, environment assignments `env` first.
+    static Result run(const std::string& args, const std::string& env = "") {
         const fs::path out = s_dir / "stdout.txt", err = s_dir / "stderr.txt";
-        const std::string cmd =
-            std::string(SWELL_PLAY_EXE) + " " + args + " >" + out.string() + " 2>" + err.string();
+        const std::string cmd = env + " " + std::string(SWELL_PLAY_EXE) + " " + args + " >" +
+                                out.string() + " 2>" + err.string();
         const int status = std::system(cmd.c_str());
         Result r;
         r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -130,6 +131,15 @@ TEST_F(PlayApp, BadInputGivesOneClearLineAndNonZeroExit) {
         EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
     }
     EXPECT_EQ(run("--help").code, 0);
+}
+
+TEST_F(PlayApp, NoEglIsOneClearLine) {
+    // glvnd with no vendor library: no EGL display can be had.
+    const Result r = run("bench " + cachePath() + " --frames 5",
+                         "__EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent/vendor.json");
+    EXPECT_NE(r.code, 0);
+    EXPECT_NE(r.err.find("swell-play: no usable EGL display"), std::string::npos) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
 }
 
 } // namespace swell::runtime
