@@ -1,6 +1,7 @@
 #include "swell/runtime/frame_set.h"
 
 #include <algorithm>
+#include <cmath>
 #include <fmt/format.h>
 #include <stdexcept>
 
@@ -38,6 +39,12 @@ void FrameSet::validate() const {
         }
         if (frames[i].surface.size() % 2 != 0) {
             throw std::invalid_argument(fmt::format("frame {}: odd surface array", ids[i]));
+        }
+        for (float v : frames[i].surface) {
+            if (!std::isfinite(v)) {
+                throw std::invalid_argument(
+                    fmt::format("frame {}: non-finite surface particle value", ids[i]));
+            }
         }
     }
 }

@@ -194,6 +194,13 @@ TEST(CpuReconstruction, MatchesABruteForceEq7OverContinuousWindows) {
     }
 }
 
+TEST(CpuReconstruction, NonFiniteParticlesAreRejected) {
+    const FrameSet set = frameSet({frameOf({{1.0f, std::nanf("")}})});
+    const ReplayParams p = smallParams();
+    const SliceSampler s(p, 1, 100.0);
+    EXPECT_THROW(CpuReconstruction(set, p, s), std::invalid_argument);
+}
+
 TEST(CpuReconstruction, AFrameOutsideTheSetIsAnError) {
     FrameSet set = frameSet({cache::Frame{}, cache::Frame{}, cache::Frame{}});
     set.ids = {0};
