@@ -97,6 +97,24 @@ double CpuReconstruction::fallback(const BinnedFrame& f, int n) const {
     return m_frames.header.domain.yMin; // the frame has no surface particle
 }
 
+double CpuReconstruction::profile(std::uint32_t frame, int n) const {
+    if (n < 0 || n >= m_grid.cellsX)
+        throw std::logic_error(fmt::format("profile column {} outside 0 .. {}", n, m_grid.cellsX));
+    const BinnedFrame& f = binned(frame);
+    const double inv2s2 = 1.0 / (2.0 * m_params.sigma * m_params.sigma);
+    const double Px = n + 0.5;
+    double sumGh = 0.0;
+    double sumG = 0.0;
+    for (std::uint32_t p = f.start[static_cast<std::size_t>(n)];
+         p < f.start[static_cast<std::size_t>(n + 3)]; ++p) {
+        const double dx = f.u[p] - Px;
+        const double G = std::exp(-dx * dx * inv2s2); // eq. (7), x factor (G_z cancels)
+        sumGh += G * f.h[p];
+        sumG += G;
+    }
+    return sumG > 0.0 ? sumGh / sumG : fallback(f, n);
+}
+
 HeightField CpuReconstruction::heights(double tau) const {
     const int N = m_grid.cellsX;
     const int M = m_grid.cellsZ;

@@ -266,6 +266,12 @@ GpuReplay::GpuReplay(const FrameSet& frames, const ReplayParams& params,
 }
 
 void GpuReplay::update(double tau) {
+    lookupSlices(tau);
+    // Pass 2, eq. (7): every cell from the column sums of the slices in its z window.
+    reconstructHeights();
+}
+
+void GpuReplay::lookupSlices(double tau) {
     if (!std::isfinite(tau) || (std::abs(tau) + 1.0) * m_A > 1.0e9) {
         throw std::invalid_argument(
             fmt::format("animation time tau = {} is out of range for A = {}", tau, m_A));
@@ -283,8 +289,9 @@ void GpuReplay::update(double tau) {
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     if (m_timing)
         glQueryCounter(m_queries[1].get(), GL_TIMESTAMP);
+}
 
-    // Pass 2, eq. (7): every cell from the column sums of the slices in its z window.
+void GpuReplay::reconstructHeights() {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, m_slices.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, m_columns.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, m_rows.get());

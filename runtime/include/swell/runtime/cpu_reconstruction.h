@@ -41,6 +41,11 @@ public:
     /// The height field at animation time tau. Throws std::invalid_argument if a selected
     /// frame is not in the frame set.
     HeightField heights(double tau) const;
+    /// eq. (7) over the particles of one slice showing cache frame `frame`, at column n
+    /// (P_x = n + 1/2): sum G_x h / sum G_x over bins n - 1 .. n + 1 (G_z is one constant and
+    /// cancels), or the fallback above when the window is empty. The whirlpool's spiral profile.
+    /// Throws std::invalid_argument if the frame is not in the frame set.
+    double profile(std::uint32_t frame, int n) const;
     const Grid& grid() const { return m_grid; }
 
 private:

@@ -38,6 +38,9 @@ public:
     /// Slices whose frame is not held read as the domain's yMin (hold every frame that
     /// SliceSampler::framesUsed names for the taus you play).
     void update(double tau);
+    /// Pass 1 of update() only: eq. (5)-(6) into sliceBuffer(), no height field (the whirlpool
+    /// maps the column sums itself). stageTimes() is not defined after it alone.
+    void lookupSlices(double tau);
     /// Puts a GL timestamp query around each pass of update() (adds a little overhead).
     void setTiming(bool on) { m_timing = on; }
     /// Stage times of the last timed update(); waits for the GPU.
@@ -61,12 +64,24 @@ public:
     /// Reads the frame of every slice back (blocks).
     std::vector<std::uint32_t> readSliceFrames() const;
 
+    /// SSBO of the column pass (column_pass.comp): per held-frame slot and column quad
+    /// q = n / 4, a vec4 of S (or the fallback) then a vec4 of W, heights relative to
+    /// referenceHeight(); float index ((slot * columnQuads() + q) * 2 + c) * 4 + n % 4.
+    GlName columnBuffer() const { return m_columns.get(); }
+    int columnQuads() const { return (m_grid.cellsX + 3) / 4; }
+    /// Level subtracted from the uploaded heights (metres).
+    float referenceHeight() const { return m_reference; }
+    /// Relative height of a slice whose frame is not held (the domain's yMin).
+    float missingHeight() const { return m_missing; }
+
     const Grid& grid() const { return m_grid; }
     std::size_t heldFrames() const { return m_heldFrames; }
     /// Bytes uploaded at construction (particles, bin index, column sums, tables).
     std::size_t uploadedBytes() const { return m_uploadedBytes; }
 
 private:
+    void reconstructHeights();
+
     Grid m_grid;
     double m_A;
     double m_F;

@@ -1,0 +1,118 @@
+#pragma once
+// Ripple wave (Sec. 4.4, Algorithm 2b): D directions, each a surging replay (eq. 5-7) on its
+// own slice set with its own noise, rotated about the mesh centre; eq. (8) synthesises the
+// final height of every base-mesh cell as the weighted sum of the bilinearly interpolated
+// heights of each direction.
+//
+// Definitions (docs/runtime.md, "Ripple"):
+//  * Centre C = (x0 + N dx / 2, extentZ / 2), metres. Direction d (angle a_d) propagates along
+//    (cos a_d, sin a_d) in (x, z): its height field is the surging field of its own slice set
+//    (same N x M grid over the same cache domain), rotated by a_d about C.
+//  * Cell centre P maps into direction d's own grid as q = R(-a_d) (P - C) + C, in its cell
+//    coordinates u = (q_x - x0) / dx, v = q_z / dz. d covers P when 0 <= u <= N, 0 <= v <= M.
+//  * eq. (8) neighbours Q: the 2 x 2 cell centres around (u, v), bilinear:
+//    fu = clamp(u - 1/2, 0, N - 1), n0 = min(floor(fu), N - 2) (0 when N = 1),
+//    fx = fu - n0, n1 = min(n0 + 1, N - 1); the same along v with M.
+//  * Weights (eq. 8's omega): the normalised omega_d over the directions that cover P
+//    (renormalised to sum 1 over them). Fallback when none covers P (a corner outside every
+//    rotated grid): every direction with its normalised omega_d, sampled clamped to its edge.
+//    No hole, no NaN.
+//  * One direction at angle 0: the base cell is the direction's own cell; no synthesis pass.
+
+#include "swell/runtime/cpu_reconstruction.h"
+#include "swell/runtime/frame_set.h"
+#include "swell/runtime/gpu_reconstruction.h"
+#include "swell/runtime/height_field.h"
+#include "swell/runtime/height_output.h"
+#include "swell/runtime/replay_mode.h"
+#include "swell/runtime/slice_sampler.h"
+
+#include <memory>
+#include <span>
+#include <vector>
+
+namespace swell::runtime {
+
+/// Where one base cell reads one direction (definitions above).
+struct RippleTap {
+    int n0 = 0;         ///< lower column of the 2 x 2 neighbours in the direction's field
+    int m0 = 0;         ///< lower row
+    int n1 = 0;         ///< upper column (n0 + 1, or n0 when N = 1)
+    int m1 = 0;         ///< upper row
+    double fx = 0.0;    ///< bilinear fraction along the direction's x
+    double fz = 0.0;    ///< bilinear fraction along the direction's z
+    double weight = 0.0; ///< eq. (8) weight for this cell, summing to 1 over the directions
+    bool covered = false; ///< the direction's grid covers the cell
+};
+
+/// The taps of every cell and direction, [(m * N + n) * D + d], in double precision.
+std::vector<RippleTap> rippleTaps(const Grid& grid, const RippleParams& ripple);
+
+/// True when the synthesis is the identity (one direction at 0 degrees).
+bool rippleIsIdentity(const RippleParams& ripple);
+
+/// GPU time of each stage of the last timed update(), summed over the directions (ms).
+struct RippleStageTimes {
+    double sliceLookupMs = 0.0; ///< eq. (5)-(6), every direction
+    double reconstructMs = 0.0; ///< eq. (7), every direction
+    double synthesisMs = 0.0;   ///< eq. (8) (0 when there is no synthesis pass)
+};
+
+/// Double-precision reference: one CpuReconstruction per direction, then eq. (8).
+class CpuRipple {
+public:
+    /// `samplers` (one per direction, see makeSamplers) and `frames` must outlive it.
+    CpuRipple(const FrameSet& frames, const ReplayParams& params, const RippleParams& ripple,
+              std::span<const SliceSampler> samplers);
+    HeightField heights(double tau) const;
+    /// Direction d's own (unrotated) height field.
+    HeightField directionHeights(int d, double tau) const;
+
+private:
+    Grid m_grid;
+    int m_D;
+    std::vector<std::unique_ptr<CpuReconstruction>> m_dirs;
+    std::vector<RippleTap> m_taps;
+};
+
+/// The ripple on the GPU: one GpuReplay per direction (each its own slice lookup and eq. 7
+/// reconstruction), then ripple_synthesis.comp (eq. 8) into heightBuffer().
+class GpuRipple {
+public:
+    /// Uploads `frames` once per direction. `samplers`: one per direction (not kept).
+    GpuRipple(const FrameSet& frames, const ReplayParams& params, const RippleParams& ripple,
+              std::span<const SliceSampler> samplers);
+
+    /// Every direction's two passes, then the synthesis pass (skipped for the identity).
+    void update(double tau);
+    void setTiming(bool on);
+    RippleStageTimes stageTimes() const;
+    /// False for one direction at 0 degrees: heightBuffer() is direction 0's own.
+    bool synthesises() const { return !m_identity; }
+
+    /// SSBO of N x M floats, [m * N + n]: the synthesised heights (GpuReplay's layout).
+    GlName heightBuffer() const;
+    /// The same as an R32F N x M texture (copied on the GPU when first asked after update()).
+    GlName heightTexture();
+    HeightField readHeights() const;
+
+    int directions() const { return static_cast<int>(m_dirs.size()); }
+    GpuReplay& direction(int d) { return *m_dirs[static_cast<std::size_t>(d)]; }
+    const GpuReplay& direction(int d) const { return *m_dirs[static_cast<std::size_t>(d)]; }
+    const Grid& grid() const { return m_dirs.front()->grid(); }
+    std::size_t uploadedBytes() const { return m_uploadedBytes; }
+
+private:
+    std::vector<std::unique_ptr<GpuReplay>> m_dirs;
+    bool m_identity = false;
+    bool m_timing = false;
+    bool m_timed = false;
+    std::size_t m_uploadedBytes = 0;
+    GlProgram m_synthesis;
+    GlBuffer m_dirHeights; ///< D x N x M floats, direction d at [d N M + m N + n]
+    GlBuffer m_taps;
+    std::unique_ptr<HeightOutput> m_out;
+    GlQuery m_queries[2];
+};
+
+} // namespace swell::runtime
