@@ -8,6 +8,7 @@
 #include "swell/runtime/error.h"
 #include "swell/runtime/gpu_reconstruction.h"
 #include "swell/runtime/height_png.h"
+#include "swell/runtime/mode_replay.h"
 #include "swell/runtime/slice_sampler.h"
 
 #include <CLI/CLI.hpp>
@@ -39,29 +40,59 @@ struct Options {
     std::string res = "128x128";  ///< N x M base-mesh cells
     std::string policy = "loop";  ///< frames outside the cache: clamp or loop
     std::string filter = "low";   ///< noise band: low, high or none
-    std::string mode = "surging"; ///< slice layout; ripple and whirlpool come with issue 6
+    std::string mode = "surging"; ///< slice layout: surging, ripple or whirlpool
     double playbackFps = 30.0;    ///< output frames per simulated second
     double start = 0.0;           ///< simulated second of the first output frame
     bool json = false;            ///< one JSON object on stdout
     ReplayParams params;          ///< the replay itself (paper defaults)
+    ModeParams modeParams;        ///< ripple directions, whirlpool spirals
+    /// Options whose default depends on --mode (Table 4): given explicitly when count() > 0.
+    std::vector<std::pair<CLI::Option*, void (*)(ReplayParams&, const ReplayParams&)>> modal;
 };
 
 void addCommon(CLI::App* cmd, Options& o) {
     cmd->add_option("CACHE", o.cache, "input .swell cache")->required();
-    cmd->add_option("--mode", o.mode, "slice layout (only surging so far)")
+    cmd->add_option("--mode", o.mode,
+                    "slice layout: surging (Sec. 4.2), ripple (4.4) or whirlpool (4.5); sets the "
+                    "Table 4 defaults of --slices, -F, --beta, --cutoff")
         ->capture_default_str()
-        ->check(CLI::IsMember({"surging"}));
+        ->check(CLI::IsMember({"surging", "ripple", "whirlpool"}));
+    cmd->add_option("--angles", o.modeParams.ripple.anglesDegrees,
+                    "ripple: direction angles in degrees from +x towards +z")
+        ->capture_default_str();
+    cmd->add_option("--weights", o.modeParams.ripple.weights,
+                    "ripple: eq. (8) weight per direction (default: the mean)");
+    cmd->add_option("--spiral-a", o.modeParams.whirlpool.innerRadiusCells,
+                    "whirlpool: inner radius a in cells of dx (paper 15)")
+        ->capture_default_str();
+    cmd->add_option("--spiral-b", o.modeParams.whirlpool.growth,
+                    "whirlpool: growth b per radian (paper 25 dz = 25/128)")
+        ->capture_default_str();
+    cmd->add_option("--spin", o.modeParams.whirlpool.turnsPerTimeUnit,
+                    "whirlpool: turns per animation time unit")
+        ->capture_default_str();
     cmd->add_option("--res", o.res, "base mesh N x M cells (x = propagation, z = transverse)")
         ->capture_default_str();
-    cmd->add_option("--slices", o.params.slices, "K slices (K - 1 more are inserted)")
-        ->capture_default_str();
+    auto modal = [&](CLI::Option* opt, void (*copy)(ReplayParams&, const ReplayParams&)) {
+        o.modal.emplace_back(opt, copy);
+    };
+    modal(cmd->add_option("--slices", o.params.slices,
+                          "K slices (K - 1 more are inserted); default by --mode: 256, 256, 128")
+              ->capture_default_str(),
+          [](ReplayParams& p, const ReplayParams& d) { p.slices = d.slices; });
     cmd->add_option("--seed", o.params.seed, "noise seed")->capture_default_str();
-    cmd->add_option("--fluctuation,-F", o.params.fluctuation, "F of eq. (5), 0..1")
-        ->capture_default_str();
-    cmd->add_option("--beta", o.params.noise.beta, "noise spectral exponent")
-        ->capture_default_str();
-    cmd->add_option("--cutoff", o.params.noise.cutoff, "noise filter cut-off c (wavenumbers)")
-        ->capture_default_str();
+    modal(cmd->add_option("--fluctuation,-F", o.params.fluctuation,
+                          "F of eq. (5), 0..1; default by --mode: 0.3, 0.4, 0.4")
+              ->capture_default_str(),
+          [](ReplayParams& p, const ReplayParams& d) { p.fluctuation = d.fluctuation; });
+    modal(cmd->add_option("--beta", o.params.noise.beta,
+                          "noise spectral exponent; default by --mode: 2.0, 2.5, 2.5")
+              ->capture_default_str(),
+          [](ReplayParams& p, const ReplayParams& d) { p.noise.beta = d.noise.beta; });
+    modal(cmd->add_option("--cutoff", o.params.noise.cutoff,
+                          "noise filter cut-off c (wavenumbers); default by --mode: 128, 128, 64")
+              ->capture_default_str(),
+          [](ReplayParams& p, const ReplayParams& d) { p.noise.cutoff = d.noise.cutoff; });
     cmd->add_option("--filter", o.filter, "noise band kept: low, high or none")
         ->capture_default_str();
     cmd->add_option("--noise-time", o.params.noise.timeSamples, "T noise samples in time")
@@ -89,6 +120,12 @@ void finishOptions(Options& o) {
     }
     o.params.cellsX = n;
     o.params.cellsZ = m;
+    o.modeParams.mode = replayModeFromString(o.mode);
+    const ReplayParams table4 = paperDefaults(o.modeParams.mode);
+    for (const auto& [option, copy] : o.modal) {
+        if (option->count() == 0)
+            copy(o.params, table4); // not given: the mode's Table 4 value
+    }
     o.params.policy = framePolicyFromString(o.policy);
     if (o.filter == "low") {
         o.params.noise.filter = NoiseFilter::LowPass;
@@ -106,6 +143,7 @@ void finishOptions(Options& o) {
     if (!std::isfinite(o.start))
         throw std::invalid_argument("--start must be finite");
     o.params.validate();
+    o.modeParams.validate();
 }
 
 /// Animation time of output frame i: simulated time / time unit (eq. 5's tau).
@@ -114,12 +152,12 @@ double tauOf(const Options& o, std::size_t i) {
 }
 
 /// The frames that `taus` select, decoded from the cache (no other frame is read).
-FrameSet loadUsed(const cache::Reader& reader, const SliceSampler& sampler,
+FrameSet loadUsed(const cache::Reader& reader, std::span<const SliceSampler> samplers,
                   const std::vector<double>& taus) {
     FrameSet set;
     set.header = reader.header();
     set.frameCount = reader.frameCount();
-    set.ids = sampler.framesUsed(taus);
+    set.ids = framesUsed(samplers, taus);
     set.frames.reserve(set.ids.size());
     for (std::uint32_t id : set.ids)
         set.frames.push_back(reader.readFrame(id));
@@ -143,6 +181,7 @@ double waterDepth(const FrameSet& set) {
 json paramsJson(const Options& o, const FrameSet& set, double A) {
     const ReplayParams& p = o.params;
     return {{"mode", o.mode},
+            {"mode_params", toJson(o.modeParams)},
             {"cache", o.cache},
             {"params", toJson(p)},
             {"res", {p.cellsX, p.cellsZ}},
@@ -179,18 +218,19 @@ int runBench(Options& o, int frames, int warmup, int errorFrames, int cpuFrames)
         throw std::invalid_argument("--frames must be >= 1");
     const cache::Reader reader(o.cache);
     const double A = framesPerTimeUnit(reader.header(), o.params);
-    const SliceSampler sampler(o.params, reader.frameCount(), A);
+    const std::vector<SliceSampler> samplers =
+        makeSamplers(o.params, o.modeParams, reader.frameCount(), A);
 
     std::vector<double> taus(static_cast<std::size_t>(warmup + frames));
     for (std::size_t i = 0; i < taus.size(); ++i)
         taus[i] = tauOf(o, i);
     auto t0 = Clock::now();
-    const FrameSet set = loadUsed(reader, sampler, taus);
+    const FrameSet set = loadUsed(reader, samplers, taus);
     const double decodeMs = msSince(t0);
 
     const EglContext context;
     t0 = Clock::now();
-    GpuReplay gpu(set, o.params, sampler);
+    ModeReplay gpu(set, o.params, o.modeParams, samplers);
     const double uploadMs = msSince(t0);
 
     for (int i = 0; i < warmup; ++i) {
@@ -210,18 +250,20 @@ int runBench(Options& o, int frames, int warmup, int errorFrames, int cpuFrames)
 
     // Per-stage GPU times from timer queries, in a separate run (queries cost a little).
     const int timed = std::min(frames, 200);
-    double lookupMs = 0.0, reconstructMs = 0.0;
+    double lookupMs = 0.0, reconstructMs = 0.0, synthesisMs = 0.0, spiralMs = 0.0;
     gpu.setTiming(true);
     for (int i = 0; i < timed; ++i) {
         gpu.update(taus[static_cast<std::size_t>(warmup + i)]);
-        const StageTimes st = gpu.stageTimes();
+        const ModeStageTimes st = gpu.stageTimes();
         lookupMs += st.sliceLookupMs;
         reconstructMs += st.reconstructMs;
+        synthesisMs += st.synthesisMs;
+        spiralMs += st.spiralMs;
     }
     gpu.setTiming(false);
 
     // Error against the double-precision CPU reference on evenly spread frames.
-    const CpuReconstruction cpu(set, o.params, sampler);
+    const CpuModeReference cpu(set, o.params, o.modeParams, samplers);
     double maxAbs = 0.0, sumSq = 0.0;
     std::size_t cells = 0;
     bool framesExact = true;
@@ -229,7 +271,9 @@ int runBench(Options& o, int frames, int warmup, int errorFrames, int cpuFrames)
     for (int e = 0; e < errorCount; ++e) {
         const double tau = taus[static_cast<std::size_t>(warmup + (e * frames) / errorCount)];
         gpu.update(tau);
-        framesExact = framesExact && gpu.readSliceFrames() == sampler.frames(tau);
+        const auto sliceFrames = gpu.readSliceFrames();
+        for (std::size_t d = 0; d < samplers.size(); ++d)
+            framesExact = framesExact && sliceFrames[d] == samplers[d].frames(tau);
         const HeightField g = gpu.readHeights();
         const HeightField r = cpu.heights(tau);
         for (std::size_t i = 0; i < g.heights.size(); ++i) {
@@ -268,7 +312,10 @@ int runBench(Options& o, int frames, int warmup, int errorFrames, int cpuFrames)
                 {"stage_gpu_ms",
                  {{"slice_lookup", lookupMs / timed},
                   {"reconstruct", reconstructMs / timed},
+                  {"synthesis", synthesisMs / timed},
+                  {"spiral_mapping", spiralMs / timed},
                   {"column_pass_once", gpu.columnPassMs()}}},
+                {"slice_sets", samplers.size()},
                 {"timed_frames", timed},
                 {"decode_ms", decodeMs},
                 {"upload_ms", uploadMs},
@@ -287,18 +334,18 @@ int runBench(Options& o, int frames, int warmup, int errorFrames, int cpuFrames)
     } else {
         std::cout << fmt::format(
             "swell-play bench  {}  ({}, EGL {})\n"
-            "  {}x{} cells, K = {} ({} slices), seed {}, F {}, {} of {} cache frames decoded\n"
+            "  mode {}, {}x{} cells, K = {} ({} slices), seed {}, F {}, {} of {} cache frames decoded\n"
             "  {:.1f} fps synced over {} frames: median {:.3f} ms, p95 {:.3f} ms\n"
-            "  GPU stages: slice lookup {:.4f} ms, reconstruct {:.4f} ms; column pass once {:.2f} "
-            "ms\n"
+            "  GPU stages: slice lookup {:.4f} ms, reconstruct {:.4f} ms, synthesis {:.4f} ms, "
+            "spiral mapping {:.4f} ms; column pass once {:.2f} ms\n"
             "  error vs CPU reference ({} frames): max {:.3g} m, rms {:.3g} m, max {:.3g} of depth "
             "{:.3g} m; frame choice {}\n"
             "  CPU reference: {:.1f} fps ({:.2f} ms/frame)\n",
-            context.renderer(), context.version(), context.platform(), o.params.cellsX,
+            context.renderer(), context.version(), context.platform(), o.mode, o.params.cellsX,
             o.params.cellsZ, o.params.slices, 2 * o.params.slices - 1, o.params.seed,
             o.params.fluctuation, set.ids.size(), set.frameCount, 1000.0 / meanMs, frames,
             percentile(frameMs, 0.5), percentile(frameMs, 0.95), lookupMs / timed,
-            reconstructMs / timed, gpu.columnPassMs(), errorCount, maxAbs, rms, maxAbs / depth,
+            reconstructMs / timed, synthesisMs / timed, spiralMs / timed, gpu.columnPassMs(), errorCount, maxAbs, rms, maxAbs / depth,
             depth, framesExact ? "exact" : "DIFFERS", cpuMs > 0 ? 1000.0 / cpuMs : 0.0, cpuMs);
     }
     if (!framesExact || !(maxAbs <= 1e-4 * depth)) {
@@ -316,16 +363,17 @@ int runHeights(Options& o, const std::string& outDir, double seconds) {
     }
     const cache::Reader reader(o.cache);
     const double A = framesPerTimeUnit(reader.header(), o.params);
-    const SliceSampler sampler(o.params, reader.frameCount(), A);
+    const std::vector<SliceSampler> samplers =
+        makeSamplers(o.params, o.modeParams, reader.frameCount(), A);
     const auto count = static_cast<std::size_t>(std::max(1.0, std::round(seconds * o.playbackFps)));
     std::vector<double> taus(count);
     for (std::size_t i = 0; i < count; ++i)
         taus[i] = tauOf(o, i);
-    const FrameSet set = loadUsed(reader, sampler, taus);
+    const FrameSet set = loadUsed(reader, samplers, taus);
 
     std::filesystem::create_directories(outDir);
     const EglContext context;
-    GpuReplay gpu(set, o.params, sampler);
+    ModeReplay gpu(set, o.params, o.modeParams, samplers);
     const cache::Domain& d = set.header.domain;
     const HeightScale scale{d.yMin, (static_cast<double>(d.yMax) - d.yMin) / 65535.0};
     json frames = json::array();
@@ -364,6 +412,7 @@ int runHeights(Options& o, const std::string& outDir, double seconds) {
                           {"count", count},
                           {"frames_decoded", set.ids.size()},
                           {"renderer", context.renderer()},
+                          {"mode", o.mode},
                           {"seed", o.params.seed}}
                          .dump()
                   << "\n";

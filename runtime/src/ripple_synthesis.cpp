@@ -16,12 +16,23 @@ namespace {
 
 constexpr GLuint kGroup = 64; // local_size_x of ripple_synthesis.comp
 
-/// Bilinear neighbours along one axis of `cells` cells at cell coordinate `c` (definitions in
-/// ripple_synthesis.h): lower index, upper index, fraction.
-void axisTap(double c, int cells, int& i0, int& i1, double& f) {
+/// Bilinear neighbours along x at cell coordinate `c`, clamped to the edge columns
+/// (definitions in ripple_synthesis.h): lower index, upper index, fraction.
+void clampedTap(double c, int cells, int& i0, int& i1, double& f) {
     const double fc = std::clamp(c - 0.5, 0.0, static_cast<double>(cells - 1));
     i0 = std::max(0, std::min(static_cast<int>(std::floor(fc)), cells - 2));
     i1 = std::min(i0 + 1, cells - 1);
+    f = fc - i0;
+}
+
+/// Bilinear neighbours along z at cell coordinate `c`, periodic with period `cells`.
+void periodicTap(double c, int cells, int& i0, int& i1, double& f) {
+    const double period = static_cast<double>(cells);
+    double fc = (c - 0.5) - period * std::floor((c - 0.5) / period);
+    if (fc >= period || fc < 0.0)
+        fc = 0.0; // rounding at the wrap
+    i0 = std::min(static_cast<int>(std::floor(fc)), cells - 1);
+    i1 = i0 + 1 == cells ? 0 : i0 + 1;
     f = fc - i0;
 }
 
@@ -71,7 +82,6 @@ std::vector<RippleTap> rippleTaps(const Grid& grid, const RippleParams& ripple) 
             const double pz = (m + 0.5) * grid.dz - Cz;
             RippleTap* cell =
                 &taps[(static_cast<std::size_t>(m) * static_cast<std::size_t>(N) + n) * D];
-            double coveredWeight = 0.0;
             for (std::size_t d = 0; d < D; ++d) {
                 // q = R(-a_d) (P - C) + C, in direction d's cell coordinates
                 const double qx = cosA[d] * px + sinA[d] * pz;
@@ -79,18 +89,10 @@ std::vector<RippleTap> rippleTaps(const Grid& grid, const RippleParams& ripple) 
                 const double u = (qx + Cx - grid.x0) / grid.dx;
                 const double v = (qz + Cz) / grid.dz;
                 RippleTap& t = cell[d];
-                t.covered = u >= 0.0 && u <= N && v >= 0.0 && v <= M;
-                axisTap(u, N, t.n0, t.n1, t.fx);
-                axisTap(v, M, t.m0, t.m1, t.fz);
-                if (t.covered)
-                    coveredWeight += omega[d];
-            }
-            // eq. (8) weights: renormalised over the covering directions; fallback: all.
-            for (std::size_t d = 0; d < D; ++d) {
-                if (coveredWeight > 0.0)
-                    cell[d].weight = cell[d].covered ? omega[d] / coveredWeight : 0.0;
-                else
-                    cell[d].weight = omega[d];
+                t.inside = u >= 0.0 && u <= N && v >= 0.0 && v <= M;
+                clampedTap(u, N, t.n0, t.n1, t.fx);
+                periodicTap(v, M, t.m0, t.m1, t.fz);
+                t.weight = omega[d]; // eq. (8)'s omega_d
             }
         }
     }
@@ -167,7 +169,8 @@ GpuRipple::GpuRipple(const FrameSet& frames, const ReplayParams& params,
     const int M = g.cellsZ;
     const std::size_t cells = static_cast<std::size_t>(N) * static_cast<std::size_t>(M);
     struct GpuTap {
-        GLint base;
+        GLint base;    // d N M + m0 N + n0
+        GLint rowStep; // (m1 - m0) N: the row above, wrapping to row 0
         float fx, fz, w;
     };
     const std::vector<RippleTap> taps = rippleTaps(g, ripple);
@@ -176,7 +179,7 @@ GpuRipple::GpuRipple(const FrameSet& frames, const ReplayParams& params,
         const RippleTap& t = taps[i];
         const std::size_t d = i % static_cast<std::size_t>(D);
         packed[i] = {static_cast<GLint>(d * cells + static_cast<std::size_t>(t.m0) * N + t.n0),
-                     static_cast<float>(t.fx), static_cast<float>(t.fz),
+                     (t.m1 - t.m0) * N, static_cast<float>(t.fx), static_cast<float>(t.fz),
                      static_cast<float>(t.weight)};
     }
     GLint64 maxBlock = 0;
@@ -197,7 +200,6 @@ GpuRipple::GpuRipple(const FrameSet& frames, const ReplayParams& params,
     glProgramUniform1i(sp, location(m_synthesis, "u_cells"), static_cast<GLint>(cells));
     glProgramUniform1i(sp, location(m_synthesis, "u_D"), D);
     glProgramUniform1i(sp, location(m_synthesis, "u_stepX"), N > 1 ? 1 : 0);
-    glProgramUniform1i(sp, location(m_synthesis, "u_stepZ"), M > 1 ? N : 0);
     for (GlQuery& q : m_queries) {
         GLuint name = 0;
         glCreateQueries(GL_TIMESTAMP, 1, &name);

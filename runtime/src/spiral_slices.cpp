@@ -66,9 +66,10 @@ SpiralPoint SpiralGeometry::at(int n, int m) const {
     const double r = std::hypot(px, pz);
     const double theta = std::atan2(pz, px);
     SpiralPoint p;
-    // r = a e^(b t)  <=>  t = ln(r / a) / b; clamped: the eye shows t = 0, the rim t = 2 pi.
-    p.t = r > 0.0 ? std::clamp(std::log(r / m_a) / m_params.growth, 0.0, kTwoPi) : 0.0;
-    p.u = m_grid.cellsX * p.t / kTwoPi;
+    // r = a e^(b t)  <=>  t = ln(r / a) / b; the eye (r < a) takes t = 0; beyond the outer
+    // radius the spirals keep winding (t > 2 pi) but show their outer end (u = N).
+    p.t = r > m_a ? std::log(r / m_a) / m_params.growth : 0.0;
+    p.u = m_grid.cellsX * std::min(p.t, kTwoPi) / kTwoPi;
     // The spiral through P at parameter t starts at angle theta - t: slice coordinate.
     p.s = wrap((theta - p.t) * m_J / kTwoPi, static_cast<double>(m_J));
     return p;

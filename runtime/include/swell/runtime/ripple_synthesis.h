@@ -9,14 +9,19 @@
 //    (cos a_d, sin a_d) in (x, z): its height field is the surging field of its own slice set
 //    (same N x M grid over the same cache domain), rotated by a_d about C.
 //  * Cell centre P maps into direction d's own grid as q = R(-a_d) (P - C) + C, in its cell
-//    coordinates u = (q_x - x0) / dx, v = q_z / dz. d covers P when 0 <= u <= N, 0 <= v <= M.
-//  * eq. (8) neighbours Q: the 2 x 2 cell centres around (u, v), bilinear:
-//    fu = clamp(u - 1/2, 0, N - 1), n0 = min(floor(fu), N - 2) (0 when N = 1),
-//    fx = fu - n0, n1 = min(n0 + 1, N - 1); the same along v with M.
-//  * Weights (eq. 8's omega): the normalised omega_d over the directions that cover P
-//    (renormalised to sum 1 over them). Fallback when none covers P (a corner outside every
-//    rotated grid): every direction with its normalised omega_d, sampled clamped to its edge.
-//    No hole, no NaN.
+//    coordinates u = (q_x - x0) / dx, v = q_z / dz.
+//  * eq. (8) neighbours Q: the 2 x 2 cell centres around (u, v), bilinear. Along x (the
+//    direction's propagation) clamped to its edge columns: fu = clamp(u - 1/2, 0, N - 1),
+//    n0 = min(floor(fu), N - 2) (0 when N = 1), fx = fu - n0, n1 = min(n0 + 1, N - 1).
+//    Along z (its transverse axis) periodic with period M: fv = (v - 1/2) mod M,
+//    m0 = floor(fv), fz = fv - m0, m1 = (m0 + 1) mod M.
+//  * Fallback for the cells a rotated grid does not cover (its corners leave the base mesh
+//    for any angle that is not a multiple of 90 degrees): across the transverse edges the
+//    direction's field repeats (the noise is periodic along the slice axis, so row M - 1 and
+//    row 0 show neighbouring noise), beyond the ends of the cache's x range it continues its
+//    edge column. So every direction contributes to every cell with its weight and the sum
+//    has no seam, no hole and no NaN.
+//  * Weights: eq. (8)'s omega_d normalised to sum 1 (default equal: the mean).
 //  * One direction at angle 0: the base cell is the direction's own cell; no synthesis pass.
 
 #include "swell/runtime/cpu_reconstruction.h"
@@ -38,11 +43,11 @@ struct RippleTap {
     int n0 = 0;         ///< lower column of the 2 x 2 neighbours in the direction's field
     int m0 = 0;         ///< lower row
     int n1 = 0;         ///< upper column (n0 + 1, or n0 when N = 1)
-    int m1 = 0;         ///< upper row
+    int m1 = 0;         ///< upper row ((m0 + 1) mod M)
     double fx = 0.0;    ///< bilinear fraction along the direction's x
     double fz = 0.0;    ///< bilinear fraction along the direction's z
-    double weight = 0.0; ///< eq. (8) weight for this cell, summing to 1 over the directions
-    bool covered = false; ///< the direction's grid covers the cell
+    double weight = 0.0; ///< eq. (8) weight, omega_d normalised to sum 1 over the directions
+    bool inside = false; ///< (u, v) lies inside the direction's own grid (no fallback used)
 };
 
 /// The taps of every cell and direction, [(m * N + n) * D + d], in double precision.

@@ -14,17 +14,18 @@
 //  * The cache's x runs along each spiral: t = 2 pi u / N at column coordinate u (cells), so
 //    the inner end t = 0 shows the cache's xMin and the outer end t = 2 pi its xMax.
 //  * Cell centre P at polar (r, theta) about C (theta from +x towards +z):
-//    t = clamp(ln(r / a) / b, 0, 2 pi) (t = 0 at r = 0), u = N t / (2 pi),
+//    t = ln(r / a) / b for r > a, else 0; u = N min(t, 2 pi) / (2 pi);
 //    s = (theta - t - spin(tau)) J / (2 pi) mod J, in [0, J).
 //    Height: the two nearest spirals j0 = floor(s), j1 = (j0 + 1) mod J, weights 1 - (s - j0)
 //    and s - j0, each read at u from its frame's eq. (7) profile (CpuReconstruction::profile:
 //    the Gaussian mean of the slice's particles around the column centre, or the fallback)
 //    linearly between column centres: fu = clamp(u - 1/2, 0, N - 1), n0 = min(floor(fu), N - 2)
 //    (0 when N = 1), weight fu - n0 for min(n0 + 1, N - 1).
-//  * Inside r < a (the eye) and outside r > R the spiral parameter is clamped: the eye shows the
-//    inner ends (t = 0) and the rim the outer ends (t = 2 pi) of the spirals through the cell's
-//    angle, so the field is continuous at r = a and r = R, with no hole and no NaN. The slice
-//    axis wraps around (j = J - 1 neighbours j = 0; the noise is periodic in k).
+//  * Outside the spiral band a <= r <= R: the eye r < a shows the inner ends (t = 0, u = 0) of
+//    the spirals through the cell's angle (radial there); beyond R (the mesh's corners with
+//    the defaults) the spirals keep winding, r = a e^(b t) with t > 2 pi, and show their outer
+//    end's profile (u = N). The field is continuous at r = a and r = R, with no hole and no
+//    NaN. The slice axis wraps around (j = J - 1 neighbours j = 0; the noise is periodic in k).
 
 #include "swell/runtime/cpu_reconstruction.h"
 #include "swell/runtime/frame_set.h"
@@ -41,7 +42,7 @@ namespace swell::runtime {
 
 /// Where a cell lies on the spiral set at spin 0.
 struct SpiralPoint {
-    double t = 0.0; ///< spiral parameter, clamped to [0, 2 pi]
+    double t = 0.0; ///< spiral parameter ln(r / a) / b, 0 in the eye (> 2 pi beyond R)
     double u = 0.0; ///< column coordinate along the profile, N t / (2 pi), in [0, N]
     double s = 0.0; ///< slice coordinate at spin 0, (theta - t) J / (2 pi) mod J, in [0, J)
 };
