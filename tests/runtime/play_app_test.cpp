@@ -84,6 +84,41 @@ TEST_F(PlayApp, BenchJsonReportsTimingAndErrorAgainstTheReference) {
     EXPECT_LT(j["frames_decoded"].get<int>(), j["frames_in_cache"].get<int>());
 }
 
+TEST_F(PlayApp, BenchReportsRippleAndWhirlpoolWithTheirTable4Defaults) {
+    const std::string common =
+        " --res 48x40 --frames 20 --warmup 2 --error-frames 2 --cpu-frames 1 --json";
+    const Result r = run("bench " + cachePath() + " --mode ripple --angles 0 30 60" + common);
+    ASSERT_EQ(r.code, 0) << r.err;
+    nlohmann::json j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["mode"], "ripple");
+    EXPECT_EQ(j["slice_sets"], 3);
+    EXPECT_EQ(j["mode_params"]["ripple"]["angles_degrees"], nlohmann::json({0.0, 30.0, 60.0}));
+    EXPECT_EQ(j["slices"], 256); // Table 4: ripple K 256, F 0.4, beta 2.5, c 128
+    EXPECT_EQ(j["fluctuation"], 0.4);
+    EXPECT_EQ(j["beta"], 2.5);
+    EXPECT_TRUE(j["frames_exact"].get<bool>());
+    EXPECT_LE(j["max_abs_error"].get<double>(), 1e-4 * test::kSyntheticDepth);
+    EXPECT_TRUE(j["stage_gpu_ms"].contains("synthesis"));
+
+    const Result w =
+        run("bench " + cachePath() + " --mode whirlpool --cutoff 32 --spiral-a 5" + common);
+    ASSERT_EQ(w.code, 0) << w.err;
+    j = nlohmann::json::parse(w.out);
+    EXPECT_EQ(j["mode"], "whirlpool");
+    EXPECT_EQ(j["slices"], 128); // Table 4 / Sec. 6: K 128, c 64 unless given
+    EXPECT_EQ(j["cutoff"], 32.0);
+    EXPECT_EQ(j["mode_params"]["whirlpool"]["inner_radius_cells"], 5.0);
+    EXPECT_TRUE(j["frames_exact"].get<bool>());
+    EXPECT_LE(j["max_abs_error"].get<double>(), 1e-4 * test::kSyntheticDepth);
+    EXPECT_EQ(j["stage_gpu_ms"]["reconstruct"], 0.0); // no surging reconstruction
+
+    const Result h = run("heights " + cachePath() + " --mode whirlpool --out " +
+                         (s_dir / "w").string() + " --res 32x32 --seconds 0.1 --fps 20 --json");
+    ASSERT_EQ(h.code, 0) << h.err;
+    EXPECT_EQ(nlohmann::json::parse(h.out)["mode"], "whirlpool");
+    EXPECT_EQ(nlohmann::json::parse(slurp(s_dir / "w" / "heights.json"))["mode"], "whirlpool");
+}
+
 TEST_F(PlayApp, HeightsAreByteIdenticalForTheSameSeedAndDifferForAnother) {
     const std::string common = " --res 40x24 --slices 64 --seconds 0.2 --fps 20 --json";
     ASSERT_EQ(
@@ -114,7 +149,10 @@ TEST_F(PlayApp, HeightsAreByteIdenticalForTheSameSeedAndDifferForAnother) {
 }
 
 TEST_F(PlayApp, BadInputGivesOneClearLineAndNonZeroExit) {
-    const std::array<std::pair<std::string, std::string>, 6> cases = {{
+    const std::array<std::pair<std::string, std::string>, 9> cases = {{
+        {"bench " + cachePath() + " --mode tsunami", "--mode"},
+        {"bench " + cachePath() + " --mode ripple --angles 0 30 --weights 1", "ripple.weights"},
+        {"bench " + cachePath() + " --mode whirlpool --spiral-b 25", "whirlpool.growth"},
         {"bench " + cachePath() + " --no-such-option", "no-such-option"},
         {"bench", "CACHE"},
         {"bench " + (s_dir / "missing.swell").string(), "missing.swell"},
