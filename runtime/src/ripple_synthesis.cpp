@@ -168,44 +168,32 @@ GpuRipple::GpuRipple(const FrameSet& frames, const ReplayParams& params,
     const int N = g.cellsX;
     const int M = g.cellsZ;
     const std::size_t cells = static_cast<std::size_t>(N) * static_cast<std::size_t>(M);
-    struct GpuTap {
-        GLint base;    // d N M + m0 N + n0
-        GLint rowStep; // (m1 - m0) N: the row above, wrapping to row 0
-        float fx, fz, w;
-    };
-    const std::vector<RippleTap> taps = rippleTaps(g, ripple);
-    std::vector<GpuTap> packed(taps.size());
-    for (std::size_t i = 0; i < taps.size(); ++i) {
-        const RippleTap& t = taps[i];
-        const std::size_t d = i % static_cast<std::size_t>(D);
-        packed[i] = {static_cast<GLint>(d * cells + static_cast<std::size_t>(t.m0) * N + t.n0),
-                     (t.m1 - t.m0) * N, static_cast<float>(t.fx), static_cast<float>(t.fz),
-                     static_cast<float>(t.weight)};
+    // Per direction (cos a_d, sin a_d, omega_d): the shader maps each cell itself.
+    const std::vector<double> omega = ripple.normalisedWeights();
+    std::vector<float> dirs;
+    for (int d = 0; d < D; ++d) {
+        const double a = ripple.anglesDegrees[static_cast<std::size_t>(d)] * std::numbers::pi / 180.0;
+        for (double v : {std::cos(a), std::sin(a), omega[static_cast<std::size_t>(d)], 0.0})
+            dirs.push_back(static_cast<float>(v));
     }
-    GLint64 maxBlock = 0;
-    glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &maxBlock);
-    if (static_cast<GLint64>(packed.size() * sizeof(GpuTap)) > maxBlock ||
-        D * cells > 0x7fffffffu) {
-        throw RuntimeError(fmt::format(
-            "the ripple synthesis needs a {:.0f} MB table, above this driver's {:.0f} MB "
-            "shader-storage limit: lower --res or use fewer directions",
-            static_cast<double>(packed.size() * sizeof(GpuTap)) / 1e6,
-            static_cast<double>(maxBlock) / 1e6));
-    }
-    m_taps = makeStorageBuffer(packed.size() * sizeof(GpuTap), packed.data());
+    if (static_cast<double>(D) * static_cast<double>(cells) > 2147483647.0)
+        throw RuntimeError("the ripple synthesis addresses more than 2^31 heights: lower --res");
+    m_directionTable = makeStorageBuffer(dirs.size() * sizeof(float), dirs.data());
     m_dirHeights = makeStorageBuffer(static_cast<std::size_t>(D) * cells * sizeof(float), nullptr);
     m_out = std::make_unique<HeightOutput>(N, M);
     m_synthesis = makeEmbeddedProgram("ripple_synthesis.comp");
     const GLuint sp = m_synthesis.get();
-    glProgramUniform1i(sp, location(m_synthesis, "u_cells"), static_cast<GLint>(cells));
+    glProgramUniform1i(sp, location(m_synthesis, "u_N"), N);
+    glProgramUniform1i(sp, location(m_synthesis, "u_M"), M);
     glProgramUniform1i(sp, location(m_synthesis, "u_D"), D);
-    glProgramUniform1i(sp, location(m_synthesis, "u_stepX"), N > 1 ? 1 : 0);
+    glProgramUniform1f(sp, location(m_synthesis, "u_cx"), static_cast<float>(0.5 * N));
+    glProgramUniform1f(sp, location(m_synthesis, "u_cz"), static_cast<float>(0.5 * M));
+    glProgramUniform1f(sp, location(m_synthesis, "u_dzdx"), static_cast<float>(g.dz / g.dx));
     for (GlQuery& q : m_queries) {
         GLuint name = 0;
         glCreateQueries(GL_TIMESTAMP, 1, &name);
         q = GlQuery(name);
     }
-    m_uploadedBytes += packed.size() * sizeof(GpuTap);
     checkGl("setting up the ripple synthesis");
 }
 
@@ -233,11 +221,11 @@ void GpuRipple::update(double tau) {
     }
     // Step 9, eq. (8).
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, m_dirHeights.get());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, m_taps.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, m_directionTable.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, m_out->buffer());
     glUseProgram(m_synthesis.get());
-    const long long cells = static_cast<long long>(g.cellsX) * g.cellsZ;
-    glDispatchCompute(static_cast<GLuint>((cells + kGroup - 1) / kGroup), 1, 1);
+    glDispatchCompute((static_cast<GLuint>(g.cellsX) + kGroup - 1) / kGroup,
+                      static_cast<GLuint>(g.cellsZ), 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT |
                     GL_PIXEL_BUFFER_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
     if (m_timing)

@@ -115,7 +115,7 @@ private:
     std::size_t m_uploadedBytes = 0;
     GlProgram m_synthesis;
     GlBuffer m_dirHeights; ///< D x N x M floats, direction d at [d N M + m N + n]
-    GlBuffer m_taps;
+    GlBuffer m_directionTable; ///< per direction (cos a_d, sin a_d, omega_d, 0)
     std::unique_ptr<HeightOutput> m_out;
     GlQuery m_queries[2];
 };
