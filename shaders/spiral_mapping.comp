@@ -6,8 +6,9 @@
 // s = (theta - t - spin) J / (2 pi) mod J; the cache's x runs along the spiral, column
 // coordinate u = N t / (2 pi). Its height interpolates the two nearest spirals j0 = floor(s),
 // j1 = j0 + 1 mod J (weight s - j0), each read at u from the frame's eq. (7) column profile
-// (column_pass.comp: S / W, or the fallback when W = 0) linearly between column centres.
-// Per cell the geometry (n0, beta, s at spin 0) is precomputed on the CPU in double precision.
+// (column_pass.comp: S / W, or the fallback when W = 0; stored once per held frame as pairs
+// (p(n), p(min(n + 1, N - 1))) so one load serves the interpolation) linearly between column
+// centres. Per cell the geometry (n0, beta, s at spin 0) is precomputed on the CPU in double.
 layout(local_size_x = 64) in;
 
 struct Cell {
@@ -18,30 +19,23 @@ struct Cell {
 };
 
 layout(std430, binding = 0) readonly buffer Slices { ivec2 slices[]; };   // (frame, slot) per j
-layout(std430, binding = 1) readonly buffer Columns { float columns[]; }; // see column_pass
+layout(std430, binding = 1) readonly buffer Profiles { vec2 profiles[]; }; // slot * N + n
 layout(std430, binding = 2) readonly buffer Cells { Cell cells[]; };     // m * N + n
 layout(std430, binding = 3) writeonly buffer Heights { float heights[]; }; // m * N + n
 
 uniform int u_cells;       // N * M
 uniform int u_N;           // columns of the profile
-uniform int u_Nq;          // column quads, ceil(N / 4)
 uniform int u_J;           // slices, 2K - 1
 uniform float u_spin;      // spin(tau) in slice units, in [0, J)
 uniform float u_reference; // level added back (columns are relative)
 uniform float u_missing;   // relative height of a slice whose frame is not held
 
-// eq. (7) column profile of the frame in `slot` at column n (relative height).
-float profile(int slot, int n) {
-    if (slot < 0) return u_missing;
-    int base = ((slot * u_Nq + n / 4) * 2) * 4 + n % 4;
-    float S = columns[base];
-    float W = columns[base + 4];
-    return W > 0.0 ? S / W : S; // S holds the fallback when W = 0
-}
-
-float spiral(int j, int n0, int n1, float beta) {
+// The eq. (7) profile of slice j's frame at u (relative height).
+float spiral(int j, int n0, float beta) {
     int slot = slices[j].y;
-    return mix(profile(slot, n0), profile(slot, n1), beta);
+    if (slot < 0) return u_missing;
+    vec2 p = profiles[slot * u_N + n0];
+    return mix(p.x, p.y, beta);
 }
 
 void main() {
@@ -54,7 +48,6 @@ void main() {
     float alpha = s - float(j0);
     if (j0 >= u_J) { j0 = 0; alpha = 0.0; } // rounding at the wrap
     int j1 = j0 + 1 == u_J ? 0 : j0 + 1;
-    int n1 = min(cell.n0 + 1, u_N - 1);
-    float h = mix(spiral(j0, cell.n0, n1, cell.beta), spiral(j1, cell.n0, n1, cell.beta), alpha);
+    float h = mix(spiral(j0, cell.n0, cell.beta), spiral(j1, cell.n0, cell.beta), alpha);
     heights[c] = h + u_reference;
 }

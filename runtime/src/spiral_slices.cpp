@@ -160,12 +160,46 @@ GpuWhirlpool::GpuWhirlpool(const FrameSet& frames, const ReplayParams& params,
             static_cast<double>(maxBlock) / 1e6));
     }
     m_cells = makeStorageBuffer(cells.size() * sizeof(GpuCell), cells.data());
-    m_uploadedBytes = m_replay.uploadedBytes() + cells.size() * sizeof(GpuCell);
+
+    // Profiles from the column pass, once: p = S / W, or the fallback S when W = 0
+    // (column_pass.comp's layout), stored as pairs (p(n), p(min(n + 1, N - 1))).
+    const std::size_t slots = m_replay.heldFrames();
+    const int Nq = m_replay.columnQuads();
+    std::vector<float> columns(std::max<std::size_t>(slots, 1) * static_cast<std::size_t>(Nq) * 8);
+    glGetNamedBufferSubData(m_replay.columnBuffer(), 0,
+                            static_cast<GLsizeiptr>(columns.size() * sizeof(float)),
+                            columns.data());
+    std::vector<float> pairs(std::max<std::size_t>(slots, 1) * static_cast<std::size_t>(N) * 2);
+    auto profileAt = [&](std::size_t slot, int n) {
+        const std::size_t base =
+            ((slot * static_cast<std::size_t>(Nq) + static_cast<std::size_t>(n / 4)) * 2) * 4 +
+            static_cast<std::size_t>(n % 4);
+        const float S = columns[base];
+        const float W = columns[base + 4];
+        return W > 0.0f ? S / W : S;
+    };
+    for (std::size_t slot = 0; slot < slots; ++slot) {
+        for (int n = 0; n < N; ++n) {
+            pairs[(slot * static_cast<std::size_t>(N) + static_cast<std::size_t>(n)) * 2] =
+                profileAt(slot, n);
+            pairs[(slot * static_cast<std::size_t>(N) + static_cast<std::size_t>(n)) * 2 + 1] =
+                profileAt(slot, std::min(n + 1, N - 1));
+        }
+    }
+    if (static_cast<GLint64>(pairs.size() * sizeof(float)) > maxBlock) {
+        throw RuntimeError(fmt::format(
+            "the whirlpool needs a {:.0f} MB profile table, above this driver's {:.0f} MB "
+            "shader-storage limit: lower --res or replay fewer seconds",
+            static_cast<double>(pairs.size() * sizeof(float)) / 1e6,
+            static_cast<double>(maxBlock) / 1e6));
+    }
+    m_profiles = makeStorageBuffer(pairs.size() * sizeof(float), pairs.data());
+    m_uploadedBytes = m_replay.uploadedBytes() + cells.size() * sizeof(GpuCell) +
+                      pairs.size() * sizeof(float);
     m_mapping = makeEmbeddedProgram("spiral_mapping.comp");
     const GLuint mp = m_mapping.get();
     glProgramUniform1i(mp, location(m_mapping, "u_cells"), N * M);
     glProgramUniform1i(mp, location(m_mapping, "u_N"), N);
-    glProgramUniform1i(mp, location(m_mapping, "u_Nq"), m_replay.columnQuads());
     glProgramUniform1i(mp, location(m_mapping, "u_J"), g.sliceCount());
     glProgramUniform1f(mp, location(m_mapping, "u_reference"), m_replay.referenceHeight());
     glProgramUniform1f(mp, location(m_mapping, "u_missing"), m_replay.missingHeight());
@@ -190,7 +224,7 @@ void GpuWhirlpool::update(double tau) {
         spin = 0.0f;
     glProgramUniform1f(m_mapping.get(), m_spinLocation, spin);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, m_replay.sliceBuffer());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, m_replay.columnBuffer());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, m_profiles.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, m_cells.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, m_out.buffer());
     glUseProgram(m_mapping.get());

@@ -93,8 +93,9 @@ struct WhirlpoolStageTimes {
     double spiralMs = 0.0;      ///< spiral_mapping.comp
 };
 
-/// The whirlpool on the GPU: GpuReplay's column pass (once) and slice lookup (per frame), then
-/// spiral_mapping.comp instead of the surging reconstruction (which it never runs).
+/// The whirlpool on the GPU: GpuReplay's column pass (once, turned into per-frame profiles
+/// once) and slice lookup (per frame), then spiral_mapping.comp instead of the surging
+/// reconstruction (which it never runs).
 class GpuWhirlpool {
 public:
     GpuWhirlpool(const FrameSet& frames, const ReplayParams& params,
@@ -120,7 +121,8 @@ private:
     SpiralGeometry m_geometry;
     HeightOutput m_out;
     GlProgram m_mapping;
-    GlBuffer m_cells;
+    GlBuffer m_cells;    ///< per cell (n0, beta, s at spin 0)
+    GlBuffer m_profiles; ///< per held frame and column (p(n), p(min(n + 1, N - 1)))
     int m_spinLocation = -1;
     bool m_timing = false;
     bool m_timed = false;
