@@ -334,7 +334,8 @@ int runBench(Options& o, int frames, int warmup, int errorFrames, int cpuFrames)
     } else {
         std::cout << fmt::format(
             "swell-play bench  {}  ({}, EGL {})\n"
-            "  mode {}, {}x{} cells, K = {} ({} slices), seed {}, F {}, {} of {} cache frames decoded\n"
+            "  mode {}, {}x{} cells, K = {} ({} slices), seed {}, F {}, {} of {} cache frames "
+            "decoded\n"
             "  {:.1f} fps synced over {} frames: median {:.3f} ms, p95 {:.3f} ms\n"
             "  GPU stages: slice lookup {:.4f} ms, reconstruct {:.4f} ms, synthesis {:.4f} ms, "
             "spiral mapping {:.4f} ms; column pass once {:.2f} ms\n"
@@ -345,8 +346,9 @@ int runBench(Options& o, int frames, int warmup, int errorFrames, int cpuFrames)
             o.params.cellsZ, o.params.slices, 2 * o.params.slices - 1, o.params.seed,
             o.params.fluctuation, set.ids.size(), set.frameCount, 1000.0 / meanMs, frames,
             percentile(frameMs, 0.5), percentile(frameMs, 0.95), lookupMs / timed,
-            reconstructMs / timed, synthesisMs / timed, spiralMs / timed, gpu.columnPassMs(), errorCount, maxAbs, rms, maxAbs / depth,
-            depth, framesExact ? "exact" : "DIFFERS", cpuMs > 0 ? 1000.0 / cpuMs : 0.0, cpuMs);
+            reconstructMs / timed, synthesisMs / timed, spiralMs / timed, gpu.columnPassMs(),
+            errorCount, maxAbs, rms, maxAbs / depth, depth, framesExact ? "exact" : "DIFFERS",
+            cpuMs > 0 ? 1000.0 / cpuMs : 0.0, cpuMs);
     }
     if (!framesExact || !(maxAbs <= 1e-4 * depth)) {
         std::cerr

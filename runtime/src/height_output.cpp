@@ -9,9 +9,9 @@ namespace swell::runtime {
 
 HeightOutput::HeightOutput(int cellsX, int cellsZ)
     : m_N(cellsX), m_M(cellsZ),
-      m_buffer(makeStorageBuffer(
-          static_cast<std::size_t>(cellsX) * static_cast<std::size_t>(cellsZ) * sizeof(float),
-          nullptr)) {
+      m_buffer(makeStorageBuffer(static_cast<std::size_t>(cellsX) *
+                                     static_cast<std::size_t>(cellsZ) * sizeof(float),
+                                 nullptr)) {
     GLuint tex = 0;
     glCreateTextures(GL_TEXTURE_2D, 1, &tex);
     m_texture = GlTexture(tex);

@@ -40,7 +40,7 @@ void ModeReplay::update(double tau) {
 }
 
 void ModeReplay::finish() const {
-    const GpuReplay& any = m_surging    ? *m_surging
+    const GpuReplay& any = m_surging  ? *m_surging
                            : m_ripple ? m_ripple->direction(0)
                                       : m_whirlpool->slices();
     any.finish();
@@ -86,19 +86,19 @@ double ModeReplay::columnPassMs() const {
 }
 
 GlName ModeReplay::heightBuffer() const {
-    return m_surging ? m_surging->heightBuffer()
+    return m_surging  ? m_surging->heightBuffer()
            : m_ripple ? m_ripple->heightBuffer()
                       : m_whirlpool->heightBuffer();
 }
 
 GlName ModeReplay::heightTexture() {
-    return m_surging ? m_surging->heightTexture()
+    return m_surging  ? m_surging->heightTexture()
            : m_ripple ? m_ripple->heightTexture()
                       : m_whirlpool->heightTexture();
 }
 
 HeightField ModeReplay::readHeights() const {
-    return m_surging ? m_surging->readHeights()
+    return m_surging  ? m_surging->readHeights()
            : m_ripple ? m_ripple->readHeights()
                       : m_whirlpool->readHeights();
 }
@@ -119,7 +119,7 @@ const Grid& ModeReplay::grid() const {
 }
 
 std::size_t ModeReplay::uploadedBytes() const {
-    return m_surging ? m_surging->uploadedBytes()
+    return m_surging  ? m_surging->uploadedBytes()
            : m_ripple ? m_ripple->uploadedBytes()
                       : m_whirlpool->uploadedBytes();
 }

@@ -58,8 +58,8 @@ ReplayMode replayModeFromString(const std::string& name) {
 
 void RippleParams::validate() const {
     if (anglesDegrees.empty() || anglesDegrees.size() > 16) {
-        throw std::invalid_argument(fmt::format("ripple.angles: need 1 .. 16 directions, got {}",
-                                                anglesDegrees.size()));
+        throw std::invalid_argument(
+            fmt::format("ripple.angles: need 1 .. 16 directions, got {}", anglesDegrees.size()));
     }
     for (double a : anglesDegrees) {
         if (!std::isfinite(a))
@@ -68,8 +68,8 @@ void RippleParams::validate() const {
     if (weights.empty())
         return;
     if (weights.size() != anglesDegrees.size()) {
-        throw std::invalid_argument(fmt::format(
-            "ripple.weights: {} weights for {} directions", weights.size(), anglesDegrees.size()));
+        throw std::invalid_argument(fmt::format("ripple.weights: {} weights for {} directions",
+                                                weights.size(), anglesDegrees.size()));
     }
     double sum = 0.0;
     for (double w : weights) {
@@ -96,8 +96,8 @@ std::vector<double> RippleParams::normalisedWeights() const {
 
 void WhirlpoolParams::validate() const {
     if (!std::isfinite(innerRadiusCells) || innerRadiusCells <= 0.0) {
-        throw std::invalid_argument(fmt::format(
-            "whirlpool.inner_radius_cells must be > 0, got {}", innerRadiusCells));
+        throw std::invalid_argument(
+            fmt::format("whirlpool.inner_radius_cells must be > 0, got {}", innerRadiusCells));
     }
     // e^(2 pi b) is the ratio of outer to inner radius: keep it a finite, sane number.
     if (!std::isfinite(growth) || growth <= 0.0 || growth > 2.0) {
@@ -105,9 +105,9 @@ void WhirlpoolParams::validate() const {
             fmt::format("whirlpool.growth b must be in (0, 2] per radian, got {}", growth));
     }
     if (!std::isfinite(turnsPerTimeUnit) || std::abs(turnsPerTimeUnit) > 1e3) {
-        throw std::invalid_argument(fmt::format(
-            "whirlpool.turns_per_time_unit must be finite and |.| <= 1000, got {}",
-            turnsPerTimeUnit));
+        throw std::invalid_argument(
+            fmt::format("whirlpool.turns_per_time_unit must be finite and |.| <= 1000, got {}",
+                        turnsPerTimeUnit));
     }
 }
 
@@ -124,8 +124,7 @@ int ModeParams::sliceSets() const {
 
 nlohmann::json toJson(const ModeParams& p) {
     return {{"mode", toString(p.mode)},
-            {"ripple",
-             {{"angles_degrees", p.ripple.anglesDegrees}, {"weights", p.ripple.weights}}},
+            {"ripple", {{"angles_degrees", p.ripple.anglesDegrees}, {"weights", p.ripple.weights}}},
             {"whirlpool",
              {{"inner_radius_cells", p.whirlpool.innerRadiusCells},
               {"growth", p.whirlpool.growth},

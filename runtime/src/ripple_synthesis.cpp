@@ -101,10 +101,9 @@ std::vector<RippleTap> rippleTaps(const Grid& grid, const RippleParams& ripple) 
 
 // ---------------------------------------------------------------------------------------------
 
-CpuRipple::CpuRipple(const FrameSet& frames, const ReplayParams& params,
-                     const RippleParams& ripple, std::span<const SliceSampler> samplers)
-    : m_grid(makeGrid(frames.header, params)),
-      m_D(static_cast<int>(ripple.anglesDegrees.size())) {
+CpuRipple::CpuRipple(const FrameSet& frames, const ReplayParams& params, const RippleParams& ripple,
+                     std::span<const SliceSampler> samplers)
+    : m_grid(makeGrid(frames.header, params)), m_D(static_cast<int>(ripple.anglesDegrees.size())) {
     ModeParams mode;
     mode.mode = ReplayMode::Ripple;
     mode.ripple = ripple;
@@ -147,8 +146,8 @@ HeightField CpuRipple::heights(double tau) const {
 
 // ---------------------------------------------------------------------------------------------
 
-GpuRipple::GpuRipple(const FrameSet& frames, const ReplayParams& params,
-                     const RippleParams& ripple, std::span<const SliceSampler> samplers)
+GpuRipple::GpuRipple(const FrameSet& frames, const ReplayParams& params, const RippleParams& ripple,
+                     std::span<const SliceSampler> samplers)
     : m_identity(rippleIsIdentity(ripple)) {
     ModeParams mode;
     mode.mode = ReplayMode::Ripple;
@@ -172,7 +171,8 @@ GpuRipple::GpuRipple(const FrameSet& frames, const ReplayParams& params,
     const std::vector<double> omega = ripple.normalisedWeights();
     std::vector<float> dirs;
     for (int d = 0; d < D; ++d) {
-        const double a = ripple.anglesDegrees[static_cast<std::size_t>(d)] * std::numbers::pi / 180.0;
+        const double a =
+            ripple.anglesDegrees[static_cast<std::size_t>(d)] * std::numbers::pi / 180.0;
         for (double v : {std::cos(a), std::sin(a), omega[static_cast<std::size_t>(d)], 0.0})
             dirs.push_back(static_cast<float>(v));
     }

@@ -153,11 +153,11 @@ GpuWhirlpool::GpuWhirlpool(const FrameSet& frames, const ReplayParams& params,
     GLint64 maxBlock = 0;
     glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &maxBlock);
     if (static_cast<GLint64>(cells.size() * sizeof(GpuCell)) > maxBlock) {
-        throw RuntimeError(fmt::format(
-            "the whirlpool needs a {:.0f} MB cell table, above this driver's {:.0f} MB "
-            "shader-storage limit: lower --res",
-            static_cast<double>(cells.size() * sizeof(GpuCell)) / 1e6,
-            static_cast<double>(maxBlock) / 1e6));
+        throw RuntimeError(
+            fmt::format("the whirlpool needs a {:.0f} MB cell table, above this driver's {:.0f} MB "
+                        "shader-storage limit: lower --res",
+                        static_cast<double>(cells.size() * sizeof(GpuCell)) / 1e6,
+                        static_cast<double>(maxBlock) / 1e6));
     }
     m_cells = makeStorageBuffer(cells.size() * sizeof(GpuCell), cells.data());
 
@@ -194,8 +194,8 @@ GpuWhirlpool::GpuWhirlpool(const FrameSet& frames, const ReplayParams& params,
             static_cast<double>(maxBlock) / 1e6));
     }
     m_profiles = makeStorageBuffer(pairs.size() * sizeof(float), pairs.data());
-    m_uploadedBytes = m_replay.uploadedBytes() + cells.size() * sizeof(GpuCell) +
-                      pairs.size() * sizeof(float);
+    m_uploadedBytes =
+        m_replay.uploadedBytes() + cells.size() * sizeof(GpuCell) + pairs.size() * sizeof(float);
     m_mapping = makeEmbeddedProgram("spiral_mapping.comp");
     const GLuint mp = m_mapping.get();
     glProgramUniform1i(mp, location(m_mapping, "u_cells"), N * M);

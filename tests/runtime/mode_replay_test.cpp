@@ -97,12 +97,23 @@ TEST_F(ModeReplayTest, MatchesTheCpuReferenceForBothModes) {
         // ripple: the paper's defaults; three directions with weights on a non-square mesh;
         // one direction at 90 degrees (synthesis without a second direction); F = 1
         {ReplayMode::Ripple, 128, 128, 256, 0.4, FramePolicy::Loop, 1, {}, {}, {}},
-        {ReplayMode::Ripple, 77, 45, 40, 0.4, FramePolicy::Clamp, 2, {-20, 15, 100}, {1, 2, 0.5},
+        {ReplayMode::Ripple,
+         77,
+         45,
+         40,
+         0.4,
+         FramePolicy::Clamp,
+         2,
+         {-20, 15, 100},
+         {1, 2, 0.5},
          {}},
         {ReplayMode::Ripple, 50, 50, 16, 1.0, FramePolicy::Loop, 3, {90}, {}, {}},
         // whirlpool: the paper's defaults; a tight, fast, reversed spiral on a non-square mesh
         {ReplayMode::Whirlpool, 128, 128, 128, 0.4, FramePolicy::Loop, 4, {}, {}, {}},
         {ReplayMode::Whirlpool, 90, 61, 20, 0.8, FramePolicy::Clamp, 5, {}, {}, tight},
+        // degenerate meshes: one column, one row
+        {ReplayMode::Ripple, 1, 7, 4, 0.4, FramePolicy::Loop, 6, {0, 45}, {}, {}},
+        {ReplayMode::Whirlpool, 5, 1, 3, 0.4, FramePolicy::Loop, 7, {}, {}, {}},
     };
     SplitMix64 rng(7);
     for (const Case& c : cases) {
@@ -114,9 +125,9 @@ TEST_F(ModeReplayTest, MatchesTheCpuReferenceForBothModes) {
         const CpuModeReference cpu(set, p, mode, samplers);
         for (int t = 0; t < 3; ++t) {
             const double tau = -0.5 + 1.7 * rng.uniform();
-            SCOPED_TRACE(::testing::Message() << toString(c.mode) << " " << c.N << "x" << c.M
-                                              << " K " << c.K << " seed " << c.seed << " tau "
-                                              << tau);
+            SCOPED_TRACE(::testing::Message()
+                         << toString(c.mode) << " " << c.N << "x" << c.M << " K " << c.K << " seed "
+                         << c.seed << " tau " << tau);
             gpu.update(tau);
             const auto frames = gpu.readSliceFrames();
             ASSERT_EQ(frames.size(), samplers.size());
@@ -194,8 +205,7 @@ TEST_F(ModeReplayTest, WhirlpoolRotatesWithAnimationTime) {
     mode.whirlpool.turnsPerTimeUnit = 2.5;
     ModeParams still = mode;
     still.whirlpool.turnsPerTimeUnit = 0.0;
-    const auto samplers =
-        makeSamplers(p, mode, set.frameCount, framesPerTimeUnit(set.header, p));
+    const auto samplers = makeSamplers(p, mode, set.frameCount, framesPerTimeUnit(set.header, p));
     ModeReplay spinning(set, p, mode, samplers);
     ModeReplay fixed(set, p, still, samplers);
     const double tau = 0.1; // 0.25 turns

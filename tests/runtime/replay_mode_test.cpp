@@ -82,17 +82,19 @@ TEST(ReplayMode, JsonRoundTripAndErrorsNameTheKey) {
     EXPECT_EQ(toJson(q), toJson(p));
     EXPECT_EQ(q.ripple.normalisedWeights(), (std::vector<double>{0.25, 0.5, 0.25}));
 
-    EXPECT_NE(messageOf([] { modeParamsFromJson(json{{"speed", 1}}); }).find("speed"),
+    EXPECT_NE(messageOf([] {
+                  modeParamsFromJson(json{{"speed", 1}});
+              }).find("speed"),
               std::string::npos);
     EXPECT_NE(messageOf([] {
                   modeParamsFromJson(json{{"mode", "ripple"}, {"ripple", {{"weights", {1.0}}}}});
               }).find("ripple.weights"),
               std::string::npos);
-    EXPECT_NE(messageOf([] {
-                  modeParamsFromJson(json{{"mode", "ripple"},
-                                          {"ripple", {{"weights", {-1.0, 2.0}}}}});
-              }).find("ripple.weights"),
-              std::string::npos);
+    EXPECT_NE(
+        messageOf([] {
+            modeParamsFromJson(json{{"mode", "ripple"}, {"ripple", {{"weights", {-1.0, 2.0}}}}});
+        }).find("ripple.weights"),
+        std::string::npos);
     EXPECT_NE(messageOf([] {
                   modeParamsFromJson(
                       json{{"mode", "ripple"}, {"ripple", {{"angles_degrees", json::array()}}}});

@@ -40,17 +40,19 @@ namespace swell::runtime {
 
 /// Where one base cell reads one direction (definitions above).
 struct RippleTap {
-    int n0 = 0;         ///< lower column of the 2 x 2 neighbours in the direction's field
-    int m0 = 0;         ///< lower row
-    int n1 = 0;         ///< upper column (n0 + 1, or n0 when N = 1)
-    int m1 = 0;         ///< upper row ((m0 + 1) mod M)
-    double fx = 0.0;    ///< bilinear fraction along the direction's x
-    double fz = 0.0;    ///< bilinear fraction along the direction's z
+    int n0 = 0;          ///< lower column of the 2 x 2 neighbours in the direction's field
+    int m0 = 0;          ///< lower row
+    int n1 = 0;          ///< upper column (n0 + 1, or n0 when N = 1)
+    int m1 = 0;          ///< upper row ((m0 + 1) mod M)
+    double fx = 0.0;     ///< bilinear fraction along the direction's x
+    double fz = 0.0;     ///< bilinear fraction along the direction's z
     double weight = 0.0; ///< eq. (8) weight, omega_d normalised to sum 1 over the directions
     bool inside = false; ///< (u, v) lies inside the direction's own grid (no fallback used)
 };
 
-/// The taps of every cell and direction, [(m * N + n) * D + d], in double precision.
+/// The taps of every cell and direction, [(m * N + n) * D + d], in double precision: the CPU
+/// reference's eq. (8) neighbours. ripple_synthesis.comp computes the same mapping itself, in
+/// float (it is continuous, so rounding moves a sample by ~1e-5 cells).
 std::vector<RippleTap> rippleTaps(const Grid& grid, const RippleParams& ripple);
 
 /// True when the synthesis is the identity (one direction at 0 degrees).
@@ -80,8 +82,9 @@ private:
     std::vector<RippleTap> m_taps;
 };
 
-/// The ripple on the GPU: one GpuReplay per direction (each its own slice lookup and eq. 7
-/// reconstruction), then ripple_synthesis.comp (eq. 8) into heightBuffer().
+/// The ripple on the GPU: one GpuReplay per direction (each its own upload, column pass, slice
+/// lookup and eq. 7 reconstruction), then the directions' buffers are copied into one and
+/// ripple_synthesis.comp (eq. 8) writes heightBuffer().
 class GpuRipple {
 public:
     /// Uploads `frames` once per direction. `samplers`: one per direction (not kept).
@@ -114,7 +117,7 @@ private:
     bool m_timed = false;
     std::size_t m_uploadedBytes = 0;
     GlProgram m_synthesis;
-    GlBuffer m_dirHeights; ///< D x N x M floats, direction d at [d N M + m N + n]
+    GlBuffer m_dirHeights;     ///< D x N x M floats, direction d at [d N M + m N + n]
     GlBuffer m_directionTable; ///< per direction (cos a_d, sin a_d, omega_d, 0)
     std::unique_ptr<HeightOutput> m_out;
     GlQuery m_queries[2];

@@ -57,10 +57,10 @@ public:
     /// spin(tau) in slice units, wrapped into [0, J).
     double spinSlices(double tau) const;
 
-    double centreX() const { return m_cx; } ///< metres
-    double centreZ() const { return m_cz; } ///< metres
+    double centreX() const { return m_cx; }    ///< metres
+    double centreZ() const { return m_cz; }    ///< metres
     double innerRadius() const { return m_a; } ///< a, metres
-    double outerRadius() const; ///< R = a e^(2 pi b), metres
+    double outerRadius() const;                ///< R = a e^(2 pi b), metres
     int sliceCount() const { return m_J; }
 
 private:
