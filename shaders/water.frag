@@ -19,6 +19,7 @@ layout(location = 10) uniform float u_eta;      // n_air / n_water
 layout(location = 11) uniform float u_f0;       // Schlick's F0 = ((n - 1) / (n + 1))^2
 layout(location = 12) uniform vec2 u_sun;       // highlight exponent, intensity
 layout(location = 13) uniform vec3 u_sunColour;
+layout(location = 18) uniform float u_reflectionLod; // fixed cube-map level (no derivatives: llvmpipe)
 
 void main() {
     vec3 N = normalize(v_normal);
@@ -29,7 +30,7 @@ void main() {
     // Reflection of the environment.
     vec3 R = reflect(-V, N);
     R.y = abs(R.y); // a reflected ray into the water would hit the surface again: take the sky
-    const vec3 reflected = texture(u_sky, R).rgb;
+    const vec3 reflected = textureLod(u_sky, R, u_reflectionLod).rgb;
 
     // Refraction: the ray goes down to the bed; light is absorbed along the path and
     // scattered in, so deep water tends to u_scatter and shallow water shows the bed.

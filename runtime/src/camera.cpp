@@ -47,18 +47,41 @@ Camera defaultCamera(const Grid& grid, const cache::Domain& domain, double water
     Camera c;
     c.fovYDegrees = fovYDegrees;
     c.target = {grid.x0 + 0.5 * sizeX, waterLevel, 0.5 * sizeZ};
-    // Bounding sphere of the mesh (with half the domain's height above and below the target).
     const double radius = 0.5 * std::sqrt(sizeX * sizeX + sizeZ * sizeZ + sizeY * sizeY);
-    const double halfY = 0.5 * fovYDegrees * pi / 180.0;
-    const double halfX = std::atan(std::tan(halfY) * std::max(aspect, 1e-3));
-    const double distance = radius / std::sin(std::min(halfX, halfY)) * 0.82;
     const double elevation = 28.0 * pi / 180.0;
     const double azimuth = -35.0 * pi / 180.0; // from +z towards -x: the waves run to the right
-    c.position = {c.target[0] + distance * std::cos(elevation) * std::sin(azimuth),
-                  c.target[1] + distance * std::sin(elevation),
-                  c.target[2] + distance * std::cos(elevation) * std::cos(azimuth)};
-    c.nearPlane = std::max(1e-4, (distance - 2.0 * radius) * 0.5);
-    if (c.nearPlane < distance * 1e-3) c.nearPlane = distance * 1e-3;
+    const Vec3 dir{std::cos(elevation) * std::sin(azimuth), std::sin(elevation),
+                   std::cos(elevation) * std::cos(azimuth)};
+    // The nearest distance at which the 8 corners of the mesh's box (x, z extent, the domain's
+    // height) project inside 92% of the picture: bisection on the distance.
+    const double margin = 0.92;
+    auto fits = [&](double distance) {
+        Camera t = c;
+        t.position = {c.target[0] + distance * dir[0], c.target[1] + distance * dir[1],
+                      c.target[2] + distance * dir[2]};
+        t.nearPlane = 1e-4 * distance;
+        t.farPlane = 10.0 * distance;
+        const Mat4 vp = multiply(projectionMatrix(t, aspect), viewMatrix(t));
+        for (int k = 0; k < 8; ++k) {
+            const double x = grid.x0 + ((k & 1) ? sizeX : 0.0);
+            const double y = (k & 2) ? domain.yMax : domain.yMin;
+            const double z = (k & 4) ? sizeZ : 0.0;
+            double p[4];
+            for (int r = 0; r < 4; ++r) p[r] = vp[r] * x + vp[4 + r] * y + vp[8 + r] * z + vp[12 + r];
+            if (p[3] <= 0.0 || std::abs(p[0] / p[3]) > margin || std::abs(p[1] / p[3]) > margin) return false;
+        }
+        return true;
+    };
+    double lo = 0.0, hi = std::max(radius, 1e-6);
+    while (!fits(hi)) hi *= 2.0;
+    for (int i = 0; i < 50; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        (fits(mid) ? hi : lo) = mid;
+    }
+    const double distance = hi;
+    c.position = {c.target[0] + distance * dir[0], c.target[1] + distance * dir[1],
+                  c.target[2] + distance * dir[2]};
+    c.nearPlane = std::max(distance - 2.0 * radius, distance * 0.02);
     c.farPlane = (distance + radius) * 50.0;
     return c;
 }

@@ -20,6 +20,11 @@ struct FileCloser {
     void operator()(std::FILE* f) const { std::fclose(f); }
 };
 
+// libpng reports through these; the error is turned into RuntimeError at the setjmp, so
+// nothing is printed on stderr.
+[[noreturn]] void pngError(png_structp png, png_const_charp) { png_longjmp(png, 1); }
+void pngWarning(png_structp, png_const_charp) {}
+
 } // namespace
 
 void writePng(const std::filesystem::path& path, const Image& image, int compression) {
@@ -29,7 +34,7 @@ void writePng(const std::filesystem::path& path, const Image& image, int compres
     }
     std::unique_ptr<std::FILE, FileCloser> file(std::fopen(path.c_str(), "wb"));
     if (!file) throw RuntimeError(fmt::format("cannot write {}", path.string()));
-    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, pngError, pngWarning);
     png_infop info = png ? png_create_info_struct(png) : nullptr;
     if (png == nullptr || info == nullptr) {
         png_destroy_write_struct(&png, &info);
@@ -60,7 +65,7 @@ Image readPng(const std::filesystem::path& path) {
     if (std::fread(signature, 1, 8, file.get()) != 8 || png_sig_cmp(signature, 0, 8) != 0) {
         throw RuntimeError(fmt::format("{} is not a PNG file", path.string()));
     }
-    png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+    png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, nullptr, pngError, pngWarning);
     png_infop info = png ? png_create_info_struct(png) : nullptr;
     if (png == nullptr || info == nullptr) {
         png_destroy_read_struct(&png, &info, nullptr);

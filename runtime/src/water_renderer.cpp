@@ -21,7 +21,7 @@ namespace {
 constexpr GLint kViewProj = 0, kCells = 1, kOrigin = 2, kSpacing = 3, kEye = 4, kSunDir = 5,
                 kBedY = 6, kAbsorption = 7, kScatter = 8, kBed = 9, kEta = 10, kF0 = 11,
                 kSun = 12, kSunColour = 13, kEdge = 14, kPixelsPerMetre = 15, kRadius = 16,
-                kSplashColour = 17;
+                kSplashColour = 17, kReflectionLod = 18;
 
 void setVec3(GLuint program, GLint loc, const Vec3& v) {
     glProgramUniform3f(program, loc, static_cast<float>(v[0]), static_cast<float>(v[1]),
@@ -59,6 +59,7 @@ void ShadingParams::validate() const {
         !finiteColour(sunColour) || !finiteColour(splashColour)) {
         throw std::invalid_argument("shading colours and absorption must be finite and >= 0");
     }
+    if (!(reflectionLod >= 0.0) || !std::isfinite(reflectionLod)) throw std::invalid_argument("reflection LOD must be >= 0");
     if (!(sunShininess >= 1.0) || !(sunIntensity >= 0.0) || !std::isfinite(sunShininess) ||
         !std::isfinite(sunIntensity)) {
         throw std::invalid_argument("sun shininess must be >= 1 and intensity >= 0");
@@ -74,6 +75,7 @@ WaterRenderer::WaterRenderer(const Grid& grid, const cache::Domain& domain,
     m_waterProgram = makeGraphicsProgram("water.vert", "water.frag");
     m_skirtProgram = makeGraphicsProgram("skirt.vert", "skirt.frag");
     m_splashProgram = makeGraphicsProgram("splash.vert", "splash.frag");
+    m_backgroundProgram = makeGraphicsProgram("sky.vert", "background.frag");
     m_sky = makeCubemapTexture(sky);
     glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
 
@@ -111,14 +113,20 @@ WaterRenderer::WaterRenderer(const Grid& grid, const cache::Domain& domain,
     glCreateRenderbuffers(3, m_renderbuffers);
     const int W = shading.width, H = shading.height;
     glNamedRenderbufferStorageMultisample(m_renderbuffers[0], m_samples > 1 ? m_samples : 0, GL_RGBA8, W, H);
-    glNamedRenderbufferStorageMultisample(m_renderbuffers[1], m_samples > 1 ? m_samples : 0, GL_DEPTH_COMPONENT24, W, H);
+    glNamedRenderbufferStorageMultisample(m_renderbuffers[1], m_samples > 1 ? m_samples : 0, GL_DEPTH24_STENCIL8, W, H);
     glNamedRenderbufferStorage(m_renderbuffers[2], GL_RGBA8, W, H);
     glCreateFramebuffers(1, &m_msFramebuffer);
     glNamedFramebufferRenderbuffer(m_msFramebuffer, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, m_renderbuffers[0]);
-    glNamedFramebufferRenderbuffer(m_msFramebuffer, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, m_renderbuffers[1]);
+    glNamedFramebufferRenderbuffer(m_msFramebuffer, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER, m_renderbuffers[1]);
     glCreateFramebuffers(1, &m_framebuffer);
     glNamedFramebufferRenderbuffer(m_framebuffer, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, m_renderbuffers[2]);
-    for (GLuint fb : {m_msFramebuffer, m_framebuffer}) {
+    GLuint bg = 0;
+    glCreateTextures(GL_TEXTURE_2D, 1, &bg);
+    m_background = GlTexture(bg);
+    glTextureStorage2D(bg, 1, GL_RGBA8, W, H);
+    glCreateFramebuffers(1, &m_backgroundFramebuffer);
+    glNamedFramebufferTexture(m_backgroundFramebuffer, GL_COLOR_ATTACHMENT0, bg, 0);
+    for (GLuint fb : {m_msFramebuffer, m_framebuffer, m_backgroundFramebuffer}) {
         const GLenum status = glCheckNamedFramebufferStatus(fb, GL_FRAMEBUFFER);
         if (status != GL_FRAMEBUFFER_COMPLETE) {
             throw RuntimeError(fmt::format("offscreen framebuffer {}x{} ({} samples) incomplete: 0x{:x}", W, H, m_samples, status));
@@ -144,6 +152,7 @@ WaterRenderer::WaterRenderer(const Grid& grid, const cache::Domain& domain,
     const GLuint w = m_waterProgram.get();
     setVec3(w, kBed, shading.bedColour);
     glProgramUniform1f(w, kEta, eta);
+    glProgramUniform1f(w, kReflectionLod, static_cast<float>(shading.reflectionLod));
     glProgramUniform2f(w, kSun, static_cast<float>(shading.sunShininess), static_cast<float>(shading.sunIntensity));
     setVec3(w, kSunColour, shading.sunColour);
     setVec3(m_splashProgram.get(), kSunDir, sun);
@@ -152,11 +161,20 @@ WaterRenderer::WaterRenderer(const Grid& grid, const cache::Domain& domain,
 }
 
 WaterRenderer::~WaterRenderer() {
+    glDeleteFramebuffers(1, &m_backgroundFramebuffer);
     glDeleteFramebuffers(1, &m_framebuffer);
     glDeleteFramebuffers(1, &m_msFramebuffer);
     glDeleteRenderbuffers(3, m_renderbuffers);
     glDeleteVertexArrays(1, &m_splashArray);
     glDeleteVertexArrays(1, &m_vertexArray);
+}
+
+void WaterRenderer::stamp(const GlQuery& query) const {
+    if (!m_timing) return;
+    // llvmpipe rasterises a whole scene when it is flushed, so a timestamp alone would charge
+    // every draw to whichever stage flushes; finishing first attributes work to its stage.
+    glFinish();
+    glQueryCounter(query.get(), GL_TIMESTAMP);
 }
 
 void WaterRenderer::draw(GlName heightBuffer, const Camera& camera,
@@ -168,23 +186,28 @@ void WaterRenderer::draw(GlName heightBuffer, const Camera& camera,
     const Mat4 invViewProj = inverse(viewProj);
     const auto& eye = camera.position;
 
-    if (m_timing) glQueryCounter(m_queries[0].get(), GL_TIMESTAMP);
+    const bool sameCamera = m_backgroundValid && m_backgroundCamera.position == camera.position &&
+                            m_backgroundCamera.target == camera.target &&
+                            m_backgroundCamera.fovYDegrees == camera.fovYDegrees;
+    if (!sameCamera) renderBackground(camera, invViewProj);
+
+    // 1. Environment: the cached sky pass, copied by a texel-fetch pass (a framebuffer blit
+    //    cannot write a multisampled target).
+    stamp(m_queries[0]);
     glBindFramebuffer(GL_FRAMEBUFFER, m_msFramebuffer);
     glViewport(0, 0, W, H);
     glDisable(GL_BLEND);
     glDepthMask(GL_TRUE);
-    glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
-    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-    glBindTextureUnit(0, m_sky.get());
-
-    // 1. Environment (no depth test or write).
+    // Depth and stencil are cleared together (llvmpipe's fast path; a depth-only clear, or
+    // writing the far depth from the background pass, measured several times slower).
+    glClear(GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
     glDisable(GL_DEPTH_TEST);
-    glProgramUniformMatrix4fv(m_skyProgram.get(), kViewProj, 1, GL_FALSE, invViewProj.data());
-    setVec3(m_skyProgram.get(), kEye, eye);
-    glUseProgram(m_skyProgram.get());
     glBindVertexArray(m_vertexArray);
+    glBindTextureUnit(1, m_background.get());
+    glUseProgram(m_backgroundProgram.get());
     glDrawArrays(GL_TRIANGLES, 0, 3);
-    if (m_timing) glQueryCounter(m_queries[1].get(), GL_TIMESTAMP);
+    glBindTextureUnit(0, m_sky.get());
+    stamp(m_queries[1]);
 
     // 2. The height field (Sec. 5) and the sides of the block.
     glEnable(GL_DEPTH_TEST);
@@ -203,7 +226,7 @@ void WaterRenderer::draw(GlName heightBuffer, const Camera& camera,
             glDrawArrays(GL_TRIANGLE_STRIP, 0, 2 * (edge < 2 ? m_grid.cellsX : m_grid.cellsZ));
         }
     }
-    if (m_timing) glQueryCounter(m_queries[2].get(), GL_TIMESTAMP);
+    stamp(m_queries[2]);
 
     // 3. Splash point sprites (Sec. 5), blended over the water, depth tested, not written.
     m_lastSplashes = splashes.size();
@@ -230,11 +253,13 @@ void WaterRenderer::draw(GlName heightBuffer, const Camera& camera,
         glDepthMask(GL_TRUE);
         glDisable(GL_BLEND);
     }
-    if (m_timing) glQueryCounter(m_queries[3].get(), GL_TIMESTAMP);
+    stamp(m_queries[3]);
 
-    // 4. Resolve the multisampled picture.
-    glBlitNamedFramebuffer(m_msFramebuffer, m_framebuffer, 0, 0, W, H, 0, 0, W, H, GL_COLOR_BUFFER_BIT, GL_NEAREST);
-    if (m_timing) glQueryCounter(m_queries[4].get(), GL_TIMESTAMP);
+    // 4. Resolve the multisampled picture (without multisampling, it is read directly).
+    if (m_samples > 1) {
+        glBlitNamedFramebuffer(m_msFramebuffer, m_framebuffer, 0, 0, W, H, 0, 0, W, H, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    }
+    stamp(m_queries[4]);
     glBindVertexArray(0);
     glUseProgram(0);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
@@ -243,11 +268,28 @@ void WaterRenderer::draw(GlName heightBuffer, const Camera& camera,
     checkGl("drawing the water");
 }
 
+void WaterRenderer::renderBackground(const Camera& camera, const Mat4& invViewProj) {
+    // The environment seen through each pixel; it depends on the camera only, so it is drawn
+    // once per camera and copied into every frame.
+    glBindFramebuffer(GL_FRAMEBUFFER, m_backgroundFramebuffer);
+    glViewport(0, 0, m_shading.width, m_shading.height);
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_BLEND);
+    glBindTextureUnit(0, m_sky.get());
+    glProgramUniformMatrix4fv(m_skyProgram.get(), kViewProj, 1, GL_FALSE, invViewProj.data());
+    setVec3(m_skyProgram.get(), kEye, camera.position);
+    glUseProgram(m_skyProgram.get());
+    glBindVertexArray(m_vertexArray);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    m_backgroundCamera = camera;
+    m_backgroundValid = true;
+}
+
 Image WaterRenderer::readPixels() const {
     const int W = m_shading.width, H = m_shading.height;
     Image image(W, H);
     std::vector<std::uint8_t> rows(static_cast<std::size_t>(W) * H * 3);
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, m_framebuffer);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, m_samples > 1 ? m_framebuffer : m_msFramebuffer);
     glReadBuffer(GL_COLOR_ATTACHMENT0);
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
     glReadPixels(0, 0, W, H, GL_RGB, GL_UNSIGNED_BYTE, rows.data());

@@ -28,9 +28,9 @@ struct Camera {
 
 /// A three-quarter view of the whole base mesh: the target is the centre of the mesh at
 /// `waterLevel`; the eye looks across the propagation direction (x) from the far z side,
-/// slightly against the waves, 28 degrees above the horizon, far enough that the mesh's
-/// bounding sphere (mesh plus the domain's height) fits the vertical and horizontal field of
-/// view at `aspect` (width / height). Clip planes follow from the distance.
+/// slightly against the waves, 28 degrees above the horizon, at the nearest distance where the
+/// corners of the mesh's box (x and z extent, the domain's height) fill at most 92% of the
+/// picture at `aspect` (width / height). Clip planes follow from the distance.
 Camera defaultCamera(const Grid& grid, const cache::Domain& domain, double waterLevel,
                      double aspect, double fovYDegrees = 40.0);
 

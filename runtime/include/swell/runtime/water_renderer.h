@@ -30,6 +30,7 @@ struct ShadingParams {
     Vec3 sunColour{1.0, 0.95, 0.85};          ///< sun highlight colour, linear RGB
     Vec3 splashColour{0.92, 0.95, 1.0};       ///< splash droplets, linear RGB
     bool sides = true;                        ///< draw the block's four sides down to the bed
+    double reflectionLod = 1.0;               ///< cube-map mip level of reflections (fixed: no derivatives, fast on llvmpipe)
 
     /// Throws std::invalid_argument naming the field.
     void validate() const;
@@ -37,7 +38,7 @@ struct ShadingParams {
 
 /// GPU time of each drawing stage of the last timed draw(), from GL timestamp queries (ms).
 struct RenderStageTimes {
-    double skyMs = 0.0;      ///< environment background
+    double skyMs = 0.0;      ///< environment background (a copy of the cached sky pass)
     double waterMs = 0.0;    ///< height-field mesh and sides
     double splashMs = 0.0;   ///< point sprites (0 when no splash pass ran)
     double resolveMs = 0.0;  ///< multisample resolve
@@ -54,14 +55,15 @@ public:
     WaterRenderer(const WaterRenderer&) = delete;
     WaterRenderer& operator=(const WaterRenderer&) = delete;
 
-    /// Draws one frame: sky, the height field in `heightBuffer` (an SSBO of N x M floats,
+    /// Draws one frame: sky (rendered once per camera, then copied), the height field in `heightBuffer` (an SSBO of N x M floats,
     /// [m * N + n], metres), the sides and, if `splashes` is not empty, the splash sprites of
     /// radius `splashRadius` metres. Returns without waiting for the GPU.
     void draw(GlName heightBuffer, const Camera& camera, std::span<const SplashSprite> splashes,
               double splashRadius);
     /// Resolves and reads the last frame back (blocks): 8-bit RGB, row 0 at the top.
     Image readPixels() const;
-    /// Puts GL timestamp queries around each stage of draw().
+    /// Puts GL timestamp queries around each stage of draw(), each after a glFinish (so a timed
+    /// frame is serialised stage by stage and a little slower).
     void setTiming(bool on) { m_timing = on; }
     /// Stage times of the last timed draw(); waits for the GPU.
     RenderStageTimes stageTimes() const;
@@ -71,6 +73,9 @@ public:
     std::size_t lastSplashCount() const { return m_lastSplashes; }
 
 private:
+    void renderBackground(const Camera& camera, const Mat4& invViewProj);
+    void stamp(const GlQuery& query) const;
+
     Grid m_grid;
     cache::Domain m_domain;
     ShadingParams m_shading;
@@ -86,6 +91,11 @@ private:
     GlProgram m_waterProgram;
     GlProgram m_skirtProgram;
     GlProgram m_splashProgram;
+    GlProgram m_backgroundProgram;
+    GlTexture m_background;          // the sky pass for m_backgroundCamera
+    GlName m_backgroundFramebuffer = 0;
+    Camera m_backgroundCamera;
+    bool m_backgroundValid = false;
     GlTexture m_sky;
     GlBuffer m_indices;
     GlBuffer m_splashBuffer;

@@ -1,0 +1,6 @@
+#version 450 core
+// Copies the cached environment background (the sky pass rendered once per camera) into a
+// multisampled framebuffer, where a framebuffer blit is not allowed.
+layout(location = 0) out vec4 o_colour;
+layout(binding = 1) uniform sampler2D u_background;
+void main() { o_colour = texelFetch(u_background, ivec2(gl_FragCoord.xy), 0); }
