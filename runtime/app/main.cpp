@@ -43,18 +43,22 @@ double msSince(Clock::time_point t0) {
 
 /// Options shared by every subcommand.
 struct Options {
-    std::string cache;             ///< input .swell file
-    std::string res = "128x128";   ///< N x M base-mesh cells
-    std::string policy = "loop";   ///< frames outside the cache: clamp or loop
-    std::string filter = "low";    ///< noise band: low, high or none
-    double playbackFps = 30.0;     ///< output frames per simulated second
-    double start = 0.0;            ///< simulated second of the first output frame
-    bool json = false;             ///< one JSON object on stdout
-    ReplayParams params;           ///< the replay itself (paper defaults)
+    std::string cache;            ///< input .swell file
+    std::string res = "128x128";  ///< N x M base-mesh cells
+    std::string policy = "loop";  ///< frames outside the cache: clamp or loop
+    std::string filter = "low";   ///< noise band: low, high or none
+    std::string mode = "surging"; ///< slice layout; ripple and whirlpool come with issue 6
+    double playbackFps = 30.0;    ///< output frames per simulated second
+    double start = 0.0;           ///< simulated second of the first output frame
+    bool json = false;            ///< one JSON object on stdout
+    ReplayParams params;          ///< the replay itself (paper defaults)
 };
 
 void addCommon(CLI::App* cmd, Options& o) {
     cmd->add_option("CACHE", o.cache, "input .swell cache")->required();
+    cmd->add_option("--mode", o.mode, "slice layout (only surging so far)")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"surging"}));
     cmd->add_option("--res", o.res, "base mesh N x M cells (x = propagation, z = transverse)")
         ->capture_default_str();
     cmd->add_option("--slices", o.params.slices, "K slices (K - 1 more are inserted)")
@@ -62,7 +66,8 @@ void addCommon(CLI::App* cmd, Options& o) {
     cmd->add_option("--seed", o.params.seed, "noise seed")->capture_default_str();
     cmd->add_option("--fluctuation,-F", o.params.fluctuation, "F of eq. (5), 0..1")
         ->capture_default_str();
-    cmd->add_option("--beta", o.params.noise.beta, "noise spectral exponent")->capture_default_str();
+    cmd->add_option("--beta", o.params.noise.beta, "noise spectral exponent")
+        ->capture_default_str();
     cmd->add_option("--cutoff", o.params.noise.cutoff, "noise filter cut-off c (wavenumbers)")
         ->capture_default_str();
     cmd->add_option("--filter", o.filter, "noise band kept: low, high or none")
@@ -100,12 +105,14 @@ void finishOptions(Options& o) {
     } else if (o.filter == "none") {
         o.params.noise.filter = NoiseFilter::None;
     } else {
-        throw std::invalid_argument(fmt::format("--filter must be low, high or none, got '{}'", o.filter));
+        throw std::invalid_argument(
+            fmt::format("--filter must be low, high or none, got '{}'", o.filter));
     }
     if (!(o.playbackFps > 0.0) || !std::isfinite(o.playbackFps)) {
         throw std::invalid_argument(fmt::format("--fps must be > 0, got {}", o.playbackFps));
     }
-    if (!std::isfinite(o.start)) throw std::invalid_argument("--start must be finite");
+    if (!std::isfinite(o.start))
+        throw std::invalid_argument("--start must be finite");
     o.params.validate();
 }
 
@@ -122,7 +129,8 @@ FrameSet loadUsed(const cache::Reader& reader, const SliceSampler& sampler,
     set.frameCount = reader.frameCount();
     set.ids = sampler.framesUsed(taus);
     set.frames.reserve(set.ids.size());
-    for (std::uint32_t id : set.ids) set.frames.push_back(reader.readFrame(id));
+    for (std::uint32_t id : set.ids)
+        set.frames.push_back(reader.readFrame(id));
     return set;
 }
 
@@ -131,7 +139,8 @@ double waterDepth(const FrameSet& set) {
     double sum = 0.0;
     std::size_t count = 0;
     for (const cache::Frame& f : set.frames) {
-        for (std::size_t p = 1; p < f.surface.size(); p += 2) sum += f.surface[p];
+        for (std::size_t p = 1; p < f.surface.size(); p += 2)
+            sum += f.surface[p];
         count += f.surfaceCount();
     }
     const double bottom = set.header.domain.yMin;
@@ -141,8 +150,9 @@ double waterDepth(const FrameSet& set) {
 
 json paramsJson(const Options& o, const FrameSet& set, double A) {
     const ReplayParams& p = o.params;
-    return {{"mode", "surging"},
+    return {{"mode", o.mode},
             {"cache", o.cache},
+            {"params", toJson(p)},
             {"res", {p.cellsX, p.cellsZ}},
             {"slices", p.slices},
             {"slices_total", 2 * p.slices - 1},
@@ -173,13 +183,15 @@ double percentile(std::vector<double> v, double q) {
 
 int runBench(Options& o, int frames, int warmup, int errorFrames, int cpuFrames) {
     finishOptions(o);
-    if (frames < 1) throw std::invalid_argument("--frames must be >= 1");
+    if (frames < 1)
+        throw std::invalid_argument("--frames must be >= 1");
     const cache::Reader reader(o.cache);
     const double A = framesPerTimeUnit(reader.header(), o.params);
     const SliceSampler sampler(o.params, reader.frameCount(), A);
 
     std::vector<double> taus(static_cast<std::size_t>(warmup + frames));
-    for (std::size_t i = 0; i < taus.size(); ++i) taus[i] = tauOf(o, i);
+    for (std::size_t i = 0; i < taus.size(); ++i)
+        taus[i] = tauOf(o, i);
     auto t0 = Clock::now();
     const FrameSet set = loadUsed(reader, sampler, taus);
     const double decodeMs = msSince(t0);
@@ -230,7 +242,7 @@ int runBench(Options& o, int frames, int warmup, int errorFrames, int cpuFrames)
         const HeightField r = cpu.heights(tau);
         for (std::size_t i = 0; i < g.heights.size(); ++i) {
             const double d = std::isfinite(g.heights[i]) ? std::abs(g.heights[i] - r.heights[i])
-                                                          : std::numeric_limits<double>::infinity();
+                                                         : std::numeric_limits<double>::infinity();
             maxAbs = std::max(maxAbs, d);
             sumSq += d * d;
         }
@@ -244,7 +256,8 @@ int runBench(Options& o, int frames, int warmup, int errorFrames, int cpuFrames)
     const int cpuCount = std::min(cpuFrames, frames);
     if (cpuCount > 0) {
         t0 = Clock::now();
-        for (int i = 0; i < cpuCount; ++i) (void)cpu.heights(taus[static_cast<std::size_t>(warmup + i)]);
+        for (int i = 0; i < cpuCount; ++i)
+            (void)cpu.heights(taus[static_cast<std::size_t>(warmup + i)]);
         cpuMs = msSince(t0) / cpuCount;
     }
 
@@ -284,7 +297,8 @@ int runBench(Options& o, int frames, int warmup, int errorFrames, int cpuFrames)
             "swell-play bench  {}  ({}, EGL {})\n"
             "  {}x{} cells, K = {} ({} slices), seed {}, F {}, {} of {} cache frames decoded\n"
             "  {:.1f} fps synced over {} frames: median {:.3f} ms, p95 {:.3f} ms\n"
-            "  GPU stages: slice lookup {:.4f} ms, reconstruct {:.4f} ms; column pass once {:.2f} ms\n"
+            "  GPU stages: slice lookup {:.4f} ms, reconstruct {:.4f} ms; column pass once {:.2f} "
+            "ms\n"
             "  error vs CPU reference ({} frames): max {:.3g} m, rms {:.3g} m, max {:.3g} of depth "
             "{:.3g} m; frame choice {}\n"
             "  CPU reference: {:.1f} fps ({:.2f} ms/frame)\n",
@@ -296,7 +310,8 @@ int runBench(Options& o, int frames, int warmup, int errorFrames, int cpuFrames)
             depth, framesExact ? "exact" : "DIFFERS", cpuMs > 0 ? 1000.0 / cpuMs : 0.0, cpuMs);
     }
     if (!framesExact || !(maxAbs <= 1e-4 * depth)) {
-        std::cerr << "swell-play: GPU result differs from the CPU reference beyond 1e-4 of the depth\n";
+        std::cerr
+            << "swell-play: GPU result differs from the CPU reference beyond 1e-4 of the depth\n";
         return 2;
     }
     return 0;
@@ -312,7 +327,8 @@ int runHeights(Options& o, const std::string& outDir, double seconds) {
     const SliceSampler sampler(o.params, reader.frameCount(), A);
     const auto count = static_cast<std::size_t>(std::max(1.0, std::round(seconds * o.playbackFps)));
     std::vector<double> taus(count);
-    for (std::size_t i = 0; i < count; ++i) taus[i] = tauOf(o, i);
+    for (std::size_t i = 0; i < count; ++i)
+        taus[i] = tauOf(o, i);
     const FrameSet set = loadUsed(reader, sampler, taus);
 
     std::filesystem::create_directories(outDir);
@@ -327,13 +343,18 @@ int runHeights(Options& o, const std::string& outDir, double seconds) {
         gpu.update(taus[i]);
         const std::string name = fmt::format("height_{:05d}.png", i);
         writeHeightPng(std::filesystem::path(outDir) / name, gpu.readHeights(), scale);
-        frames.push_back({{"file", name}, {"tau", taus[i]}, {"seconds", o.start + i / o.playbackFps}});
+        frames.push_back({{"file", name},
+                          {"tau", taus[i]},
+                          {"seconds", o.start + static_cast<double>(i) / o.playbackFps}});
         if (progress) {
-            const double eta = msSince(t0) / 1000.0 * static_cast<double>(count - i - 1) / (i + 1);
-            std::cerr << fmt::format("\rswell-play heights: {}/{} frames, ETA {:.0f} s ", i + 1, count, eta);
+            const double eta = msSince(t0) / 1000.0 * static_cast<double>(count - i - 1) /
+                               static_cast<double>(i + 1);
+            std::cerr << fmt::format("\rswell-play heights: {}/{} frames, ETA {:.0f} s ", i + 1,
+                                     count, eta);
         }
     }
-    if (progress) std::cerr << "\n";
+    if (progress)
+        std::cerr << "\n";
     json meta = paramsJson(o, set, A);
     meta.update({{"renderer", context.renderer()},
                  {"format", "16-bit greyscale PNG; height_m = offset + value * scale"},
@@ -347,13 +368,17 @@ int runHeights(Options& o, const std::string& outDir, double seconds) {
     const auto metaPath = std::filesystem::path(outDir) / "heights.json";
     std::ofstream(metaPath) << meta.dump(2) << "\n";
     if (o.json) {
-        std::cout << json{{"out", outDir}, {"count", count}, {"frames_decoded", set.ids.size()},
-                          {"renderer", context.renderer()}, {"seed", o.params.seed}}
+        std::cout << json{{"out", outDir},
+                          {"count", count},
+                          {"frames_decoded", set.ids.size()},
+                          {"renderer", context.renderer()},
+                          {"seed", o.params.seed}}
                          .dump()
                   << "\n";
     } else {
-        std::cout << fmt::format("swell-play heights: {} frames ({}x{}) in {}, metadata {}\n", count,
-                                 o.params.cellsX, o.params.cellsZ, outDir, metaPath.string());
+        std::cout << fmt::format("swell-play heights: {} frames ({}x{}) in {}, metadata {} ({})\n",
+                                 count, o.params.cellsX, o.params.cellsZ, outDir, metaPath.string(),
+                                 context.renderer());
     }
     return 0;
 }
@@ -362,34 +387,36 @@ int runHeights(Options& o, const std::string& outDir, double seconds) {
 
 /// Options of `swell-play render` beyond the shared ones.
 struct RenderOptions {
-    std::string outDir;             ///< output folder
-    std::string size = "1280x720";  ///< image width x height
-    double seconds = 3.0;           ///< simulated seconds to render
-    std::string video;              ///< mp4 to encode with ffmpeg (empty: none)
-    std::string exports;            ///< comma list: heights, mesh, splashes
-    std::string skyDir;             ///< folder with px, nx, py, ny, pz, nz .png (empty: procedural)
-    std::vector<double> eye;        ///< camera position x y z (empty: default framing)
-    std::vector<double> target;     ///< camera target x y z (empty: default framing)
-    double fov = 40.0;              ///< vertical field of view, degrees
-    int sheetFrames = 6;            ///< frames on the contact sheet
-    int pngCompression = 1;         ///< zlib level of the frame PNGs
-    bool noSplashes = false;        ///< skip the splash pass
-    ShadingParams shading;          ///< shading (size and samples are set from the options)
-    SplashParams splash;            ///< splash particles (Sec. 5)
-    SkyParams sky;                  ///< procedural sky and sun
+    std::string outDir;            ///< output folder
+    std::string size = "1280x720"; ///< image width x height
+    double seconds = 3.0;          ///< simulated seconds to render
+    std::string video;             ///< mp4 to encode with ffmpeg (empty: none)
+    std::string exports;           ///< comma list: heights, mesh, splashes
+    std::string skyDir;            ///< folder with px, nx, py, ny, pz, nz .png (empty: procedural)
+    std::vector<double> eye;       ///< camera position x y z (empty: default framing)
+    std::vector<double> target;    ///< camera target x y z (empty: default framing)
+    double fov = 40.0;             ///< vertical field of view, degrees
+    int sheetFrames = 6;           ///< frames on the contact sheet
+    int pngCompression = 1;        ///< zlib level of the frame PNGs
+    bool noSplashes = false;       ///< skip the splash pass
+    ShadingParams shading;         ///< shading (size and samples are set from the options)
+    SplashParams splash;           ///< splash particles (Sec. 5)
+    SkyParams sky;                 ///< procedural sky and sun
 };
 
 /// The executable `name` on PATH, or empty.
 std::string findOnPath(const std::string& name) {
     const char* path = std::getenv("PATH");
-    if (path == nullptr) return {};
+    if (path == nullptr)
+        return {};
     std::string dirs(path);
     std::size_t start = 0;
     while (start <= dirs.size()) {
         const std::size_t end = std::min(dirs.find(':', start), dirs.size());
         const std::filesystem::path candidate =
             std::filesystem::path(end > start ? dirs.substr(start, end - start) : ".") / name;
-        if (::access(candidate.c_str(), X_OK) == 0) return candidate.string();
+        if (::access(candidate.c_str(), X_OK) == 0)
+            return candidate.string();
         start = end + 1;
     }
     return {};
@@ -398,28 +425,36 @@ std::string findOnPath(const std::string& name) {
 /// Runs argv[0] with arguments (no shell), waits; returns its exit status (-1: not run).
 int runProcess(const std::vector<std::string>& args) {
     std::vector<char*> argv;
-    for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    for (const std::string& a : args)
+        argv.push_back(const_cast<char*>(a.c_str()));
     argv.push_back(nullptr);
     pid_t pid = 0;
-    if (posix_spawn(&pid, args[0].c_str(), nullptr, nullptr, argv.data(), environ) != 0) return -1;
+    if (posix_spawn(&pid, args[0].c_str(), nullptr, nullptr, argv.data(), environ) != 0)
+        return -1;
     int status = 0;
-    if (waitpid(pid, &status, 0) < 0) return -1;
+    if (waitpid(pid, &status, 0) < 0)
+        return -1;
     return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
 Vec3 toVec3(const std::vector<double>& v, const char* what) {
-    if (v.size() != 3) throw std::invalid_argument(fmt::format("{} needs three numbers x y z", what));
+    if (v.size() != 3)
+        throw std::invalid_argument(fmt::format("{} needs three numbers x y z", what));
     return {v[0], v[1], v[2]};
 }
 
-json vec3Json(const Vec3& v) { return json::array({v[0], v[1], v[2]}); }
+json vec3Json(const Vec3& v) {
+    return json::array({v[0], v[1], v[2]});
+}
 
 int runRender(Options& o, RenderOptions& r) {
     finishOptions(o);
     int width = 0, height = 0;
     char x = 0, extra = 0;
-    if (std::sscanf(r.size.c_str(), "%d%c%d%c", &width, &x, &height, &extra) != 3 || (x != 'x' && x != 'X')) {
-        throw std::invalid_argument(fmt::format("--size must look like 1280x720, got '{}'", r.size));
+    if (std::sscanf(r.size.c_str(), "%d%c%d%c", &width, &x, &height, &extra) != 3 ||
+        (x != 'x' && x != 'X')) {
+        throw std::invalid_argument(
+            fmt::format("--size must look like 1280x720, got '{}'", r.size));
     }
     r.shading.width = width;
     r.shading.height = height;
@@ -441,36 +476,45 @@ int runRender(Options& o, RenderOptions& r) {
         } else if (item == "splashes") {
             exportSplashes = true;
         } else if (!item.empty()) {
-            throw std::invalid_argument(fmt::format("--export takes heights, mesh, splashes; got '{}'", item));
+            throw std::invalid_argument(
+                fmt::format("--export takes heights, mesh, splashes; got '{}'", item));
         }
         start = end + 1;
     }
-    if (r.eye.empty() != r.target.empty()) throw std::invalid_argument("--camera and --target go together");
+    if (r.eye.empty() != r.target.empty())
+        throw std::invalid_argument("--camera and --target go together");
     if (!r.video.empty() && r.video.find(".mp4") == std::string::npos) {
-        throw std::invalid_argument(fmt::format("--video must name an .mp4 file, got '{}'", r.video));
+        throw std::invalid_argument(
+            fmt::format("--video must name an .mp4 file, got '{}'", r.video));
     }
 
     const cache::Reader reader(o.cache);
     const double A = framesPerTimeUnit(reader.header(), o.params);
     const SliceSampler sampler(o.params, reader.frameCount(), A);
-    const auto count = static_cast<std::size_t>(std::max(1.0, std::round(r.seconds * o.playbackFps)));
+    const auto count =
+        static_cast<std::size_t>(std::max(1.0, std::round(r.seconds * o.playbackFps)));
     std::vector<double> taus(count);
-    for (std::size_t i = 0; i < count; ++i) taus[i] = tauOf(o, i);
+    for (std::size_t i = 0; i < count; ++i)
+        taus[i] = tauOf(o, i);
     const FrameSet set = loadUsed(reader, sampler, taus);
     const CubeFaces faces = r.skyDir.empty() ? proceduralSky(r.sky) : loadSkyImages(r.skyDir);
 
     const std::filesystem::path out(r.outDir);
     std::filesystem::create_directories(out);
-    if (exportHeights) std::filesystem::create_directories(out / "heights");
-    if (exportMesh) std::filesystem::create_directories(out / "mesh");
-    if (exportSplashes) std::filesystem::create_directories(out / "splashes");
+    if (exportHeights)
+        std::filesystem::create_directories(out / "heights");
+    if (exportMesh)
+        std::filesystem::create_directories(out / "mesh");
+    if (exportSplashes)
+        std::filesystem::create_directories(out / "splashes");
 
     const EglContext context;
     GpuReplay gpu(set, o.params, sampler);
     const Grid& grid = gpu.grid();
     const cache::Domain& domain = set.header.domain;
     const double waterLevel = domain.yMin + waterDepth(set);
-    Camera camera = defaultCamera(grid, domain, waterLevel, static_cast<double>(width) / height, r.fov);
+    Camera camera =
+        defaultCamera(grid, domain, waterLevel, static_cast<double>(width) / height, r.fov);
     if (!r.eye.empty()) {
         camera.position = toVec3(r.eye, "--camera");
         camera.target = toVec3(r.target, "--target");
@@ -486,7 +530,8 @@ int runRender(Options& o, RenderOptions& r) {
     const cache::Domain& d = domain;
     const HeightScale scale{d.yMin, (static_cast<double>(d.yMax) - d.yMin) / 65535.0};
     // Contact sheet: sheetFrames frames evenly spread, each downscaled to about 320 px wide.
-    const std::size_t sheetCount = std::min<std::size_t>(static_cast<std::size_t>(std::max(r.sheetFrames, 1)), count);
+    const std::size_t sheetCount =
+        std::min<std::size_t>(static_cast<std::size_t>(std::max(r.sheetFrames, 1)), count);
     const int sheetFactor = std::max(1, width / 320);
     std::vector<Image> sheet;
     json frames = json::array();
@@ -502,11 +547,13 @@ int runRender(Options& o, RenderOptions& r) {
         auto ts = Clock::now();
         // Each real slice shows its own frame's splashes: the same frame choice as the GPU (eq. 5).
         std::vector<SplashSprite> sprites;
-        if (splashes.active()) sprites = splashes.sprites(sampler.frames(taus[i]), seconds);
+        if (splashes.active())
+            sprites = splashes.sprites(sampler.frames(taus[i]), seconds);
         spriteMs += msSince(ts);
         spriteTotal += sprites.size();
 
-        const bool timed = i % kTimedEvery == kTimedEvery / 2 || count <= kTimedEvery / 2; // not frame 0 (set-up)
+        const bool timed =
+            i % kTimedEvery == kTimedEvery / 2 || count <= kTimedEvery / 2; // not frame 0 (set-up)
         gpu.setTiming(timed);
         renderer.setTiming(timed);
         ts = Clock::now();
@@ -535,13 +582,17 @@ int runRender(Options& o, RenderOptions& r) {
         ts = Clock::now();
         const std::string name = fmt::format("frame_{:05d}.png", i);
         writePng(out / name, image, r.pngCompression);
-        if (sheet.size() < sheetCount && i == sheet.size() * (count - 1) / std::max<std::size_t>(sheetCount - 1, 1)) {
+        if (sheet.size() < sheetCount &&
+            i == sheet.size() * (count - 1) / std::max<std::size_t>(sheetCount - 1, 1)) {
             sheet.push_back(downscale(image, sheetFactor));
         }
         writeMs += msSince(ts);
 
         ts = Clock::now();
-        json entry{{"file", name}, {"tau", taus[i]}, {"seconds", seconds}, {"splash_sprites", sprites.size()}};
+        json entry{{"file", name},
+                   {"tau", taus[i]},
+                   {"seconds", seconds},
+                   {"splash_sprites", sprites.size()}};
         if (exportHeights || exportMesh) {
             const HeightField field = gpu.readHeights();
             if (exportHeights) {
@@ -558,17 +609,21 @@ int runRender(Options& o, RenderOptions& r) {
         }
         if (exportSplashes) {
             const std::string sp = fmt::format("splashes/splashes_{:05d}.ply", i);
-            writeSplashPly(out / sp, sprites, fmt::format("swell-play splashes, frame {}, t = {} s", i, seconds));
+            writeSplashPly(out / sp, sprites,
+                           fmt::format("swell-play splashes, frame {}, t = {} s", i, seconds));
             entry["splashes"] = sp;
         }
         exportMs += msSince(ts);
         frames.push_back(entry);
         if (progress) {
-            const double eta = msSince(t0) / 1000.0 * static_cast<double>(count - i - 1) / static_cast<double>(i + 1);
-            std::cerr << fmt::format("\rswell-play render: {}/{} frames, ETA {:.0f} s ", i + 1, count, eta);
+            const double eta = msSince(t0) / 1000.0 * static_cast<double>(count - i - 1) /
+                               static_cast<double>(i + 1);
+            std::cerr << fmt::format("\rswell-play render: {}/{} frames, ETA {:.0f} s ", i + 1,
+                                     count, eta);
         }
     }
-    if (progress) std::cerr << "\n";
+    if (progress)
+        std::cerr << "\n";
     const double totalMs = msSince(t0);
     const Image sheetImage = contactSheet(sheet, 3);
     writePng(out / "contact_sheet.png", sheetImage, 6);
@@ -583,13 +638,14 @@ int runRender(Options& o, RenderOptions& r) {
                          "ffmpeg for --video)\n";
         } else {
             const std::filesystem::path videoPath(r.video);
-            if (videoPath.has_parent_path()) std::filesystem::create_directories(videoPath.parent_path());
-            const int rc = runProcess({ffmpeg, "-y", "-loglevel", "error", "-framerate",
-                                       fmt::format("{}", o.playbackFps), "-i",
-                                       (out / "frame_%05d.png").string(), "-vf",
-                                       "pad=ceil(iw/2)*2:ceil(ih/2)*2", "-c:v", "libx264",
-                                       "-pix_fmt", "yuv420p", "-crf", "20", r.video});
-            if (rc != 0) throw RuntimeError(fmt::format("ffmpeg failed (exit {}) writing {}", rc, r.video));
+            if (videoPath.has_parent_path())
+                std::filesystem::create_directories(videoPath.parent_path());
+            const int rc = runProcess(
+                {ffmpeg, "-y", "-loglevel", "error", "-framerate", fmt::format("{}", o.playbackFps),
+                 "-i", (out / "frame_%05d.png").string(), "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2",
+                 "-c:v", "libx264", "-pix_fmt", "yuv420p", "-crf", "20", r.video});
+            if (rc != 0)
+                throw RuntimeError(fmt::format("ffmpeg failed (exit {}) writing {}", rc, r.video));
             videoStatus = "written";
         }
     }
@@ -602,66 +658,74 @@ int runRender(Options& o, RenderOptions& r) {
     const double drawMsPerFrame = untimed > 0 ? drawMs / untimed : timedDrawMs / nt;
     json meta = paramsJson(o, set, A);
     meta.update({{"renderer", context.renderer()},
-                  {"gl_version", context.version()},
-                  {"egl_platform", context.platform()},
-                  {"size", {width, height}},
-                  {"samples", renderer.samples()},
-                  {"seconds", r.seconds},
-                  {"count", count},
-                  {"camera", {{"position", vec3Json(camera.position)},
-                              {"target", vec3Json(camera.target)},
-                              {"fov_y_degrees", camera.fovYDegrees},
-                              {"near", camera.nearPlane},
-                              {"far", camera.farPlane}}},
-                  {"sky", {{"source", r.skyDir.empty() ? std::string("procedural") : r.skyDir},
-                           {"sun_azimuth_degrees", r.sky.sunAzimuthDegrees},
-                           {"sun_elevation_degrees", r.sky.sunElevationDegrees},
-                           {"cloud_cover", r.sky.cloudCover},
-                           {"face_size", faces[0].width}}},
-                  {"shading", {{"refractive_index", r.shading.refractiveIndex},
-                               {"absorption_per_m", vec3Json(r.shading.absorption)},
-                               {"scatter_colour", vec3Json(r.shading.scatterColour)},
-                               {"bed_colour", vec3Json(r.shading.bedColour)},
-                               {"sun_shininess", r.shading.sunShininess},
-                               {"sun_intensity", r.shading.sunIntensity},
-                               {"sides", r.shading.sides}}},
-                  {"splash", {{"active", splashes.active()},
-                              {"artificial_per_real", r.splash.artificialPerReal},
-                              {"spawn_radius_m", r.splash.spawnRadius},
-                              {"sprite_radius_m", r.splash.spriteRadius},
-                              {"velocity_jitter", r.splash.velocityJitter},
-                              {"lifetime_s", {r.splash.minLifetime, r.splash.maxLifetime}},
-                              {"gravity", r.splash.gravity},
-                              {"seed", o.params.seed ^ 0x5b1a54e5ULL},
-                              {"sprites_mean", static_cast<double>(spriteTotal) / n}}},
-                  {"exports", {{"heights", exportHeights}, {"mesh", exportMesh}, {"splashes", exportSplashes}}},
-                  {"height_scale", {{"offset", scale.offset}, {"scale", scale.scale}, {"units", "m"},
-                                    {"format", "16-bit greyscale PNG; height_m = offset + value * scale; "
-                                               "column n = x cell (x = x0 + (n + 0.5) dx), row m = z cell"}}},
-                  {"x0", grid.x0},
-                  {"dx", grid.dx},
-                  {"dz", grid.dz},
-                  {"video", r.video},
-                  {"video_status", videoStatus},
-                  {"contact_sheet", "contact_sheet.png"},
-                  {"shaded_fps", 1000.0 / drawMsPerFrame},
-                  {"shaded_fps_frames", untimed > 0 ? untimed : nt},
-                  {"timing_ms_per_frame",
-                   {{"draw_synced", drawMsPerFrame},
-                    {"splash_sprites_cpu", spriteMs / n},
-                    {"readback", readMs / n},
-                    {"png_write", writeMs / n},
-                    {"exports", exportMs / n},
-                    {"total", totalMs / n}}},
-                  {"stage_gpu_ms",
-                   {{"slice_lookup", lookupMs / nt},
-                    {"reconstruct", reconstructMs / nt},
-                    {"sky", stages.skyMs / nt},
-                    {"water", stages.waterMs / nt},
-                    {"splashes", stages.splashMs / nt},
-                    {"resolve", stages.resolveMs / nt},
-                    {"timed_frames", timedFrames}}},
-                  {"frames", frames}});
+                 {"gl_version", context.version()},
+                 {"egl_platform", context.platform()},
+                 {"size", {width, height}},
+                 {"samples", renderer.samples()},
+                 {"seconds", r.seconds},
+                 {"count", count},
+                 {"camera",
+                  {{"position", vec3Json(camera.position)},
+                   {"target", vec3Json(camera.target)},
+                   {"fov_y_degrees", camera.fovYDegrees},
+                   {"near", camera.nearPlane},
+                   {"far", camera.farPlane}}},
+                 {"sky",
+                  {{"source", r.skyDir.empty() ? std::string("procedural") : r.skyDir},
+                   {"sun_azimuth_degrees", r.sky.sunAzimuthDegrees},
+                   {"sun_elevation_degrees", r.sky.sunElevationDegrees},
+                   {"cloud_cover", r.sky.cloudCover},
+                   {"face_size", faces[0].width}}},
+                 {"shading",
+                  {{"refractive_index", r.shading.refractiveIndex},
+                   {"absorption_per_m", vec3Json(r.shading.absorption)},
+                   {"scatter_colour", vec3Json(r.shading.scatterColour)},
+                   {"bed_colour", vec3Json(r.shading.bedColour)},
+                   {"sun_shininess", r.shading.sunShininess},
+                   {"sun_intensity", r.shading.sunIntensity},
+                   {"sides", r.shading.sides}}},
+                 {"splash",
+                  {{"active", splashes.active()},
+                   {"artificial_per_real", r.splash.artificialPerReal},
+                   {"spawn_radius_m", r.splash.spawnRadius},
+                   {"sprite_radius_m", r.splash.spriteRadius},
+                   {"velocity_jitter", r.splash.velocityJitter},
+                   {"lifetime_s", {r.splash.minLifetime, r.splash.maxLifetime}},
+                   {"gravity", r.splash.gravity},
+                   {"seed", o.params.seed ^ 0x5b1a54e5ULL},
+                   {"sprites_mean", static_cast<double>(spriteTotal) / n}}},
+                 {"exports",
+                  {{"heights", exportHeights}, {"mesh", exportMesh}, {"splashes", exportSplashes}}},
+                 {"height_scale",
+                  {{"offset", scale.offset},
+                   {"scale", scale.scale},
+                   {"units", "m"},
+                   {"format", "16-bit greyscale PNG; height_m = offset + value * scale; "
+                              "column n = x cell (x = x0 + (n + 0.5) dx), row m = z cell"}}},
+                 {"x0", grid.x0},
+                 {"dx", grid.dx},
+                 {"dz", grid.dz},
+                 {"video", r.video},
+                 {"video_status", videoStatus},
+                 {"contact_sheet", "contact_sheet.png"},
+                 {"shaded_fps", 1000.0 / drawMsPerFrame},
+                 {"shaded_fps_frames", untimed > 0 ? untimed : nt},
+                 {"timing_ms_per_frame",
+                  {{"draw_synced", drawMsPerFrame},
+                   {"splash_sprites_cpu", spriteMs / n},
+                   {"readback", readMs / n},
+                   {"png_write", writeMs / n},
+                   {"exports", exportMs / n},
+                   {"total", totalMs / n}}},
+                 {"stage_gpu_ms",
+                  {{"slice_lookup", lookupMs / nt},
+                   {"reconstruct", reconstructMs / nt},
+                   {"sky", stages.skyMs / nt},
+                   {"water", stages.waterMs / nt},
+                   {"splashes", stages.splashMs / nt},
+                   {"resolve", stages.resolveMs / nt},
+                   {"timed_frames", timedFrames}}},
+                 {"frames", frames}});
     std::ofstream(out / "render.json") << meta.dump(2) << "\n";
     if (o.json) {
         json summary = meta;
@@ -675,13 +739,15 @@ int runRender(Options& o, RenderOptions& r) {
             "  shaded {:.1f} fps (replay + draw, synced; splash sprites {:.0f} per frame), {:.1f} "
             "frames/s with readback and PNG writing\n"
             "  GPU ms/frame: slice lookup {:.3f}, reconstruct {:.3f}, sky {:.3f}, water {:.3f}, "
-            "splashes {:.3f}, resolve {:.3f}; CPU ms/frame: sprites {:.2f}, readback {:.2f}, PNG {:.2f}\n"
+            "splashes {:.3f}, resolve {:.3f}; CPU ms/frame: sprites {:.2f}, readback {:.2f}, PNG "
+            "{:.2f}\n"
             "  video: {}\n",
-            count, width, height, renderer.samples(), r.outDir, (out / "contact_sheet.png").string(),
-            context.renderer(), context.version(), context.platform(), 1000.0 / drawMsPerFrame,
-            static_cast<double>(spriteTotal) / n, 1000.0 * n / totalMs, lookupMs / nt,
-            reconstructMs / nt, stages.skyMs / nt, stages.waterMs / nt, stages.splashMs / nt,
-            stages.resolveMs / nt, spriteMs / n, readMs / n, writeMs / n,
+            count, width, height, renderer.samples(), r.outDir,
+            (out / "contact_sheet.png").string(), context.renderer(), context.version(),
+            context.platform(), 1000.0 / drawMsPerFrame, static_cast<double>(spriteTotal) / n,
+            1000.0 * n / totalMs, lookupMs / nt, reconstructMs / nt, stages.skyMs / nt,
+            stages.waterMs / nt, stages.splashMs / nt, stages.resolveMs / nt, spriteMs / n,
+            readMs / n, writeMs / n,
             r.video.empty() ? videoStatus : r.video + " (" + videoStatus + ")");
     }
     return 0;
@@ -695,15 +761,21 @@ int main(int argc, char** argv) {
 
     Options bench;
     int frames = 1000, warmup = 50, errorFrames = 8, cpuFrames = 3;
-    auto* benchCmd = app.add_subcommand("bench", "time the GPU replay and check it against the CPU reference");
+    auto* benchCmd =
+        app.add_subcommand("bench", "time the GPU replay and check it against the CPU reference");
     addCommon(benchCmd, bench);
-    benchCmd->add_option("--frames", frames, "timed frames")->capture_default_str();
-    benchCmd->add_option("--warmup", warmup, "untimed frames first")->capture_default_str()
+    benchCmd->add_option("--frames", frames, "timed frames")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 10000000));
+    benchCmd->add_option("--warmup", warmup, "untimed frames first")
+        ->capture_default_str()
         ->check(CLI::Range(0, 1000000));
     benchCmd->add_option("--error-frames", errorFrames, "frames compared with the CPU reference")
-        ->capture_default_str()->check(CLI::Range(0, 100000));
+        ->capture_default_str()
+        ->check(CLI::Range(0, 100000));
     benchCmd->add_option("--cpu-frames", cpuFrames, "frames timed on the CPU reference (0: skip)")
-        ->capture_default_str()->check(CLI::Range(0, 100000));
+        ->capture_default_str()
+        ->check(CLI::Range(0, 100000));
 
     Options heights;
     std::string outDir;
@@ -711,39 +783,65 @@ int main(int argc, char** argv) {
     auto* heightsCmd = app.add_subcommand("heights", "write height fields (16-bit PNG + JSON)");
     addCommon(heightsCmd, heights);
     heightsCmd->add_option("--out", outDir, "output folder")->required();
-    heightsCmd->add_option("--seconds", seconds, "simulated seconds to write")->capture_default_str();
+    heightsCmd->add_option("--seconds", seconds, "simulated seconds to write")
+        ->capture_default_str();
 
     Options render;
     RenderOptions renderOpts;
-    auto* renderCmd = app.add_subcommand("render", "shaded frames (PNG), contact sheet, optional mp4 and exports (Sec. 5)");
+    auto* renderCmd = app.add_subcommand(
+        "render", "shaded frames (PNG), contact sheet, optional mp4 and exports (Sec. 5)");
     addCommon(renderCmd, render);
     renderCmd->add_option("--out", renderOpts.outDir, "output folder")->required();
     renderCmd->add_option("--size", renderOpts.size, "image width x height")->capture_default_str();
-    renderCmd->add_option("--seconds", renderOpts.seconds, "simulated seconds to render")->capture_default_str();
-    renderCmd->add_option("--video", renderOpts.video, "also encode FILE.mp4 with ffmpeg (when installed)");
+    renderCmd->add_option("--seconds", renderOpts.seconds, "simulated seconds to render")
+        ->capture_default_str();
+    renderCmd->add_option("--video", renderOpts.video,
+                          "also encode FILE.mp4 with ffmpeg (when installed)");
     renderCmd->add_option("--export", renderOpts.exports,
-                          "per-frame exports, comma list of: heights (16-bit PNG + JSON), mesh (PLY), splashes (PLY)");
-    renderCmd->add_option("--samples", renderOpts.shading.samples, "multisampling (1: off)")->capture_default_str();
-    renderCmd->add_option("--camera", renderOpts.eye, "camera position x y z (metres; default: framing of the domain)")
+                          "per-frame exports, comma list of: heights (16-bit PNG + JSON), mesh "
+                          "(PLY), splashes (PLY)");
+    renderCmd->add_option("--samples", renderOpts.shading.samples, "multisampling (1: off)")
+        ->capture_default_str();
+    renderCmd
+        ->add_option("--camera", renderOpts.eye,
+                     "camera position x y z (metres; default: framing of the domain)")
         ->expected(3);
-    renderCmd->add_option("--target", renderOpts.target, "camera target x y z (metres)")->expected(3);
-    renderCmd->add_option("--fov", renderOpts.fov, "vertical field of view, degrees")->capture_default_str();
-    renderCmd->add_option("--sky", renderOpts.skyDir, "folder of six sky images px nx py ny pz nz .png (default: procedural sky)");
-    renderCmd->add_option("--sun-azimuth", renderOpts.sky.sunAzimuthDegrees, "sun azimuth, degrees (0 = +x, 90 = +z)")
+    renderCmd->add_option("--target", renderOpts.target, "camera target x y z (metres)")
+        ->expected(3);
+    renderCmd->add_option("--fov", renderOpts.fov, "vertical field of view, degrees")
         ->capture_default_str();
-    renderCmd->add_option("--sun-elevation", renderOpts.sky.sunElevationDegrees, "sun elevation, degrees")
+    renderCmd->add_option(
+        "--sky", renderOpts.skyDir,
+        "folder of six sky images px nx py ny pz nz .png (default: procedural sky)");
+    renderCmd
+        ->add_option("--sun-azimuth", renderOpts.sky.sunAzimuthDegrees,
+                     "sun azimuth, degrees (0 = +x, 90 = +z)")
         ->capture_default_str();
-    renderCmd->add_option("--splash-count", renderOpts.splash.artificialPerReal,
-                          "artificial splashes around each real one (Sec. 5)")->capture_default_str();
-    renderCmd->add_option("--splash-radius", renderOpts.splash.spriteRadius, "splash sprite radius, metres")
+    renderCmd
+        ->add_option("--sun-elevation", renderOpts.sky.sunElevationDegrees,
+                     "sun elevation, degrees")
         ->capture_default_str();
-    renderCmd->add_option("--splash-spread", renderOpts.splash.spawnRadius,
-                          "radius of the sphere artificial splashes start in, metres")->capture_default_str();
+    renderCmd
+        ->add_option("--splash-count", renderOpts.splash.artificialPerReal,
+                     "artificial splashes around each real one (Sec. 5)")
+        ->capture_default_str();
+    renderCmd
+        ->add_option("--splash-radius", renderOpts.splash.spriteRadius,
+                     "splash sprite radius, metres")
+        ->capture_default_str();
+    renderCmd
+        ->add_option("--splash-spread", renderOpts.splash.spawnRadius,
+                     "radius of the sphere artificial splashes start in, metres")
+        ->capture_default_str();
     renderCmd->add_flag("--no-splashes", renderOpts.noSplashes, "skip the splash pass");
     renderCmd->add_option("--sheet-frames", renderOpts.sheetFrames, "frames on the contact sheet")
-        ->capture_default_str()->check(CLI::Range(1, 64));
-    renderCmd->add_option("--png-level", renderOpts.pngCompression, "zlib level of the frame PNGs (0..9)")
-        ->capture_default_str()->check(CLI::Range(0, 9));
+        ->capture_default_str()
+        ->check(CLI::Range(1, 64));
+    renderCmd
+        ->add_option("--png-level", renderOpts.pngCompression,
+                     "zlib level of the frame PNGs (0..9)")
+        ->capture_default_str()
+        ->check(CLI::Range(0, 9));
 
     try {
         app.parse(argc, argv);
@@ -756,8 +854,10 @@ int main(int argc, char** argv) {
         return e.get_exit_code() != 0 ? e.get_exit_code() : 1;
     }
     try {
-        if (*benchCmd) return runBench(bench, frames, warmup, errorFrames, cpuFrames);
-        if (*renderCmd) return runRender(render, renderOpts);
+        if (*benchCmd)
+            return runBench(bench, frames, warmup, errorFrames, cpuFrames);
+        if (*renderCmd)
+            return runRender(render, renderOpts);
         return runHeights(heights, outDir, seconds);
     } catch (const cache::CacheError& e) {
         std::cerr << "swell-play: " << e.what() << "\n";

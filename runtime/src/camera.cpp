@@ -9,8 +9,12 @@
 namespace swell::runtime {
 namespace {
 
-Vec3 sub(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+Vec3 sub(const Vec3& a, const Vec3& b) {
+    return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+}
+double dot(const Vec3& a, const Vec3& b) {
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
 Vec3 cross(const Vec3& a, const Vec3& b) {
     return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
 }
@@ -25,16 +29,21 @@ bool finite(const Vec3& a) {
 } // namespace
 
 void Camera::validate() const {
-    if (!finite(position) || !finite(target)) throw std::invalid_argument("camera position and target must be finite");
+    if (!finite(position) || !finite(target))
+        throw std::invalid_argument("camera position and target must be finite");
     if (!(fovYDegrees > 0.0 && fovYDegrees < 180.0)) {
-        throw std::invalid_argument(fmt::format("camera fov must be in (0, 180) degrees, got {}", fovYDegrees));
+        throw std::invalid_argument(
+            fmt::format("camera fov must be in (0, 180) degrees, got {}", fovYDegrees));
     }
     const Vec3 d = sub(target, position);
     const double len = std::sqrt(dot(d, d));
-    if (!(len > 0.0)) throw std::invalid_argument("camera position and target coincide");
-    if (std::abs(d[1]) / len > 0.9999) throw std::invalid_argument("camera looks straight up or down (no up direction)");
+    if (!(len > 0.0))
+        throw std::invalid_argument("camera position and target coincide");
+    if (std::abs(d[1]) / len > 0.9999)
+        throw std::invalid_argument("camera looks straight up or down (no up direction)");
     if (!(nearPlane > 0.0) || !(farPlane > nearPlane) || !std::isfinite(farPlane)) {
-        throw std::invalid_argument(fmt::format("camera clip planes need 0 < near < far, got {} and {}", nearPlane, farPlane));
+        throw std::invalid_argument(fmt::format(
+            "camera clip planes need 0 < near < far, got {} and {}", nearPlane, farPlane));
     }
 }
 
@@ -67,13 +76,16 @@ Camera defaultCamera(const Grid& grid, const cache::Domain& domain, double water
             const double y = (k & 2) ? domain.yMax : domain.yMin;
             const double z = (k & 4) ? sizeZ : 0.0;
             double p[4];
-            for (int r = 0; r < 4; ++r) p[r] = vp[r] * x + vp[4 + r] * y + vp[8 + r] * z + vp[12 + r];
-            if (p[3] <= 0.0 || std::abs(p[0] / p[3]) > margin || std::abs(p[1] / p[3]) > margin) return false;
+            for (int r = 0; r < 4; ++r)
+                p[r] = vp[r] * x + vp[4 + r] * y + vp[8 + r] * z + vp[12 + r];
+            if (p[3] <= 0.0 || std::abs(p[0] / p[3]) > margin || std::abs(p[1] / p[3]) > margin)
+                return false;
         }
         return true;
     };
     double lo = 0.0, hi = std::max(radius, 1e-6);
-    while (!fits(hi)) hi *= 2.0;
+    while (!fits(hi))
+        hi *= 2.0;
     for (int i = 0; i < 50; ++i) {
         const double mid = 0.5 * (lo + hi);
         (fits(mid) ? hi : lo) = mid;
@@ -125,7 +137,8 @@ Mat4 multiply(const Mat4& a, const Mat4& b) {
     for (int c = 0; c < 4; ++c) {
         for (int row = 0; row < 4; ++row) {
             double s = 0.0;
-            for (int k = 0; k < 4; ++k) s += static_cast<double>(a[k * 4 + row]) * b[c * 4 + k];
+            for (int k = 0; k < 4; ++k)
+                s += static_cast<double>(a[k * 4 + row]) * b[c * 4 + k];
             r[c * 4 + row] = static_cast<float>(s);
         }
     }
@@ -144,21 +157,28 @@ Mat4 inverse(const Mat4& m) {
     for (int c = 0; c < 4; ++c) {
         int p = c;
         for (int r = c + 1; r < 4; ++r) {
-            if (std::abs(a[r][c]) > std::abs(a[p][c])) p = r;
+            if (std::abs(a[r][c]) > std::abs(a[p][c]))
+                p = r;
         }
-        if (std::abs(a[p][c]) < 1e-300) throw std::invalid_argument("singular matrix");
-        if (p != c) std::swap(a[p], a[c]);
+        if (std::abs(a[p][c]) < 1e-300)
+            throw std::invalid_argument("singular matrix");
+        if (p != c)
+            std::swap(a[p], a[c]);
         const double inv = 1.0 / a[c][c];
-        for (double& v : a[c]) v *= inv;
+        for (double& v : a[c])
+            v *= inv;
         for (int r = 0; r < 4; ++r) {
-            if (r == c) continue;
+            if (r == c)
+                continue;
             const double k = a[r][c];
-            for (int j = 0; j < 8; ++j) a[r][j] -= k * a[c][j];
+            for (int j = 0; j < 8; ++j)
+                a[r][j] -= k * a[c][j];
         }
     }
     Mat4 r{};
     for (int row = 0; row < 4; ++row) {
-        for (int c = 0; c < 4; ++c) r[c * 4 + row] = static_cast<float>(a[row][c + 4]);
+        for (int c = 0; c < 4; ++c)
+            r[c * 4 + row] = static_cast<float>(a[row][c + 4]);
     }
     return r;
 }

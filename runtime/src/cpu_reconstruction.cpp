@@ -16,13 +16,15 @@ std::vector<int> windowSlices(const Grid& grid, int m) {
     long long bestDistance = -1;
     for (int j = 0; j < grid.sliceCount(); ++j) {
         const long long d = (j + 1) * M - (2LL * m + 1) * K;
-        if (d >= -2 * K && d < 2 * K) row.push_back(j);
+        if (d >= -2 * K && d < 2 * K)
+            row.push_back(j);
         if (bestDistance < 0 || std::llabs(d) < bestDistance) {
             best = j;
             bestDistance = std::llabs(d);
         }
     }
-    if (row.empty()) row.push_back(best);
+    if (row.empty())
+        row.push_back(best);
     return row;
 }
 
@@ -43,7 +45,8 @@ CpuReconstruction::CpuReconstruction(const FrameSet& frames, const ReplayParams&
         for (std::size_t p = 0; p + 1 < s.size(); p += 2) {
             const double u = (static_cast<double>(s[p]) - m_grid.x0) / m_grid.dx;
             const double b = std::floor(u);
-            if (b < -1.0 || b > N) continue; // beyond every window
+            if (b < -1.0 || b > N)
+                continue; // beyond every window
             bins[static_cast<std::size_t>(b + 1.0)].emplace_back(u, static_cast<double>(s[p + 1]));
         }
         BinnedFrame& f = m_binned[i];
@@ -58,7 +61,8 @@ CpuReconstruction::CpuReconstruction(const FrameSet& frames, const ReplayParams&
     }
 
     m_rowSlices.resize(static_cast<std::size_t>(M));
-    for (int m = 0; m < M; ++m) m_rowSlices[static_cast<std::size_t>(m)] = windowSlices(m_grid, m);
+    for (int m = 0; m < M; ++m)
+        m_rowSlices[static_cast<std::size_t>(m)] = windowSlices(m_grid, m);
 }
 
 const CpuReconstruction::BinnedFrame& CpuReconstruction::binned(std::uint32_t frame) const {
@@ -73,18 +77,22 @@ const CpuReconstruction::BinnedFrame& CpuReconstruction::binned(std::uint32_t fr
 double CpuReconstruction::fallback(const BinnedFrame& f, int n) const {
     const int N = m_grid.cellsX;
     auto binRange = [&](int b) {
-        return std::pair{f.start[static_cast<std::size_t>(b + 1)], f.start[static_cast<std::size_t>(b + 2)]};
+        return std::pair{f.start[static_cast<std::size_t>(b + 1)],
+                         f.start[static_cast<std::size_t>(b + 2)]};
     };
     for (int d = 2; n - d >= -1 || n + d <= N; ++d) {
         double sum = 0.0;
         std::uint32_t count = 0;
         for (int b : {n - d, n + d}) {
-            if (b < -1 || b > N) continue;
+            if (b < -1 || b > N)
+                continue;
             const auto [first, last] = binRange(b);
-            for (std::uint32_t p = first; p < last; ++p) sum += f.h[p];
+            for (std::uint32_t p = first; p < last; ++p)
+                sum += f.h[p];
             count += last - first;
         }
-        if (count > 0) return sum / count;
+        if (count > 0)
+            return sum / count;
     }
     return m_frames.header.domain.yMin; // the frame has no surface particle
 }
@@ -94,7 +102,8 @@ HeightField CpuReconstruction::heights(double tau) const {
     const int M = m_grid.cellsZ;
     const std::vector<std::uint32_t> slice = m_sampler.frames(tau); // eq. (5), once per slice
     std::vector<const BinnedFrame*> frameOf(slice.size());
-    for (std::size_t j = 0; j < slice.size(); ++j) frameOf[j] = &binned(slice[j]);
+    for (std::size_t j = 0; j < slice.size(); ++j)
+        frameOf[j] = &binned(slice[j]);
 
     const double inv2s2 = 1.0 / (2.0 * m_params.sigma * m_params.sigma);
     HeightField out;
@@ -110,8 +119,9 @@ HeightField CpuReconstruction::heights(double tau) const {
             for (int j : m_rowSlices[static_cast<std::size_t>(m)]) {
                 const BinnedFrame& f = *frameOf[static_cast<std::size_t>(j)];
                 const double dz = m_grid.sliceZCells(j) - Pz;
-                const std::uint32_t first = f.start[static_cast<std::size_t>(n)];     // bin n - 1
-                const std::uint32_t last = f.start[static_cast<std::size_t>(n + 3)];  // bin n + 1 end
+                const std::uint32_t first = f.start[static_cast<std::size_t>(n)]; // bin n - 1
+                const std::uint32_t last =
+                    f.start[static_cast<std::size_t>(n + 3)]; // bin n + 1 end
                 for (std::uint32_t p = first; p < last; ++p) {
                     const double dx = f.u[p] - Px;
                     const double G = std::exp(-(dx * dx + dz * dz) * inv2s2); // eq. (7) weight

@@ -15,10 +15,12 @@ namespace swell::runtime {
 namespace {
 
 bool hasExtension(const char* list, const char* name) {
-    if (list == nullptr) return false;
+    if (list == nullptr)
+        return false;
     const std::size_t len = std::strlen(name);
     for (const char* p = std::strstr(list, name); p != nullptr; p = std::strstr(p + len, name)) {
-        if ((p == list || p[-1] == ' ') && (p[len] == ' ' || p[len] == '\0')) return true;
+        if ((p == list || p[-1] == ' ') && (p[len] == ' ' || p[len] == '\0'))
+            return true;
     }
     return false;
 }
@@ -26,21 +28,26 @@ bool hasExtension(const char* list, const char* name) {
 /// A display on the first hardware EGL device (not Mesa's software device), or none.
 EGLDisplay deviceDisplay() {
     const char* client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
-    if (!hasExtension(client, "EGL_EXT_platform_device")) return EGL_NO_DISPLAY;
+    if (!hasExtension(client, "EGL_EXT_platform_device"))
+        return EGL_NO_DISPLAY;
     auto queryDevices =
         reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(eglGetProcAddress("eglQueryDevicesEXT"));
     auto queryString = reinterpret_cast<PFNEGLQUERYDEVICESTRINGEXTPROC>(
         eglGetProcAddress("eglQueryDeviceStringEXT"));
-    if (queryDevices == nullptr || queryString == nullptr) return EGL_NO_DISPLAY;
+    if (queryDevices == nullptr || queryString == nullptr)
+        return EGL_NO_DISPLAY;
     EGLint count = 0;
-    if (queryDevices(0, nullptr, &count) != EGL_TRUE || count <= 0) return EGL_NO_DISPLAY;
+    if (queryDevices(0, nullptr, &count) != EGL_TRUE || count <= 0)
+        return EGL_NO_DISPLAY;
     std::vector<EGLDeviceEXT> devices(static_cast<std::size_t>(count));
     queryDevices(count, devices.data(), &count);
     for (EGLDeviceEXT device : devices) {
-        if (hasExtension(queryString(device, EGL_EXTENSIONS), "EGL_MESA_device_software")) continue;
+        if (hasExtension(queryString(device, EGL_EXTENSIONS), "EGL_MESA_device_software"))
+            continue;
         EGLDisplay d = eglGetPlatformDisplay(EGL_PLATFORM_DEVICE_EXT, device, nullptr);
         EGLint major = 0, minor = 0;
-        if (d != EGL_NO_DISPLAY && eglInitialize(d, &major, &minor) == EGL_TRUE) return d;
+        if (d != EGL_NO_DISPLAY && eglInitialize(d, &major, &minor) == EGL_TRUE)
+            return d;
     }
     return EGL_NO_DISPLAY;
 }
@@ -52,13 +59,14 @@ EglContext::EglContext() {
     m_platform = "device";
     if (display == EGL_NO_DISPLAY) {
         m_platform = "surfaceless";
-        display = eglGetPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+        display =
+            eglGetPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
         EGLint major = 0, minor = 0;
         if (display == EGL_NO_DISPLAY || eglInitialize(display, &major, &minor) != EGL_TRUE) {
-            throw RuntimeError(fmt::format(
-                "no usable EGL display: no GPU device and no Mesa surfaceless platform "
-                "(EGL error 0x{:x}; install libegl-mesa0 and libgl1-mesa-dri)",
-                eglGetError()));
+            throw RuntimeError(
+                fmt::format("no usable EGL display: no GPU device and no Mesa surfaceless platform "
+                            "(EGL error 0x{:x}; install libegl-mesa0 and libgl1-mesa-dri)",
+                            eglGetError()));
         }
     }
     m_display = display;
@@ -84,7 +92,8 @@ EglContext::EglContext() {
     if (eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context) != EGL_TRUE) {
         const EGLint error = eglGetError();
         eglDestroyContext(display, context);
-        throw RuntimeError(fmt::format("cannot make the GL context current (EGL error 0x{:x})", error));
+        throw RuntimeError(
+            fmt::format("cannot make the GL context current (EGL error 0x{:x})", error));
     }
     m_renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
     m_version = reinterpret_cast<const char*>(glGetString(GL_VERSION));
@@ -101,8 +110,8 @@ EglContext::~EglContext() {
 
 void EglContext::makeCurrent() const {
     if (eglMakeCurrent(m_display, EGL_NO_SURFACE, EGL_NO_SURFACE, m_context) != EGL_TRUE) {
-        throw RuntimeError(fmt::format("cannot make the GL context current (EGL error 0x{:x})",
-                                       eglGetError()));
+        throw RuntimeError(
+            fmt::format("cannot make the GL context current (EGL error 0x{:x})", eglGetError()));
     }
 }
 

@@ -11,10 +11,18 @@
 
 namespace swell::runtime {
 
-void deleteGlBuffer(GlName name) { glDeleteBuffers(1, &name); }
-void deleteGlProgram(GlName name) { glDeleteProgram(name); }
-void deleteGlTexture(GlName name) { glDeleteTextures(1, &name); }
-void deleteGlQuery(GlName name) { glDeleteQueries(1, &name); }
+void deleteGlBuffer(GlName name) {
+    glDeleteBuffers(1, &name);
+}
+void deleteGlProgram(GlName name) {
+    glDeleteProgram(name);
+}
+void deleteGlTexture(GlName name) {
+    glDeleteTextures(1, &name);
+}
+void deleteGlQuery(GlName name) {
+    glDeleteQueries(1, &name);
+}
 
 GlBuffer makeStorageBuffer(std::size_t bytes, const void* data) {
     GlName name = 0;
@@ -41,7 +49,8 @@ GlProgram makeComputeProgram(std::string_view name, std::string_view source) {
         glGetShaderInfoLog(shader, static_cast<GLsizei>(log.size()), &n, log.data());
         glDeleteShader(shader);
         log.resize(static_cast<std::size_t>(n));
-        while (!log.empty() && (log.back() == '\n' || log.back() == '\0')) log.pop_back();
+        while (!log.empty() && (log.back() == '\n' || log.back() == '\0'))
+            log.pop_back();
         throw RuntimeError(fmt::format("shader {} does not compile: {}", name, log));
     }
     GlProgram program(glCreateProgram());

@@ -25,7 +25,8 @@ GLuint groups(long long count, GLuint size) {
 
 GLint location(const GlProgram& program, const char* name) {
     const GLint loc = glGetUniformLocation(program.get(), name);
-    if (loc < 0) throw std::logic_error(fmt::format("shader uniform {} not found", name));
+    if (loc < 0)
+        throw std::logic_error(fmt::format("shader uniform {} not found", name));
     return loc;
 }
 
@@ -69,7 +70,8 @@ GpuReplay::GpuReplay(const FrameSet& frames, const ReplayParams& params,
     // reconstruct.comp: one work group per row, as few groups as fit the row's column quads.
     const GLuint quads = static_cast<GLuint>((N + 3) / 4);
     m_quadsPerGroup = 32;
-    while (m_quadsPerGroup < quads && m_quadsPerGroup < 256) m_quadsPerGroup *= 2;
+    while (m_quadsPerGroup < quads && m_quadsPerGroup < 256)
+        m_quadsPerGroup *= 2;
     std::string source(shaders::get("reconstruct.comp"));
     source.insert(source.find('\n') + 1,
                   fmt::format("#define SWELL_QUADS_PER_GROUP {}\n", m_quadsPerGroup));
@@ -99,7 +101,8 @@ GpuReplay::GpuReplay(const FrameSet& frames, const ReplayParams& params,
             const double u = (static_cast<double>(f.surface[2 * p]) - m_grid.x0) / m_grid.dx;
             const double b = std::floor(u);
             binOf[p] = b < -1.0 || b > N ? -2 : static_cast<int>(b); // -2: beyond every window
-            if (binOf[p] >= -1) ++fill[static_cast<std::size_t>(binOf[p] + 1)];
+            if (binOf[p] >= -1)
+                ++fill[static_cast<std::size_t>(binOf[p] + 1)];
         }
         const GLuint base = static_cast<GLuint>(particles.size() / 2);
         GLuint running = base;
@@ -112,14 +115,17 @@ GpuReplay::GpuReplay(const FrameSet& frames, const ReplayParams& params,
         binStart.push_back(running);
         particles.resize(2 * static_cast<std::size_t>(running));
         for (std::size_t p = 0; p < P; ++p) {
-            if (binOf[p] < -1) continue;
+            if (binOf[p] < -1)
+                continue;
             const GLuint at = fill[static_cast<std::size_t>(binOf[p] + 1)]++;
             const double u = (static_cast<double>(f.surface[2 * p]) - m_grid.x0) / m_grid.dx;
             particles[2 * at] = static_cast<float>(u);
-            particles[2 * at + 1] = static_cast<float>(static_cast<double>(f.surface[2 * p + 1]) - reference);
+            particles[2 * at + 1] =
+                static_cast<float>(static_cast<double>(f.surface[2 * p + 1]) - reference);
         }
     }
-    if (m_heldFrames == 0) binStart.assign(static_cast<std::size_t>(N + 3), 0);
+    if (m_heldFrames == 0)
+        binStart.assign(static_cast<std::size_t>(N + 3), 0);
     // Driver limits: one shader-storage block per buffer, one work group row per held frame.
     GLint64 maxBlock = 0;
     glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &maxBlock);
@@ -131,12 +137,14 @@ GpuReplay::GpuReplay(const FrameSet& frames, const ReplayParams& params,
             throw RuntimeError(fmt::format(
                 "the replay needs a {:.0f} MB buffer ({} held frames at {} columns), above this "
                 "driver's {:.0f} MB shader-storage limit: lower --res or replay fewer seconds",
-                bytes / 1e6, m_heldFrames, N, static_cast<double>(maxBlock) / 1e6));
+                static_cast<double>(bytes) / 1e6, m_heldFrames, N,
+                static_cast<double>(maxBlock) / 1e6));
         }
     }
     if (m_heldFrames > static_cast<std::size_t>(maxGroupsY)) {
-        throw RuntimeError(fmt::format("{} held frames exceed this driver's {} work groups per axis",
-                                       m_heldFrames, maxGroupsY));
+        throw RuntimeError(
+            fmt::format("{} held frames exceed this driver's {} work groups per axis", m_heldFrames,
+                        maxGroupsY));
     }
     GlBuffer particleBuffer = makeStorageBuffer(particles.size() * sizeof(float), particles.data());
     GlBuffer binBuffer = makeStorageBuffer(binStart.size() * sizeof(GLuint), binStart.data());
@@ -153,7 +161,8 @@ GpuReplay::GpuReplay(const FrameSet& frames, const ReplayParams& params,
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, particleBuffer.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, binBuffer.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, m_columns.get());
-    for (GlQuery& q : m_queries) q = makeQuery();
+    for (GlQuery& q : m_queries)
+        q = makeQuery();
     if (m_heldFrames > 0) {
         glUseProgram(column.get());
         glQueryCounter(m_queries[0].get(), GL_TIMESTAMP);
@@ -169,7 +178,8 @@ GpuReplay::GpuReplay(const FrameSet& frames, const ReplayParams& params,
     std::vector<double> noiseValues = noise ? noise->values() : std::vector<double>{0.0};
     m_noise = makeStorageBuffer(noiseValues.size() * sizeof(double), noiseValues.data());
     std::vector<GLuint> slotOf(m_frameCount, 0xffffffffu);
-    for (std::size_t i = 0; i < frames.ids.size(); ++i) slotOf[frames.ids[i]] = static_cast<GLuint>(i);
+    for (std::size_t i = 0; i < frames.ids.size(); ++i)
+        slotOf[frames.ids[i]] = static_cast<GLuint>(i);
     m_slotOf = makeStorageBuffer(slotOf.size() * sizeof(GLuint), slotOf.data());
     m_slices = makeStorageBuffer(static_cast<std::size_t>(J) * 2 * sizeof(GLint), nullptr);
     const GLuint lp = m_lookup.get();
@@ -194,7 +204,8 @@ GpuReplay::GpuReplay(const FrameSet& frames, const ReplayParams& params,
         for (int j = 0; j < J; ++j) {
             const long long v = static_cast<long long>(j + 1) * M;
             if (v >= lo && v < hi) {
-                if (first < 0) first = j;
+                if (first < 0)
+                    first = j;
                 last = j;
             }
         }
@@ -213,13 +224,16 @@ GpuReplay::GpuReplay(const FrameSet& frames, const ReplayParams& params,
         rows[2 * static_cast<std::size_t>(m) + 1] = last - first + 1;
         for (int j = first; j <= last; ++j) {
             const double dz = m_grid.sliceZCells(j) - (m + 0.5);
-            rowWeights[static_cast<std::size_t>(m)].push_back(static_cast<float>(std::exp(-dz * dz * inv2s2)));
+            rowWeights[static_cast<std::size_t>(m)].push_back(
+                static_cast<float>(std::exp(-dz * dz * inv2s2)));
         }
         m_rowStride = std::max(m_rowStride, last - first + 1);
     }
-    std::vector<float> weights(static_cast<std::size_t>(M) * static_cast<std::size_t>(m_rowStride), 0.0f);
+    std::vector<float> weights(static_cast<std::size_t>(M) * static_cast<std::size_t>(m_rowStride),
+                               0.0f);
     for (int m = 0; m < M; ++m) {
-        std::copy(rowWeights[static_cast<std::size_t>(m)].begin(), rowWeights[static_cast<std::size_t>(m)].end(),
+        std::copy(rowWeights[static_cast<std::size_t>(m)].begin(),
+                  rowWeights[static_cast<std::size_t>(m)].end(),
                   weights.begin() + static_cast<std::ptrdiff_t>(m) * m_rowStride);
     }
     m_rows = makeStorageBuffer(rows.size() * sizeof(GLint), rows.data());
@@ -232,7 +246,8 @@ GpuReplay::GpuReplay(const FrameSet& frames, const ReplayParams& params,
     glProgramUniform1f(rp, location(m_reconstruct, "u_reference"), m_reference);
     glProgramUniform1f(rp, location(m_reconstruct, "u_missing"), m_missing);
 
-    m_heights = makeStorageBuffer(static_cast<std::size_t>(N) * static_cast<std::size_t>(M) * sizeof(float), nullptr);
+    m_heights = makeStorageBuffer(
+        static_cast<std::size_t>(N) * static_cast<std::size_t>(M) * sizeof(float), nullptr);
     GLuint tex = 0;
     glCreateTextures(GL_TEXTURE_2D, 1, &tex);
     m_height = GlTexture(tex);
@@ -243,9 +258,9 @@ GpuReplay::GpuReplay(const FrameSet& frames, const ReplayParams& params,
     glTextureParameteri(tex, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
 
     m_uploadedBytes = particles.size() * sizeof(float) + binStart.size() * sizeof(GLuint) +
-                      zeros.size() * sizeof(float) +
-                      noiseValues.size() * sizeof(double) + slotOf.size() * sizeof(GLuint) +
-                      rows.size() * sizeof(GLint) + weights.size() * sizeof(float);
+                      zeros.size() * sizeof(float) + noiseValues.size() * sizeof(double) +
+                      slotOf.size() * sizeof(GLuint) + rows.size() * sizeof(GLint) +
+                      weights.size() * sizeof(float);
     glFinish(); // the particle and bin buffers are released when this returns
     checkGl("uploading the replay");
 }
@@ -262,10 +277,12 @@ void GpuReplay::update(double tau) {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, m_slotOf.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, m_slices.get());
     glUseProgram(m_lookup.get());
-    if (m_timing) glQueryCounter(m_queries[0].get(), GL_TIMESTAMP);
+    if (m_timing)
+        glQueryCounter(m_queries[0].get(), GL_TIMESTAMP);
     glDispatchCompute(groups(m_grid.sliceCount(), kGroupLookup), 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    if (m_timing) glQueryCounter(m_queries[1].get(), GL_TIMESTAMP);
+    if (m_timing)
+        glQueryCounter(m_queries[1].get(), GL_TIMESTAMP);
 
     // Pass 2, eq. (7): every cell from the column sums of the slices in its z window.
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, m_slices.get());
@@ -279,15 +296,19 @@ void GpuReplay::update(double tau) {
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT |
                     GL_PIXEL_BUFFER_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
     m_textureStale = true;
-    if (m_timing) glQueryCounter(m_queries[2].get(), GL_TIMESTAMP);
+    if (m_timing)
+        glQueryCounter(m_queries[2].get(), GL_TIMESTAMP);
 }
 
 StageTimes GpuReplay::stageTimes() const {
-    if (!m_timedUpdate) throw std::logic_error("GpuReplay::stageTimes: no timed update yet");
+    if (!m_timedUpdate)
+        throw std::logic_error("GpuReplay::stageTimes: no timed update yet");
     return StageTimes{spanMs(m_queries[0], m_queries[1]), spanMs(m_queries[1], m_queries[2])};
 }
 
-void GpuReplay::finish() const { glFinish(); }
+void GpuReplay::finish() const {
+    glFinish();
+}
 
 GlName GpuReplay::heightTexture() {
     if (m_textureStale) {
@@ -307,9 +328,10 @@ HeightField GpuReplay::readHeights() const {
     HeightField out;
     out.cellsX = m_grid.cellsX;
     out.cellsZ = m_grid.cellsZ;
-    std::vector<float> texels(static_cast<std::size_t>(out.cellsX) * static_cast<std::size_t>(out.cellsZ));
-    glGetNamedBufferSubData(m_heights.get(), 0, static_cast<GLsizeiptr>(texels.size() * sizeof(float)),
-                            texels.data());
+    std::vector<float> texels(static_cast<std::size_t>(out.cellsX) *
+                              static_cast<std::size_t>(out.cellsZ));
+    glGetNamedBufferSubData(m_heights.get(), 0,
+                            static_cast<GLsizeiptr>(texels.size() * sizeof(float)), texels.data());
     checkGl("reading the height field back");
     out.heights.assign(texels.begin(), texels.end());
     return out;
@@ -317,11 +339,12 @@ HeightField GpuReplay::readHeights() const {
 
 std::vector<std::uint32_t> GpuReplay::readSliceFrames() const {
     std::vector<GLint> pairs(2 * static_cast<std::size_t>(m_grid.sliceCount()));
-    glGetNamedBufferSubData(m_slices.get(), 0, static_cast<GLsizeiptr>(pairs.size() * sizeof(GLint)),
-                            pairs.data());
+    glGetNamedBufferSubData(m_slices.get(), 0,
+                            static_cast<GLsizeiptr>(pairs.size() * sizeof(GLint)), pairs.data());
     checkGl("reading the slice frames back");
     std::vector<std::uint32_t> out(static_cast<std::size_t>(m_grid.sliceCount()));
-    for (std::size_t j = 0; j < out.size(); ++j) out[j] = static_cast<std::uint32_t>(pairs[2 * j]);
+    for (std::size_t j = 0; j < out.size(); ++j)
+        out[j] = static_cast<std::uint32_t>(pairs[2 * j]);
     return out;
 }
 

@@ -18,7 +18,8 @@ std::string shaderLog(GLuint shader) {
     GLsizei n = 0;
     glGetShaderInfoLog(shader, static_cast<GLsizei>(log.size()), &n, log.data());
     log.resize(static_cast<std::size_t>(n));
-    while (!log.empty() && (log.back() == '\n' || log.back() == '\0')) log.pop_back();
+    while (!log.empty() && (log.back() == '\n' || log.back() == '\0'))
+        log.pop_back();
     return log;
 }
 
@@ -41,9 +42,12 @@ GLuint compile(std::string_view name, std::string_view source) {
 } // namespace
 
 std::uint32_t shaderStageOf(std::string_view name) {
-    if (name.ends_with(".vert")) return GL_VERTEX_SHADER;
-    if (name.ends_with(".frag")) return GL_FRAGMENT_SHADER;
-    if (name.ends_with(".comp")) return GL_COMPUTE_SHADER;
+    if (name.ends_with(".vert"))
+        return GL_VERTEX_SHADER;
+    if (name.ends_with(".frag"))
+        return GL_FRAGMENT_SHADER;
+    if (name.ends_with(".comp"))
+        return GL_COMPUTE_SHADER;
     throw std::logic_error(fmt::format("no shader stage for file name {}", name));
 }
 
@@ -73,7 +77,8 @@ GlProgram makeGraphicsProgram(std::string_view vertexName, std::string_view frag
         GLsizei n = 0;
         glGetProgramInfoLog(program.get(), static_cast<GLsizei>(log.size()), &n, log.data());
         log.resize(static_cast<std::size_t>(n));
-        throw RuntimeError(fmt::format("shaders {} + {} do not link: {}", vertexName, fragmentName, log));
+        throw RuntimeError(
+            fmt::format("shaders {} + {} do not link: {}", vertexName, fragmentName, log));
     }
     return program;
 }

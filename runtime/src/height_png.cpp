@@ -32,7 +32,8 @@ void writeHeightPng(const std::filesystem::path& path, const HeightField& field,
         rows[2 * i + 1] = static_cast<png_byte>(q & 0xff);
     }
     std::unique_ptr<std::FILE, FileCloser> file(std::fopen(path.c_str(), "wb"));
-    if (!file) throw RuntimeError(fmt::format("cannot write {}", path.string()));
+    if (!file)
+        throw RuntimeError(fmt::format("cannot write {}", path.string()));
     png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
     png_infop info = png ? png_create_info_struct(png) : nullptr;
     if (png == nullptr || info == nullptr) {
@@ -48,15 +49,18 @@ void writeHeightPng(const std::filesystem::path& path, const HeightField& field,
                  PNG_COLOR_TYPE_GRAY, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
                  PNG_FILTER_TYPE_DEFAULT);
     png_write_info(png, info);
-    for (int y = 0; y < H; ++y) png_write_row(png, &rows[static_cast<std::size_t>(y) * W * 2]);
+    for (int y = 0; y < H; ++y)
+        png_write_row(png, &rows[static_cast<std::size_t>(y) * W * 2]);
     png_write_end(png, nullptr);
     png_destroy_write_struct(&png, &info);
-    if (std::fflush(file.get()) != 0) throw RuntimeError(fmt::format("cannot write {}", path.string()));
+    if (std::fflush(file.get()) != 0)
+        throw RuntimeError(fmt::format("cannot write {}", path.string()));
 }
 
 HeightField readHeightPng(const std::filesystem::path& path, const HeightScale& scale) {
     std::unique_ptr<std::FILE, FileCloser> file(std::fopen(path.c_str(), "rb"));
-    if (!file) throw RuntimeError(fmt::format("cannot open {}", path.string()));
+    if (!file)
+        throw RuntimeError(fmt::format("cannot open {}", path.string()));
     png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
     png_infop info = png ? png_create_info_struct(png) : nullptr;
     if (png == nullptr || info == nullptr) {
@@ -71,7 +75,8 @@ HeightField readHeightPng(const std::filesystem::path& path, const HeightScale& 
     }
     png_init_io(png, file.get());
     png_read_info(png, info);
-    if (png_get_bit_depth(png, info) != 16 || png_get_color_type(png, info) != PNG_COLOR_TYPE_GRAY) {
+    if (png_get_bit_depth(png, info) != 16 ||
+        png_get_color_type(png, info) != PNG_COLOR_TYPE_GRAY) {
         png_destroy_read_struct(&png, &info, nullptr);
         throw RuntimeError(fmt::format("{} is not a 16-bit greyscale height map", path.string()));
     }

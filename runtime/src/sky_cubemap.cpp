@@ -23,7 +23,8 @@ class ValueNoise3 {
 public:
     ValueNoise3(std::uint64_t seed, int n) : m_n(n), m_values(static_cast<std::size_t>(n) * n * n) {
         SplitMix64 rng(seed);
-        for (double& v : m_values) v = rng.uniform();
+        for (double& v : m_values)
+            v = rng.uniform();
     }
     double operator()(double x, double y, double z) const {
         const double fx = std::floor(x), fy = std::floor(y), fz = std::floor(z);
@@ -32,7 +33,8 @@ public:
         double c[2][2][2];
         for (int a = 0; a < 2; ++a)
             for (int b = 0; b < 2; ++b)
-                for (int d = 0; d < 2; ++d) c[a][b][d] = at(ix + a, iy + b, iz + d);
+                for (int d = 0; d < 2; ++d)
+                    c[a][b][d] = at(ix + a, iy + b, iz + d);
         auto lerp = [](double u, double v, double t) { return u + (v - u) * t; };
         const double x00 = lerp(c[0][0][0], c[1][0][0], tx), x10 = lerp(c[0][1][0], c[1][1][0], tx);
         const double x01 = lerp(c[0][0][1], c[1][0][1], tx), x11 = lerp(c[0][1][1], c[1][1][1], tx);
@@ -59,14 +61,18 @@ std::uint8_t toByte(double v) {
 
 void SkyParams::validate() const {
     if (!(sunElevationDegrees > -90.0 && sunElevationDegrees < 90.0)) {
-        throw std::invalid_argument(fmt::format("sky sun elevation must be in (-90, 90) degrees, got {}", sunElevationDegrees));
+        throw std::invalid_argument(fmt::format(
+            "sky sun elevation must be in (-90, 90) degrees, got {}", sunElevationDegrees));
     }
-    if (!std::isfinite(sunAzimuthDegrees)) throw std::invalid_argument("sky sun azimuth must be finite");
+    if (!std::isfinite(sunAzimuthDegrees))
+        throw std::invalid_argument("sky sun azimuth must be finite");
     if (!(cloudCover >= 0.0 && cloudCover <= 1.0)) {
-        throw std::invalid_argument(fmt::format("sky cloud cover must be in [0, 1], got {}", cloudCover));
+        throw std::invalid_argument(
+            fmt::format("sky cloud cover must be in [0, 1], got {}", cloudCover));
     }
     if (faceSize < 8 || faceSize > 4096) {
-        throw std::invalid_argument(fmt::format("sky face size must be in [8, 4096], got {}", faceSize));
+        throw std::invalid_argument(
+            fmt::format("sky face size must be in [8, 4096], got {}", faceSize));
     }
 }
 
@@ -79,13 +85,20 @@ Vec3 cubeDirection(int face, int x, int y, int size) {
     const double s = 2.0 * (x + 0.5) / size - 1.0;
     const double t = 2.0 * (y + 0.5) / size - 1.0;
     switch (face) {
-    case 0: return {1.0, -t, -s};
-    case 1: return {-1.0, -t, s};
-    case 2: return {s, 1.0, t};
-    case 3: return {s, -1.0, -t};
-    case 4: return {s, -t, 1.0};
-    case 5: return {-s, -t, -1.0};
-    default: throw std::logic_error("cube face out of range");
+    case 0:
+        return {1.0, -t, -s};
+    case 1:
+        return {-1.0, -t, s};
+    case 2:
+        return {s, 1.0, t};
+    case 3:
+        return {s, -1.0, -t};
+    case 4:
+        return {s, -t, 1.0};
+    case 5:
+        return {-s, -t, -1.0};
+    default:
+        throw std::logic_error("cube face out of range");
     }
 }
 
@@ -102,16 +115,20 @@ CubeFaces proceduralSky(const SkyParams& sky) {
             for (int x = 0; x < n; ++x) {
                 Vec3 d = cubeDirection(face, x, y, n);
                 const double len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-                for (double& v : d) v /= len;
+                for (double& v : d)
+                    v /= len;
                 Vec3 c;
                 if (d[1] >= 0.0) {
                     // Gradient from the horizon to the zenith.
                     const double t = std::pow(d[1], 0.45);
-                    for (int k = 0; k < 3; ++k) c[k] = sky.horizonColour[k] + (sky.zenithColour[k] - sky.horizonColour[k]) * t;
+                    for (int k = 0; k < 3; ++k)
+                        c[k] =
+                            sky.horizonColour[k] + (sky.zenithColour[k] - sky.horizonColour[k]) * t;
                     // Clouds: fBm of value noise on the sky dome projected onto a plane, faded
                     // towards the horizon.
                     if (sky.cloudCover > 0.0 && d[1] > 0.02) {
-                        const double px = d[0] / (d[1] + 0.15) * 3.0, pz = d[2] / (d[1] + 0.15) * 3.0;
+                        const double px = d[0] / (d[1] + 0.15) * 3.0,
+                                     pz = d[2] / (d[1] + 0.15) * 3.0;
                         double f = 0.0, amp = 0.5, freq = 1.0;
                         for (int o = 0; o < 5; ++o) {
                             f += amp * noise(px * freq + 11.3, pz * freq + 5.7, 1.7 * o);
@@ -121,20 +138,25 @@ CubeFaces proceduralSky(const SkyParams& sky) {
                         const double threshold = 1.0 - sky.cloudCover;
                         double cloud = std::clamp((f - threshold * 0.9) / 0.25, 0.0, 1.0);
                         cloud *= std::clamp(d[1] / 0.12, 0.0, 1.0);
-                        for (int k = 0; k < 3; ++k) c[k] += (0.95 - c[k]) * cloud * 0.85;
+                        for (int k = 0; k < 3; ++k)
+                            c[k] += (0.95 - c[k]) * cloud * 0.85;
                     }
                 } else {
                     // Below the horizon: haze blending into the ground colour.
                     const double t = std::clamp(-d[1] * 4.0, 0.0, 1.0);
-                    for (int k = 0; k < 3; ++k) c[k] = sky.horizonColour[k] + (sky.groundColour[k] - sky.horizonColour[k]) * t;
+                    for (int k = 0; k < 3; ++k)
+                        c[k] =
+                            sky.horizonColour[k] + (sky.groundColour[k] - sky.horizonColour[k]) * t;
                 }
                 // Sun disc and glow.
                 const double cosSun = d[0] * sun[0] + d[1] * sun[1] + d[2] * sun[2];
-                const double glow = 0.35 * std::pow(std::max(cosSun, 0.0), 24.0) +
-                                    (cosSun > 0.9995 ? 1.0 : 0.0);
-                for (int k = 0; k < 3; ++k) c[k] += glow * (k == 2 ? 0.8 : 1.0);
+                const double glow =
+                    0.35 * std::pow(std::max(cosSun, 0.0), 24.0) + (cosSun > 0.9995 ? 1.0 : 0.0);
+                for (int k = 0; k < 3; ++k)
+                    c[k] += glow * (k == 2 ? 0.8 : 1.0);
                 std::uint8_t* p = im.pixel(x, y);
-                for (int k = 0; k < 3; ++k) p[k] = toByte(c[k]);
+                for (int k = 0; k < 3; ++k)
+                    p[k] = toByte(c[k]);
             }
         }
     }
@@ -142,18 +164,21 @@ CubeFaces proceduralSky(const SkyParams& sky) {
 }
 
 CubeFaces loadSkyImages(const std::filesystem::path& dir) {
-    static constexpr const char* kNames[6] = {"px.png", "nx.png", "py.png", "ny.png", "pz.png", "nz.png"};
+    static constexpr const char* kNames[6] = {"px.png", "nx.png", "py.png",
+                                              "ny.png", "pz.png", "nz.png"};
     CubeFaces faces;
     for (int i = 0; i < 6; ++i) {
         const auto path = dir / kNames[i];
         if (!std::filesystem::exists(path)) {
-            throw RuntimeError(fmt::format("sky image {} is missing (need px, nx, py, ny, pz, nz .png)", path.string()));
+            throw RuntimeError(fmt::format(
+                "sky image {} is missing (need px, nx, py, ny, pz, nz .png)", path.string()));
         }
         faces[static_cast<std::size_t>(i)] = readPng(path);
         const Image& im = faces[static_cast<std::size_t>(i)];
         if (im.width != im.height || im.width != faces[0].width) {
-            throw RuntimeError(fmt::format("sky image {} is {}x{}: all six must be square and one size",
-                                           path.string(), im.width, im.height));
+            throw RuntimeError(
+                fmt::format("sky image {} is {}x{}: all six must be square and one size",
+                            path.string(), im.width, im.height));
         }
     }
     return faces;
@@ -162,13 +187,15 @@ CubeFaces loadSkyImages(const std::filesystem::path& dir) {
 GlTexture makeCubemapTexture(const CubeFaces& faces) {
     const int n = faces[0].width;
     for (const Image& im : faces) {
-        if (im.width != n || im.height != n || n <= 0) throw std::invalid_argument("cube faces must be square and one size");
+        if (im.width != n || im.height != n || n <= 0)
+            throw std::invalid_argument("cube faces must be square and one size");
     }
     GLuint name = 0;
     glCreateTextures(GL_TEXTURE_CUBE_MAP, 1, &name);
     GlTexture texture(name);
     int levels = 1;
-    while ((n >> levels) > 0) ++levels;
+    while ((n >> levels) > 0)
+        ++levels;
     glTextureStorage2D(name, levels, GL_SRGB8, n, n); // sampled as linear RGB
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
     for (int face = 0; face < 6; ++face) {

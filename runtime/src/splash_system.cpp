@@ -13,8 +13,10 @@ namespace {
 /// A point uniformly distributed in the unit ball (rejection sampling).
 void unitBall(SplitMix64& rng, double out[3]) {
     for (;;) {
-        for (int k = 0; k < 3; ++k) out[k] = 2.0 * rng.uniform() - 1.0;
-        if (out[0] * out[0] + out[1] * out[1] + out[2] * out[2] <= 1.0) return;
+        for (int k = 0; k < 3; ++k)
+            out[k] = 2.0 * rng.uniform() - 1.0;
+        if (out[0] * out[0] + out[1] * out[1] + out[2] * out[2] <= 1.0)
+            return;
     }
 }
 
@@ -22,17 +24,24 @@ void unitBall(SplitMix64& rng, double out[3]) {
 
 void SplashParams::validate() const {
     if (artificialPerReal < 0 || artificialPerReal > 1000) {
-        throw std::invalid_argument(fmt::format("splash count (artificial per real) must be in [0, 1000], got {}", artificialPerReal));
+        throw std::invalid_argument(fmt::format(
+            "splash count (artificial per real) must be in [0, 1000], got {}", artificialPerReal));
     }
-    if (!(spawnRadius >= 0.0) || !std::isfinite(spawnRadius)) throw std::invalid_argument("splash spawn radius must be >= 0");
-    if (!(spriteRadius > 0.0) || !std::isfinite(spriteRadius)) throw std::invalid_argument("splash sprite radius must be > 0");
-    if (!(velocityJitter >= 0.0) || !std::isfinite(velocityJitter)) throw std::invalid_argument("splash velocity jitter must be >= 0");
-    if (!(minSpeed >= 0.0) || !std::isfinite(minSpeed)) throw std::invalid_argument("splash min speed must be >= 0");
+    if (!(spawnRadius >= 0.0) || !std::isfinite(spawnRadius))
+        throw std::invalid_argument("splash spawn radius must be >= 0");
+    if (!(spriteRadius > 0.0) || !std::isfinite(spriteRadius))
+        throw std::invalid_argument("splash sprite radius must be > 0");
+    if (!(velocityJitter >= 0.0) || !std::isfinite(velocityJitter))
+        throw std::invalid_argument("splash velocity jitter must be >= 0");
+    if (!(minSpeed >= 0.0) || !std::isfinite(minSpeed))
+        throw std::invalid_argument("splash min speed must be >= 0");
     if (!(minLifetime > 0.0) || !(maxLifetime >= minLifetime) || !std::isfinite(maxLifetime)) {
         throw std::invalid_argument("splash lifetimes need 0 < min <= max");
     }
-    if (!(gravity >= 0.0) || !std::isfinite(gravity)) throw std::invalid_argument("splash gravity must be >= 0");
-    if (sliceStride < 1) throw std::invalid_argument("splash slice stride must be >= 1");
+    if (!(gravity >= 0.0) || !std::isfinite(gravity))
+        throw std::invalid_argument("splash gravity must be >= 0");
+    if (sliceStride < 1)
+        throw std::invalid_argument("splash slice stride must be >= 1");
 }
 
 SplashSystem::SplashSystem(const FrameSet& frames, const Grid& grid, const SplashParams& params,
@@ -60,7 +69,8 @@ ArtificialSplash SplashSystem::artificial(const float* p, int j, std::size_t i, 
     // Sec. 5: initial position random in a sphere around the real splash.
     double ball[3];
     unitBall(rng, ball);
-    for (int k = 0; k < 3; ++k) s.offset[k] = ball[k] * q.spawnRadius;
+    for (int k = 0; k < 3; ++k)
+        s.offset[k] = ball[k] * q.spawnRadius;
     // Velocity from the real particle's (in the slice plane, z = 0) plus a random part in
     // every direction, proportional to its speed.
     const double vx = p[2], vy = p[3];
@@ -82,14 +92,16 @@ ArtificialSplash SplashSystem::artificial(const float* p, int j, std::size_t i, 
 std::vector<SplashSprite> SplashSystem::sprites(std::span<const std::uint32_t> sliceFrames,
                                                 double seconds) const {
     std::vector<SplashSprite> out;
-    if (!m_active) return out;
+    if (!m_active)
+        return out;
     if (static_cast<int>(sliceFrames.size()) != m_grid.sliceCount()) {
         throw std::logic_error("SplashSystem::sprites: one frame per slice expected");
     }
     const SplashParams& q = m_params;
     for (int j = 0; j < m_grid.sliceCount(); j += 2 * q.sliceStride) {
         const cache::Frame* frame = m_frames.find(sliceFrames[static_cast<std::size_t>(j)]);
-        if (frame == nullptr) continue; // not held: nothing to show (like the replay's yMin)
+        if (frame == nullptr)
+            continue; // not held: nothing to show (like the replay's yMin)
         const double z = m_grid.sliceZCells(j) * m_grid.dz;
         for (std::size_t i = 0; i < frame->splashCount(); ++i) {
             const float* p = &frame->splash[4 * i];

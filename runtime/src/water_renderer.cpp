@@ -7,8 +7,8 @@
 #include <GL/glcorearb.h>
 
 #include <algorithm>
-#include <cstdlib>
 #include <cmath>
+#include <cstdlib>
 #include <fmt/format.h>
 #include <numbers>
 #include <stdexcept>
@@ -19,9 +19,9 @@ namespace {
 
 // Uniform locations shared by the shaders (layout(location = ...) in shaders/*.vert|frag).
 constexpr GLint kViewProj = 0, kCells = 1, kOrigin = 2, kSpacing = 3, kEye = 4, kSunDir = 5,
-                kBedY = 6, kAbsorption = 7, kScatter = 8, kBed = 9, kEta = 10, kF0 = 11,
-                kSun = 12, kSunColour = 13, kEdge = 14, kPixelsPerMetre = 15, kRadius = 16,
-                kSplashColour = 17, kReflectionLod = 18;
+                kBedY = 6, kAbsorption = 7, kScatter = 8, kBed = 9, kEta = 10, kF0 = 11, kSun = 12,
+                kSunColour = 13, kEdge = 14, kPixelsPerMetre = 15, kRadius = 16, kSplashColour = 17,
+                kReflectionLod = 18;
 
 void setVec3(GLuint program, GLint loc, const Vec3& v) {
     glProgramUniform3f(program, loc, static_cast<float>(v[0]), static_cast<float>(v[1]),
@@ -49,17 +49,21 @@ double spanMs(const GlQuery& a, const GlQuery& b) {
 
 void ShadingParams::validate() const {
     if (width < 16 || height < 16 || width > 8192 || height > 8192) {
-        throw std::invalid_argument(fmt::format("image size must be within 16..8192 pixels, got {}x{}", width, height));
+        throw std::invalid_argument(
+            fmt::format("image size must be within 16..8192 pixels, got {}x{}", width, height));
     }
-    if (samples < 1 || samples > 16) throw std::invalid_argument(fmt::format("samples must be in 1..16, got {}", samples));
+    if (samples < 1 || samples > 16)
+        throw std::invalid_argument(fmt::format("samples must be in 1..16, got {}", samples));
     if (!(refractiveIndex >= 1.0 && refractiveIndex < 3.0)) {
-        throw std::invalid_argument(fmt::format("refractive index must be in [1, 3), got {}", refractiveIndex));
+        throw std::invalid_argument(
+            fmt::format("refractive index must be in [1, 3), got {}", refractiveIndex));
     }
     if (!finiteColour(absorption) || !finiteColour(scatterColour) || !finiteColour(bedColour) ||
         !finiteColour(sunColour) || !finiteColour(splashColour)) {
         throw std::invalid_argument("shading colours and absorption must be finite and >= 0");
     }
-    if (!(reflectionLod >= 0.0) || !std::isfinite(reflectionLod)) throw std::invalid_argument("reflection LOD must be >= 0");
+    if (!(reflectionLod >= 0.0) || !std::isfinite(reflectionLod))
+        throw std::invalid_argument("reflection LOD must be >= 0");
     if (!(sunShininess >= 1.0) || !(sunIntensity >= 0.0) || !std::isfinite(sunShininess) ||
         !std::isfinite(sunIntensity)) {
         throw std::invalid_argument("sun shininess must be >= 1 and intensity >= 0");
@@ -70,7 +74,8 @@ WaterRenderer::WaterRenderer(const Grid& grid, const cache::Domain& domain,
                              const ShadingParams& shading, const CubeFaces& sky, const Vec3& sun)
     : m_grid(grid), m_domain(domain), m_shading(shading), m_sun(sun) {
     shading.validate();
-    if (grid.cellsX < 2 || grid.cellsZ < 2) throw std::invalid_argument("the mesh needs at least 2 x 2 cells");
+    if (grid.cellsX < 2 || grid.cellsZ < 2)
+        throw std::invalid_argument("the mesh needs at least 2 x 2 cells");
     m_skyProgram = makeGraphicsProgram("sky.vert", "sky.frag");
     m_waterProgram = makeGraphicsProgram("water.vert", "water.frag");
     m_skirtProgram = makeGraphicsProgram("skirt.vert", "skirt.frag");
@@ -87,7 +92,8 @@ WaterRenderer::WaterRenderer(const Grid& grid, const cache::Domain& domain,
         for (int n = 0; n + 1 < N; ++n) {
             const auto a = static_cast<std::uint32_t>(m * N + n), b = a + 1;
             const auto c = a + static_cast<std::uint32_t>(N), d = c + 1;
-            for (std::uint32_t i : {a, c, b, b, c, d}) indices.push_back(i);
+            for (std::uint32_t i : {a, c, b, b, c, d})
+                indices.push_back(i);
         }
     }
     m_indexCount = indices.size();
@@ -112,14 +118,19 @@ WaterRenderer::WaterRenderer(const Grid& grid, const cache::Domain& domain,
     m_samples = std::max(1, std::min(shading.samples, static_cast<int>(maxSamples)));
     glCreateRenderbuffers(3, m_renderbuffers);
     const int W = shading.width, H = shading.height;
-    glNamedRenderbufferStorageMultisample(m_renderbuffers[0], m_samples > 1 ? m_samples : 0, GL_RGBA8, W, H);
-    glNamedRenderbufferStorageMultisample(m_renderbuffers[1], m_samples > 1 ? m_samples : 0, GL_DEPTH24_STENCIL8, W, H);
+    glNamedRenderbufferStorageMultisample(m_renderbuffers[0], m_samples > 1 ? m_samples : 0,
+                                          GL_RGBA8, W, H);
+    glNamedRenderbufferStorageMultisample(m_renderbuffers[1], m_samples > 1 ? m_samples : 0,
+                                          GL_DEPTH24_STENCIL8, W, H);
     glNamedRenderbufferStorage(m_renderbuffers[2], GL_RGBA8, W, H);
     glCreateFramebuffers(1, &m_msFramebuffer);
-    glNamedFramebufferRenderbuffer(m_msFramebuffer, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, m_renderbuffers[0]);
-    glNamedFramebufferRenderbuffer(m_msFramebuffer, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER, m_renderbuffers[1]);
+    glNamedFramebufferRenderbuffer(m_msFramebuffer, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER,
+                                   m_renderbuffers[0]);
+    glNamedFramebufferRenderbuffer(m_msFramebuffer, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER,
+                                   m_renderbuffers[1]);
     glCreateFramebuffers(1, &m_framebuffer);
-    glNamedFramebufferRenderbuffer(m_framebuffer, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, m_renderbuffers[2]);
+    glNamedFramebufferRenderbuffer(m_framebuffer, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER,
+                                   m_renderbuffers[2]);
     GLuint bg = 0;
     glCreateTextures(GL_TEXTURE_2D, 1, &bg);
     m_background = GlTexture(bg);
@@ -129,10 +140,13 @@ WaterRenderer::WaterRenderer(const Grid& grid, const cache::Domain& domain,
     for (GLuint fb : {m_msFramebuffer, m_framebuffer, m_backgroundFramebuffer}) {
         const GLenum status = glCheckNamedFramebufferStatus(fb, GL_FRAMEBUFFER);
         if (status != GL_FRAMEBUFFER_COMPLETE) {
-            throw RuntimeError(fmt::format("offscreen framebuffer {}x{} ({} samples) incomplete: 0x{:x}", W, H, m_samples, status));
+            throw RuntimeError(
+                fmt::format("offscreen framebuffer {}x{} ({} samples) incomplete: 0x{:x}", W, H,
+                            m_samples, status));
         }
     }
-    for (GlQuery& q : m_queries) q = makeTimestamp();
+    for (GlQuery& q : m_queries)
+        q = makeTimestamp();
 
     // Uniforms that do not change between frames.
     const float eta = static_cast<float>(1.0 / shading.refractiveIndex);
@@ -141,7 +155,8 @@ WaterRenderer::WaterRenderer(const Grid& grid, const cache::Domain& domain,
     const float bedY = domain.yMin;
     for (GLuint p : {m_waterProgram.get(), m_skirtProgram.get()}) {
         glProgramUniform2i(p, kCells, N, M);
-        glProgramUniform2f(p, kOrigin, static_cast<float>(grid.x0 + 0.5 * grid.dx), static_cast<float>(0.5 * grid.dz));
+        glProgramUniform2f(p, kOrigin, static_cast<float>(grid.x0 + 0.5 * grid.dx),
+                           static_cast<float>(0.5 * grid.dz));
         glProgramUniform2f(p, kSpacing, static_cast<float>(grid.dx), static_cast<float>(grid.dz));
         setVec3(p, kSunDir, sun);
         glProgramUniform1f(p, kBedY, bedY);
@@ -153,7 +168,8 @@ WaterRenderer::WaterRenderer(const Grid& grid, const cache::Domain& domain,
     setVec3(w, kBed, shading.bedColour);
     glProgramUniform1f(w, kEta, eta);
     glProgramUniform1f(w, kReflectionLod, static_cast<float>(shading.reflectionLod));
-    glProgramUniform2f(w, kSun, static_cast<float>(shading.sunShininess), static_cast<float>(shading.sunIntensity));
+    glProgramUniform2f(w, kSun, static_cast<float>(shading.sunShininess),
+                       static_cast<float>(shading.sunIntensity));
     setVec3(w, kSunColour, shading.sunColour);
     setVec3(m_splashProgram.get(), kSunDir, sun);
     setVec3(m_splashProgram.get(), kSplashColour, shading.splashColour);
@@ -170,7 +186,8 @@ WaterRenderer::~WaterRenderer() {
 }
 
 void WaterRenderer::stamp(const GlQuery& query) const {
-    if (!m_timing) return;
+    if (!m_timing)
+        return;
     // llvmpipe rasterises a whole scene when it is flushed, so a timestamp alone would charge
     // every draw to whichever stage flushes; finishing first attributes work to its stage.
     glFinish();
@@ -189,7 +206,8 @@ void WaterRenderer::draw(GlName heightBuffer, const Camera& camera,
     const bool sameCamera = m_backgroundValid && m_backgroundCamera.position == camera.position &&
                             m_backgroundCamera.target == camera.target &&
                             m_backgroundCamera.fovYDegrees == camera.fovYDegrees;
-    if (!sameCamera) renderBackground(camera, invViewProj);
+    if (!sameCamera)
+        renderBackground(camera, invViewProj);
 
     // 1. Environment: the cached sky pass, copied by a texel-fetch pass (a framebuffer blit
     //    cannot write a multisampled target).
@@ -234,11 +252,14 @@ void WaterRenderer::draw(GlName heightBuffer, const Camera& camera,
         const auto bytes = static_cast<GLsizeiptr>(splashes.size_bytes());
         if (splashes.size() > m_splashCapacity) {
             m_splashCapacity = splashes.size() + splashes.size() / 2;
-            glNamedBufferData(m_splashBuffer.get(), static_cast<GLsizeiptr>(m_splashCapacity * sizeof(SplashSprite)), nullptr, GL_STREAM_DRAW);
+            glNamedBufferData(m_splashBuffer.get(),
+                              static_cast<GLsizeiptr>(m_splashCapacity * sizeof(SplashSprite)),
+                              nullptr, GL_STREAM_DRAW);
         }
         glNamedBufferSubData(m_splashBuffer.get(), 0, bytes, splashes.data());
         glVertexArrayVertexBuffer(m_splashArray, 0, m_splashBuffer.get(), 0, sizeof(SplashSprite));
-        const double pixelsPerMetre = H / (2.0 * std::tan(0.5 * camera.fovYDegrees * std::numbers::pi / 180.0));
+        const double pixelsPerMetre =
+            H / (2.0 * std::tan(0.5 * camera.fovYDegrees * std::numbers::pi / 180.0));
         const GLuint p = m_splashProgram.get();
         glProgramUniformMatrix4fv(p, kViewProj, 1, GL_FALSE, viewProj.data());
         glProgramUniform1f(p, kPixelsPerMetre, static_cast<float>(pixelsPerMetre));
@@ -257,7 +278,8 @@ void WaterRenderer::draw(GlName heightBuffer, const Camera& camera,
 
     // 4. Resolve the multisampled picture (without multisampling, it is read directly).
     if (m_samples > 1) {
-        glBlitNamedFramebuffer(m_msFramebuffer, m_framebuffer, 0, 0, W, H, 0, 0, W, H, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+        glBlitNamedFramebuffer(m_msFramebuffer, m_framebuffer, 0, 0, W, H, 0, 0, W, H,
+                               GL_COLOR_BUFFER_BIT, GL_NEAREST);
     }
     stamp(m_queries[4]);
     glBindVertexArray(0);
@@ -299,13 +321,15 @@ Image WaterRenderer::readPixels() const {
     // GL's row 0 is the bottom; images have row 0 at the top.
     const std::size_t stride = static_cast<std::size_t>(W) * 3;
     for (int y = 0; y < H; ++y) {
-        std::copy_n(rows.data() + static_cast<std::size_t>(H - 1 - y) * stride, stride, image.pixel(0, y));
+        std::copy_n(rows.data() + static_cast<std::size_t>(H - 1 - y) * stride, stride,
+                    image.pixel(0, y));
     }
     return image;
 }
 
 RenderStageTimes WaterRenderer::stageTimes() const {
-    if (!m_timed) throw std::logic_error("stageTimes() without a timed draw()");
+    if (!m_timed)
+        throw std::logic_error("stageTimes() without a timed draw()");
     RenderStageTimes t;
     t.skyMs = spanMs(m_queries[0], m_queries[1]);
     t.waterMs = spanMs(m_queries[1], m_queries[2]);

@@ -38,17 +38,20 @@ cache::Frame frameOf(std::initializer_list<std::pair<float, float>> particles) {
     return f;
 }
 
-double gauss(double d) { return std::exp(-d * d / 8.0); } // sigma = 2 cells
+double gauss(double d) {
+    return std::exp(-d * d / 8.0);
+} // sigma = 2 cells
 
 } // namespace
 
 TEST(WindowSlices, KnownAnswers) {
     Grid g;
     g.cellsZ = 128;
-    g.slices = 256; // slices at (j + 1) / 4 cells
-    EXPECT_EQ(windowSlices(g, 0), (std::vector<int>{0, 1, 2, 3, 4}));        // [-0.5, 1.5)
-    EXPECT_EQ(windowSlices(g, 10), (std::vector<int>{37, 38, 39, 40, 41, 42, 43, 44})); // [9.5, 11.5)
-    EXPECT_EQ(windowSlices(g, 127).back(), 510);                          // last slice, z = 127.75
+    g.slices = 256;                                                   // slices at (j + 1) / 4 cells
+    EXPECT_EQ(windowSlices(g, 0), (std::vector<int>{0, 1, 2, 3, 4})); // [-0.5, 1.5)
+    EXPECT_EQ(windowSlices(g, 10),
+              (std::vector<int>{37, 38, 39, 40, 41, 42, 43, 44})); // [9.5, 11.5)
+    EXPECT_EQ(windowSlices(g, 127).back(), 510);                   // last slice, z = 127.75
     g.cellsZ = 200;
     g.slices = 16; // slices at 6.25 (j + 1) cells: many rows see none
     EXPECT_EQ(windowSlices(g, 3), (std::vector<int>{0}));  // [2.5, 4.5): nearest is z = 6.25
@@ -60,7 +63,8 @@ TEST(WindowSlices, KnownAnswers) {
 TEST(CpuReconstruction, FlatWaterStaysFlatEverywhere) {
     auto frames = test::syntheticFrames(40, 60, 3);
     for (auto& f : frames) {
-        for (std::size_t p = 1; p < f.surface.size(); p += 2) f.surface[p] = 0.37f;
+        for (std::size_t p = 1; p < f.surface.size(); p += 2)
+            f.surface[p] = 0.37f;
     }
     frames[5].surface = {0.0f, 0.37f}; // not empty: an empty frame would give yMin
     const FrameSet set = frameSet(frames);
@@ -70,7 +74,8 @@ TEST(CpuReconstruction, FlatWaterStaysFlatEverywhere) {
     const CpuReconstruction cpu(set, p, s);
     for (double tau : {0.0, 0.13, 0.31}) {
         const HeightField h = cpu.heights(tau);
-        for (double v : h.heights) EXPECT_NEAR(v, static_cast<double>(0.37f), 1e-12);
+        for (double v : h.heights)
+            EXPECT_NEAR(v, static_cast<double>(0.37f), 1e-12);
     }
 }
 
@@ -87,7 +92,8 @@ TEST(CpuReconstruction, LinearProfileIsReproducedExactly) {
     const SliceSampler s(p, 1, 100.0);
     const HeightField h = CpuReconstruction(set, p, s).heights(0.0);
     for (int m = 0; m < 8; ++m) {
-        for (int n = 1; n < 15; ++n) EXPECT_NEAR(h.at(n, m), 0.25 + 0.0625 * n, 1e-12) << n;
+        for (int n = 1; n < 15; ++n)
+            EXPECT_NEAR(h.at(n, m), 0.25 + 0.0625 * n, 1e-12) << n;
     }
 }
 
@@ -99,9 +105,14 @@ TEST(CpuReconstruction, WindowIsThreeBinsHalfOpenWithGaussianWeights) {
     const HeightField h = CpuReconstruction(set, p, s).heights(0.0);
     const double c = static_cast<double>(6.2f), b = static_cast<double>(8.99f);
     for (int m = 0; m < 8; ++m) {
-        EXPECT_DOUBLE_EQ(h.at(4, m), 1.0);  // bins 3..5: A
-        EXPECT_NEAR(h.at(6, m), (gauss(5.0 - 6.5) * 1 + gauss(c - 6.5) * 3) / (gauss(5.0 - 6.5) + gauss(c - 6.5)), 1e-12);
-        EXPECT_NEAR(h.at(7, m), (gauss(c - 7.5) * 3 + gauss(b - 7.5) * 2) / (gauss(c - 7.5) + gauss(b - 7.5)), 1e-12);
+        EXPECT_DOUBLE_EQ(h.at(4, m), 1.0); // bins 3..5: A
+        EXPECT_NEAR(h.at(6, m),
+                    (gauss(5.0 - 6.5) * 1 + gauss(c - 6.5) * 3) /
+                        (gauss(5.0 - 6.5) + gauss(c - 6.5)),
+                    1e-12);
+        EXPECT_NEAR(h.at(7, m),
+                    (gauss(c - 7.5) * 3 + gauss(b - 7.5) * 2) / (gauss(c - 7.5) + gauss(b - 7.5)),
+                    1e-12);
         EXPECT_DOUBLE_EQ(h.at(9, m), 2.0);  // bins 8..10: B
         EXPECT_DOUBLE_EQ(h.at(3, m), 1.0);  // bins 2..4 empty: nearest non-empty bin 5 (d = 2)
         EXPECT_DOUBLE_EQ(h.at(12, m), 2.0); // bins 11..13 empty; d = 4 reaches bin 8
@@ -115,7 +126,8 @@ TEST(CpuReconstruction, FallbackAveragesTheNearestBinsOnBothSides) {
     const HeightField h = CpuReconstruction(set, p, s).heights(0.0);
     EXPECT_DOUBLE_EQ(h.at(6, 0), (1.0 + 1.5 + 3.0) / 3.0); // d = 4: bins 2 and 10
     EXPECT_DOUBLE_EQ(h.at(15, 0), 3.0);                    // d = 5: bin 10 only
-    for (double v : h.heights) EXPECT_TRUE(std::isfinite(v));
+    for (double v : h.heights)
+        EXPECT_TRUE(std::isfinite(v));
 }
 
 TEST(CpuReconstruction, EmptyFrameGivesTheDomainBottom) {
@@ -123,7 +135,8 @@ TEST(CpuReconstruction, EmptyFrameGivesTheDomainBottom) {
     const ReplayParams p = smallParams();
     const SliceSampler s(p, 1, 100.0);
     const HeightField h = CpuReconstruction(set, p, s).heights(0.0);
-    for (double v : h.heights) EXPECT_DOUBLE_EQ(v, static_cast<double>(0.1f));
+    for (double v : h.heights)
+        EXPECT_DOUBLE_EQ(v, static_cast<double>(0.1f));
 }
 
 TEST(CpuReconstruction, ParticlesJustBeyondTheDomainReachTheEdgeColumns) {
@@ -158,12 +171,14 @@ TEST(CpuReconstruction, MatchesABruteForceEq7OverContinuousWindows) {
                 double sgh = 0, sg = 0;
                 for (int j = 0; j < 31; ++j) {
                     const double dz = (j + 1) * 16.0 / 32.0 - (m + 0.5);
-                    if (dz < -1.0 || dz >= 1.0) continue;
+                    if (dz < -1.0 || dz >= 1.0)
+                        continue;
                     const auto& sf = frames[slice[static_cast<std::size_t>(j)]].surface;
                     for (std::size_t q = 0; q < sf.size(); q += 2) {
                         const double u = sf[q] / dx;
                         const double ddx = u - (n + 0.5);
-                        if (ddx < -1.5 || ddx >= 1.5) continue; // [3 dx) centred on P
+                        if (ddx < -1.5 || ddx >= 1.5)
+                            continue; // [3 dx) centred on P
                         const double g = std::exp(-(ddx * ddx + dz * dz) / 8.0);
                         sgh += g * sf[q + 1];
                         sg += g;
@@ -177,6 +192,13 @@ TEST(CpuReconstruction, MatchesABruteForceEq7OverContinuousWindows) {
         }
         EXPECT_GT(checked, 400);
     }
+}
+
+TEST(CpuReconstruction, NonFiniteParticlesAreRejected) {
+    const FrameSet set = frameSet({frameOf({{1.0f, std::nanf("")}})});
+    const ReplayParams p = smallParams();
+    const SliceSampler s(p, 1, 100.0);
+    EXPECT_THROW(CpuReconstruction(set, p, s), std::invalid_argument);
 }
 
 TEST(CpuReconstruction, AFrameOutsideTheSetIsAnError) {

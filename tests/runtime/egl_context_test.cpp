@@ -18,8 +18,8 @@ TEST(EglContext, CreatesHeadlessGl45CoreContext) {
     EXPECT_GE(major * 10 + minor, 45) << context.version();
     EXPECT_TRUE(profile & GL_CONTEXT_CORE_PROFILE_BIT);
     RecordProperty("renderer", context.renderer());
-    std::printf("renderer: %s (%s, EGL %s)\n", context.renderer().c_str(), context.version().c_str(),
-                context.platform().c_str());
+    std::printf("renderer: %s (%s, EGL %s)\n", context.renderer().c_str(),
+                context.version().c_str(), context.platform().c_str());
 }
 
 TEST(EglContext, TwoContextsLiveInOneProcess) {

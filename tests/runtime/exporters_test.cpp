@@ -32,7 +32,8 @@ Grid smallGrid(int n, int m) {
 HeightField field(int n, int m) {
     HeightField f{n, m, {}};
     for (int j = 0; j < m; ++j) {
-        for (int i = 0; i < n; ++i) f.heights.push_back(0.4 + 0.01 * i - 0.02 * j);
+        for (int i = 0; i < n; ++i)
+            f.heights.push_back(0.4 + 0.01 * i - 0.02 * j);
     }
     return f;
 }
@@ -76,7 +77,8 @@ TEST(Exporters, SurfacePlyRoundTripIsExact) {
     EXPECT_NE(header.find("element face 48"), std::string::npos);
     EXPECT_NE(header.find("property list uchar uint vertex_indices"), std::string::npos);
     // Size: header + 35 * 12 bytes + 48 * 13 bytes.
-    EXPECT_EQ(fs::file_size(p), header.size() + std::string("end_header\n").size() + 35 * 12 + 48 * 13);
+    EXPECT_EQ(fs::file_size(p),
+              header.size() + std::string("end_header\n").size() + 35 * 12 + 48 * 13);
     fs::remove(p);
 }
 

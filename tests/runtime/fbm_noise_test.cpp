@@ -20,7 +20,8 @@ std::vector<double> powerSpectrum(const std::vector<double>& field, int T, int K
     fftw_plan plan = fftw_plan_dft_r2c_2d(T, K, in.data(), out, FFTW_ESTIMATE);
     fftw_execute(plan);
     std::vector<double> power(static_cast<std::size_t>(T * Kh));
-    for (int i = 0; i < T * Kh; ++i) power[i] = out[i][0] * out[i][0] + out[i][1] * out[i][1];
+    for (int i = 0; i < T * Kh; ++i)
+        power[i] = out[i][0] * out[i][0] + out[i][1] * out[i][1];
     fftw_destroy_plan(plan);
     fftw_free(out);
     return power;
@@ -58,7 +59,8 @@ double fittedSlope(double beta, int size, int seeds, double fMin, double fMax) {
     double sx = 0, sy = 0, sxx = 0, sxy = 0;
     int n = 0;
     for (int r = static_cast<int>(fMin); r <= static_cast<int>(fMax); ++r) {
-        if (count[r] == 0) continue;
+        if (count[r] == 0)
+            continue;
         const double x = std::log(static_cast<double>(r));
         const double y = std::log(sum[r] / count[r]);
         sx += x;
@@ -112,7 +114,7 @@ TEST(FbmNoise, NormalisedToUnitPeakOnThePaperGrid) {
         peak = std::max(peak, std::abs(v));
         mean += v;
     }
-    EXPECT_EQ(peak, 1.0); // max |N| = 1 exactly
+    EXPECT_EQ(peak, 1.0);                                  // max |N| = 1 exactly
     EXPECT_NEAR(mean / noise.values().size(), 0.0, 1e-12); // no DC term
 }
 
@@ -166,9 +168,11 @@ TEST(FbmNoise, FilterKeepsTheSameCoefficientsItDoesNotRemove) {
     double ratio = -1.0;
     for (int i = 0; i < 32; ++i) {
         for (int v = 0; v < 33; ++v) {
-            if (radius(i, v, 32) == 0.0 || radius(i, v, 32) > 10.0) continue;
+            if (radius(i, v, 32) == 0.0 || radius(i, v, 32) > 10.0)
+                continue;
             const double r = pb[i * 33 + v] / pa[i * 33 + v];
-            if (ratio < 0.0) ratio = r;
+            if (ratio < 0.0)
+                ratio = r;
             EXPECT_NEAR(r / ratio, 1.0, 1e-9);
         }
     }
@@ -179,7 +183,8 @@ TEST(FbmNoise, SameSeedSameBits) {
     const FbmNoise a(p, 256, 77);
     const FbmNoise b(p, 256, 77);
     ASSERT_EQ(a.values().size(), b.values().size());
-    EXPECT_EQ(std::memcmp(a.values().data(), b.values().data(), a.values().size() * sizeof(double)), 0);
+    EXPECT_EQ(std::memcmp(a.values().data(), b.values().data(), a.values().size() * sizeof(double)),
+              0);
 }
 
 TEST(FbmNoise, DifferentSeedsAreUncorrelated) {
@@ -197,14 +202,16 @@ TEST(FbmNoise, DifferentSeedsAreUncorrelated) {
             saa += a[i] * a[i];
             sbb += b[i] * b[i];
         }
-        EXPECT_LT(std::abs(sab / std::sqrt(saa * sbb)), 5.0 / 64.0) << "seeds " << seed << ", " << seed + 1;
+        EXPECT_LT(std::abs(sab / std::sqrt(saa * sbb)), 5.0 / 64.0)
+            << "seeds " << seed << ", " << seed + 1;
     }
     // And the paper's noise differs visibly between neighbouring seeds.
     const NoiseParams paper;
     const std::vector<double> a = FbmNoise(paper, 256, 1).values();
     const std::vector<double> b = FbmNoise(paper, 256, 2).values();
     double maxDiff = 0;
-    for (std::size_t i = 0; i < a.size(); ++i) maxDiff = std::max(maxDiff, std::abs(a[i] - b[i]));
+    for (std::size_t i = 0; i < a.size(); ++i)
+        maxDiff = std::max(maxDiff, std::abs(a[i] - b[i]));
     EXPECT_GT(maxDiff, 0.5);
 }
 

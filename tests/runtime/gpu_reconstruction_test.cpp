@@ -27,7 +27,8 @@ protected:
 std::uint64_t fnv1a(const void* data, std::size_t size) {
     std::uint64_t h = 0xcbf29ce484222325ULL;
     const auto* p = static_cast<const unsigned char*>(data);
-    for (std::size_t i = 0; i < size; ++i) h = (h ^ p[i]) * 0x100000001b3ULL;
+    for (std::size_t i = 0; i < size; ++i)
+        h = (h ^ p[i]) * 0x100000001b3ULL;
     return h;
 }
 
@@ -43,7 +44,8 @@ struct Case {
 TEST_F(GpuReconstruction, MatchesTheCpuReferenceForRandomTimesSeedsAndSizes) {
     // Frames: 260 frames (2.6 s) of travelling waves with gaps, a dry region and an empty
     // frame; A = 400 frames per time unit, so tau in [-0.5, 1.2] covers clamp and loop.
-    const FrameSet set = FrameSet::whole(test::syntheticHeader(), test::syntheticFrames(260, 320, 21));
+    const FrameSet set =
+        FrameSet::whole(test::syntheticHeader(), test::syntheticFrames(260, 320, 21));
     const double depth = test::kSyntheticDepth;
     const Case cases[] = {
         {128, 128, 256, 0.3, FramePolicy::Loop, 1},  // the paper's configuration
@@ -96,7 +98,8 @@ TEST_F(GpuReconstruction, FallbackAndWindowKnownAnswers) {
     cache::Header h;
     h.domain = {0.0f, 0.0f, 16.0f, 2.0f};
     cache::Frame f;
-    for (float v : {2.5f, 1.0f, 2.7f, 1.5f, 5.0f, 1.25f, 10.5f, 3.0f}) f.surface.push_back(v);
+    for (float v : {2.5f, 1.0f, 2.7f, 1.5f, 5.0f, 1.25f, 10.5f, 3.0f})
+        f.surface.push_back(v);
     const FrameSet set = FrameSet::whole(h, {f, cache::Frame{}});
     ReplayParams p;
     p.cellsX = 16;
@@ -107,12 +110,13 @@ TEST_F(GpuReconstruction, FallbackAndWindowKnownAnswers) {
     GpuReplay gpu(set, p, s);
     gpu.update(0.0);
     const HeightField g = gpu.readHeights();
-    EXPECT_NEAR(g.at(4, 0), 1.25, 1e-6);                        // bins 3..5: the particle at 5.0
-    EXPECT_NEAR(g.at(8, 0), 3.0, 1e-6);                         // bins 7..9 empty; d = 2: bin 10
-    EXPECT_NEAR(g.at(7, 0), 1.25, 1e-6);                        // bins 6..8 empty; d = 2: bins 5, 9
-    EXPECT_NEAR(g.at(15, 1), 3.0, 1e-6);                        // d = 5: bin 10
-    gpu.update(1.0); // the empty frame: the domain's bottom
-    for (double v : gpu.readHeights().heights) EXPECT_NEAR(v, 0.0, 1e-6);
+    EXPECT_NEAR(g.at(4, 0), 1.25, 1e-6); // bins 3..5: the particle at 5.0
+    EXPECT_NEAR(g.at(8, 0), 3.0, 1e-6);  // bins 7..9 empty; d = 2: bin 10
+    EXPECT_NEAR(g.at(7, 0), 1.25, 1e-6); // bins 6..8 empty; d = 2: bins 5, 9
+    EXPECT_NEAR(g.at(15, 1), 3.0, 1e-6); // d = 5: bin 10
+    gpu.update(1.0);                     // the empty frame: the domain's bottom
+    for (double v : gpu.readHeights().heights)
+        EXPECT_NEAR(v, 0.0, 1e-6);
 }
 
 TEST_F(GpuReconstruction, HoldingOnlyTheUsedFramesGivesTheSameResult) {
@@ -129,21 +133,24 @@ TEST_F(GpuReconstruction, HoldingOnlyTheUsedFramesGivesTheSameResult) {
     part.header = whole.header;
     part.frameCount = whole.frameCount;
     part.ids = sampler.framesUsed(taus);
-    for (std::uint32_t id : part.ids) part.frames.push_back(frames[id]);
+    for (std::uint32_t id : part.ids)
+        part.frames.push_back(frames[id]);
     ASSERT_LT(part.ids.size(), frames.size() / 2); // most frames are never decoded
     GpuReplay a(whole, p, sampler), b(part, p, sampler);
     for (double tau : taus) {
         a.update(tau);
         b.update(tau);
         const HeightField ha = a.readHeights(), hb = b.readHeights();
-        for (std::size_t i = 0; i < ha.heights.size(); ++i) EXPECT_EQ(ha.heights[i], hb.heights[i]);
+        for (std::size_t i = 0; i < ha.heights.size(); ++i)
+            EXPECT_EQ(ha.heights[i], hb.heights[i]);
     }
 }
 
 TEST_F(GpuReconstruction, WithoutNoiseEveryRowIsTheSame) {
     // F = 0 (eq. 5): every slice shows the same frame, so the surface is uniform along z
     // (the "plain duplication" of the paper's Fig. 8a).
-    const FrameSet set = FrameSet::whole(test::syntheticHeader(), test::syntheticFrames(100, 300, 2));
+    const FrameSet set =
+        FrameSet::whole(test::syntheticHeader(), test::syntheticFrames(100, 300, 2));
     ReplayParams p;
     p.fluctuation = 0.0;
     p.cellsX = 64;
@@ -154,12 +161,14 @@ TEST_F(GpuReconstruction, WithoutNoiseEveryRowIsTheSame) {
     gpu.update(0.1);
     const HeightField h = gpu.readHeights();
     for (int m = 1; m < 32; ++m) {
-        for (int n = 0; n < 64; ++n) EXPECT_NEAR(h.at(n, m), h.at(n, 0), 1e-6);
+        for (int n = 0; n < 64; ++n)
+            EXPECT_NEAR(h.at(n, m), h.at(n, 0), 1e-6);
     }
 }
 
 TEST_F(GpuReconstruction, SameInputsGiveByteIdenticalHeights) {
-    const FrameSet set = FrameSet::whole(test::syntheticHeader(), test::syntheticFrames(200, 320, 4));
+    const FrameSet set =
+        FrameSet::whole(test::syntheticHeader(), test::syntheticFrames(200, 320, 4));
     ReplayParams p; // paper defaults, 128 x 128, K = 256
     p.seed = 2024;
     const SliceSampler s1(p, set.frameCount, framesPerTimeUnit(set.header, p));
@@ -173,8 +182,10 @@ TEST_F(GpuReconstruction, SameInputsGiveByteIdenticalHeights) {
         const auto fa = a.readSliceFrames();
         hashFrames = hashFrames * 31 + fnv1a(fa.data(), fa.size() * sizeof(std::uint32_t));
         std::vector<float> ha, hb;
-        for (double v : a.readHeights().heights) ha.push_back(static_cast<float>(v));
-        for (double v : b.readHeights().heights) hb.push_back(static_cast<float>(v));
+        for (double v : a.readHeights().heights)
+            ha.push_back(static_cast<float>(v));
+        for (double v : b.readHeights().heights)
+            hb.push_back(static_cast<float>(v));
         hashA = hashA * 31 + fnv1a(ha.data(), ha.size() * sizeof(float));
         hashB = hashB * 31 + fnv1a(hb.data(), hb.size() * sizeof(float));
     }
@@ -186,7 +197,8 @@ TEST_F(GpuReconstruction, SameInputsGiveByteIdenticalHeights) {
 }
 
 TEST_F(GpuReconstruction, DifferentSeedsGiveVisiblyDifferentSurfaces) {
-    const FrameSet set = FrameSet::whole(test::syntheticHeader(), test::syntheticFrames(200, 320, 4));
+    const FrameSet set =
+        FrameSet::whole(test::syntheticHeader(), test::syntheticFrames(200, 320, 4));
     ReplayParams p;
     p.seed = 1;
     ReplayParams q = p;
@@ -198,7 +210,8 @@ TEST_F(GpuReconstruction, DifferentSeedsGiveVisiblyDifferentSurfaces) {
     b.update(0.25);
     const HeightField ha = a.readHeights(), hb = b.readHeights();
     double rms = 0.0, spread = 0.0, mean = 0.0;
-    for (double v : ha.heights) mean += v;
+    for (double v : ha.heights)
+        mean += v;
     mean /= static_cast<double>(ha.heights.size());
     for (std::size_t i = 0; i < ha.heights.size(); ++i) {
         rms += (ha.heights[i] - hb.heights[i]) * (ha.heights[i] - hb.heights[i]);
@@ -209,7 +222,8 @@ TEST_F(GpuReconstruction, DifferentSeedsGiveVisiblyDifferentSurfaces) {
 }
 
 TEST_F(GpuReconstruction, HeightTextureHoldsTheLatestHeights) {
-    const FrameSet set = FrameSet::whole(test::syntheticHeader(), test::syntheticFrames(120, 200, 4));
+    const FrameSet set =
+        FrameSet::whole(test::syntheticHeader(), test::syntheticFrames(120, 200, 4));
     ReplayParams p;
     p.cellsX = 45;
     p.cellsZ = 38;
@@ -221,16 +235,19 @@ TEST_F(GpuReconstruction, HeightTextureHoldsTheLatestHeights) {
         const GlName texture = gpu.heightTexture();
         std::vector<float> texels(45 * 38);
         glPixelStorei(GL_PACK_ALIGNMENT, 1);
-        glGetTextureImage(texture, 0, GL_RED, GL_FLOAT, static_cast<GLsizei>(texels.size() * 4), texels.data());
+        glGetTextureImage(texture, 0, GL_RED, GL_FLOAT, static_cast<GLsizei>(texels.size() * 4),
+                          texels.data());
         const HeightField h = gpu.readHeights();
         for (int m = 0; m < 38; ++m) {
-            for (int n = 0; n < 45; ++n) ASSERT_EQ(texels[m * 45 + n], static_cast<float>(h.at(n, m)));
+            for (int n = 0; n < 45; ++n)
+                ASSERT_EQ(texels[m * 45 + n], static_cast<float>(h.at(n, m)));
         }
     }
 }
 
 TEST_F(GpuReconstruction, StageTimesComeFromTimerQueries) {
-    const FrameSet set = FrameSet::whole(test::syntheticHeader(), test::syntheticFrames(50, 100, 4));
+    const FrameSet set =
+        FrameSet::whole(test::syntheticHeader(), test::syntheticFrames(50, 100, 4));
     ReplayParams p;
     p.cellsX = 32;
     p.cellsZ = 32;

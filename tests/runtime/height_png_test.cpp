@@ -14,7 +14,8 @@ TEST(HeightPng, RoundTripWithinHalfAStep) {
     f.cellsX = 37;
     f.cellsZ = 21;
     for (int m = 0; m < f.cellsZ; ++m) {
-        for (int n = 0; n < f.cellsX; ++n) f.heights.push_back(0.4 + 0.1 * std::sin(n * 0.3 + m * 0.7));
+        for (int n = 0; n < f.cellsX; ++n)
+            f.heights.push_back(0.4 + 0.1 * std::sin(n * 0.3 + m * 0.7));
     }
     const HeightScale scale{0.0, 1.0 / 65535.0};
     const auto path = std::filesystem::temp_directory_path() /

@@ -15,7 +15,8 @@ namespace {
 namespace fs = std::filesystem;
 
 fs::path tempFile(const std::string& name) {
-    return fs::temp_directory_path() / ("swell_image_io_" + std::to_string(::getpid()) + "_" + name);
+    return fs::temp_directory_path() /
+           ("swell_image_io_" + std::to_string(::getpid()) + "_" + name);
 }
 
 Image gradient(int w, int h) {
@@ -92,7 +93,8 @@ TEST(ImageIo, CompareGivesKnownPsnrAndMaxError) {
 
 TEST(ImageIo, StatsSeparateUniformFromStructured) {
     Image flat(16, 16);
-    for (auto& v : flat.rgb) v = 90;
+    for (auto& v : flat.rgb)
+        v = 90;
     const ImageStats s = imageStats(flat);
     EXPECT_EQ(s.distinctColours, 1u);
     EXPECT_NEAR(s.stddevLuma, 0.0, 1e-9);
@@ -104,7 +106,8 @@ TEST(ImageIo, StatsSeparateUniformFromStructured) {
 
 TEST(ImageIo, DownscaleAveragesBlocksAndContactSheetTiles) {
     Image im(4, 2);
-    for (int x = 0; x < 4; ++x) im.pixel(x, 0)[0] = static_cast<std::uint8_t>(x * 40); // 0 40 80 120
+    for (int x = 0; x < 4; ++x)
+        im.pixel(x, 0)[0] = static_cast<std::uint8_t>(x * 40); // 0 40 80 120
     const Image d = downscale(im, 2);
     ASSERT_EQ(d.width, 2);
     ASSERT_EQ(d.height, 1);
@@ -114,15 +117,16 @@ TEST(ImageIo, DownscaleAveragesBlocksAndContactSheetTiles) {
 
     std::vector<Image> tiles(5, Image(6, 4));
     for (std::size_t i = 0; i < tiles.size(); ++i) {
-        for (auto& v : tiles[i].rgb) v = static_cast<std::uint8_t>(100 + i);
+        for (auto& v : tiles[i].rgb)
+            v = static_cast<std::uint8_t>(100 + i);
     }
     const Image sheet = contactSheet(tiles, 3, 2);
     EXPECT_EQ(sheet.width, 2 + 3 * (6 + 2));
     EXPECT_EQ(sheet.height, 2 + 2 * (4 + 2));
-    EXPECT_EQ(sheet.pixel(2, 2)[0], 100);          // tile 0
-    EXPECT_EQ(sheet.pixel(2 + 8 * 2, 2)[0], 102);  // tile 2, first row
-    EXPECT_EQ(sheet.pixel(2 + 8, 2 + 6)[0], 104);  // tile 4, second row
-    EXPECT_EQ(sheet.pixel(0, 0)[0], 24);           // border
+    EXPECT_EQ(sheet.pixel(2, 2)[0], 100);         // tile 0
+    EXPECT_EQ(sheet.pixel(2 + 8 * 2, 2)[0], 102); // tile 2, first row
+    EXPECT_EQ(sheet.pixel(2 + 8, 2 + 6)[0], 104); // tile 4, second row
+    EXPECT_EQ(sheet.pixel(0, 0)[0], 24);          // border
     EXPECT_THROW(contactSheet(std::vector<Image>{}, 3), std::invalid_argument);
     std::vector<Image> mixed{Image(2, 2), Image(3, 2)};
     EXPECT_THROW(contactSheet(mixed, 2), std::invalid_argument);

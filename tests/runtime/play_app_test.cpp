@@ -40,15 +40,17 @@ protected:
         s_dir = fs::temp_directory_path() / ("swell_play_test_" + std::to_string(::getpid()));
         fs::create_directories(s_dir);
         cache::Writer w(s_dir / "wave.swell", test::syntheticHeader());
-        for (const cache::Frame& f : test::syntheticFrames(400, 200, 3)) w.addFrame(f);
+        for (const cache::Frame& f : test::syntheticFrames(400, 200, 3))
+            w.addFrame(f);
         w.finish();
     }
     static void TearDownTestSuite() { fs::remove_all(s_dir); }
 
-    static Result run(const std::string& args) {
+    /// Runs swell-play with `args`, environment assignments `env` first.
+    static Result run(const std::string& args, const std::string& env = "") {
         const fs::path out = s_dir / "stdout.txt", err = s_dir / "stderr.txt";
-        const std::string cmd = std::string(SWELL_PLAY_EXE) + " " + args + " >" + out.string() +
-                                " 2>" + err.string();
+        const std::string cmd = env + " " + std::string(SWELL_PLAY_EXE) + " " + args + " >" +
+                                out.string() + " 2>" + err.string();
         const int status = std::system(cmd.c_str());
         Result r;
         r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -67,8 +69,9 @@ TEST_F(PlayApp, BenchJsonReportsTimingAndErrorAgainstTheReference) {
                          " --res 64x48 --slices 32 --frames 40 --warmup 5 --error-frames 3 --json");
     ASSERT_EQ(r.code, 0) << r.err;
     const nlohmann::json j = nlohmann::json::parse(r.out);
-    for (const char* key : {"renderer", "fps", "frame_ms_median", "frame_ms_p95", "max_abs_error",
-                            "rms_error", "stage_gpu_ms", "mode", "frames_exact", "cpu_reference_fps"}) {
+    for (const char* key :
+         {"renderer", "fps", "frame_ms_median", "frame_ms_p95", "max_abs_error", "rms_error",
+          "stage_gpu_ms", "mode", "frames_exact", "cpu_reference_fps"}) {
         EXPECT_TRUE(j.contains(key)) << key;
     }
     EXPECT_EQ(j["mode"], "surging");
@@ -83,9 +86,16 @@ TEST_F(PlayApp, BenchJsonReportsTimingAndErrorAgainstTheReference) {
 
 TEST_F(PlayApp, HeightsAreByteIdenticalForTheSameSeedAndDifferForAnother) {
     const std::string common = " --res 40x24 --slices 64 --seconds 0.2 --fps 20 --json";
-    ASSERT_EQ(run("heights " + cachePath() + " --out " + (s_dir / "a").string() + " --seed 5" + common).code, 0);
-    ASSERT_EQ(run("heights " + cachePath() + " --out " + (s_dir / "b").string() + " --seed 5" + common).code, 0);
-    const Result c = run("heights " + cachePath() + " --out " + (s_dir / "c").string() + " --seed 6" + common);
+    ASSERT_EQ(
+        run("heights " + cachePath() + " --out " + (s_dir / "a").string() + " --seed 5" + common)
+            .code,
+        0);
+    ASSERT_EQ(
+        run("heights " + cachePath() + " --out " + (s_dir / "b").string() + " --seed 5" + common)
+            .code,
+        0);
+    const Result c =
+        run("heights " + cachePath() + " --out " + (s_dir / "c").string() + " --seed 6" + common);
     ASSERT_EQ(c.code, 0) << c.err;
     int differ = 0;
     for (int i = 0; i < 4; ++i) {
@@ -110,7 +120,8 @@ TEST_F(PlayApp, BadInputGivesOneClearLineAndNonZeroExit) {
         {"bench " + (s_dir / "missing.swell").string(), "missing.swell"},
         {"bench " + cachePath() + " --res 64by64", "--res"},
         {"bench " + cachePath() + " -F 1.5", "eq. (6)"},
-        {"heights " + cachePath() + " --out " + (s_dir / "x").string() + " --policy bounce", "policy"},
+        {"heights " + cachePath() + " --out " + (s_dir / "x").string() + " --policy bounce",
+         "policy"},
     }};
     for (const auto& [args, needle] : cases) {
         const Result r = run(args);
@@ -120,6 +131,15 @@ TEST_F(PlayApp, BadInputGivesOneClearLineAndNonZeroExit) {
         EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
     }
     EXPECT_EQ(run("--help").code, 0);
+}
+
+TEST_F(PlayApp, NoEglIsOneClearLine) {
+    // glvnd with no vendor library: no EGL display can be had.
+    const Result r = run("bench " + cachePath() + " --frames 5",
+                         "__EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent/vendor.json");
+    EXPECT_NE(r.code, 0);
+    EXPECT_NE(r.err.find("swell-play: no usable EGL display"), std::string::npos) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
 }
 
 } // namespace swell::runtime

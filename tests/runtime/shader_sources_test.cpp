@@ -17,7 +17,10 @@ TEST(ShaderSources, EveryEmbeddedShaderCompilesAndLinks) {
         SCOPED_TRACE(std::string(s.name));
         EXPECT_NE(s.text.find("#version 450 core"), std::string_view::npos);
         if (s.name.ends_with(".comp")) {
-            EXPECT_NO_THROW({ GlProgram p = makeComputeProgram(s.name, s.text); EXPECT_NE(p.get(), 0u); });
+            EXPECT_NO_THROW({
+                GlProgram p = makeComputeProgram(s.name, s.text);
+                EXPECT_NE(p.get(), 0u);
+            });
         } else { // vertex and fragment shaders of the renderer: compiled for their own stage
             EXPECT_NO_THROW(checkShaderCompiles(s.name, s.text));
         }

@@ -1,6 +1,7 @@
 #include "swell/runtime/slice_sampler.h"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -21,6 +22,33 @@ ReplayParams params(double F, FramePolicy policy = FramePolicy::Clamp, int K = 3
 
 } // namespace
 
+TEST(ReplayParams, JsonRoundTripAndKeyedErrors) {
+    ReplayParams p;
+    p.cellsX = 97;
+    p.policy = FramePolicy::Clamp;
+    p.noise.filter = NoiseFilter::HighPass;
+    p.seed = 1234567890123ULL;
+    const nlohmann::json j = toJson(p);
+    EXPECT_EQ(j["policy"], "clamp");
+    EXPECT_EQ(j["noise"]["filter"], "high");
+    const ReplayParams q = replayParamsFromJson(j);
+    EXPECT_EQ(toJson(q), j);
+    EXPECT_EQ(replayParamsFromJson(nlohmann::json::object()).slices, 256); // paper defaults
+    auto message = [](const nlohmann::json& bad) {
+        try {
+            replayParamsFromJson(bad);
+        } catch (const std::invalid_argument& e) {
+            return std::string(e.what());
+        }
+        return std::string("no error");
+    };
+    EXPECT_NE(message({{"slicez", 3}}).find("slicez"), std::string::npos);
+    EXPECT_NE(message({{"fluctuation", 2.0}}).find("eq. (6)"), std::string::npos);
+    EXPECT_NE(message({{"noise", {{"filter", "band"}}}}).find("noise.filter"), std::string::npos);
+    EXPECT_NE(message({{"noise", {{"beta", "x"}}}}).find("noise.beta"), std::string::npos);
+    EXPECT_NE(message({{"policy", "bounce"}}).find("policy"), std::string::npos);
+}
+
 TEST(SliceSampler, APerTimeUnitFromThePaper) {
     cache::Header h;
     h.dt = 0.001;
@@ -35,11 +63,11 @@ TEST(SliceSampler, APerTimeUnitFromThePaper) {
 TEST(SliceSampler, WithoutNoiseEverySliceShowsTheNearestFrame) {
     const SliceSampler s(params(0.0), 100, 4.0);
     EXPECT_EQ(s.noise(), nullptr); // F = 0 builds no noise
-    EXPECT_EQ(s.sliceCount(), 63);  // K real + K - 1 inserted
+    EXPECT_EQ(s.sliceCount(), 63); // K real + K - 1 inserted
     for (int j = 0; j < s.sliceCount(); ++j) {
-        EXPECT_EQ(s.frame(0.125, j), 1u);  // 0.5 rounds up
-        EXPECT_EQ(s.frame(0.124, j), 0u);  // 0.496
-        EXPECT_EQ(s.frame(2.6, j), 10u);   // 10.4
+        EXPECT_EQ(s.frame(0.125, j), 1u); // 0.5 rounds up
+        EXPECT_EQ(s.frame(0.124, j), 0u); // 0.496
+        EXPECT_EQ(s.frame(2.6, j), 10u);  // 10.4
     }
 }
 
@@ -111,7 +139,8 @@ TEST(SliceSampler, FramesUsedIsTheUnionOverTaus) {
     const std::vector<double> taus = {0.0, 0.1, 0.2, 0.9, 1.3};
     std::set<std::uint32_t> expected;
     for (double t : taus) {
-        for (std::uint32_t f : s.frames(t)) expected.insert(f);
+        for (std::uint32_t f : s.frames(t))
+            expected.insert(f);
     }
     const std::vector<std::uint32_t> used = s.framesUsed(taus);
     EXPECT_EQ(std::vector<std::uint32_t>(expected.begin(), expected.end()), used);
@@ -125,7 +154,8 @@ TEST(SliceSampler, SeedChangesTheFrames) {
     const SliceSampler sa(a, 100000, 400.0), sb(b, 100000, 400.0);
     int differ = 0;
     const auto fa = sa.frames(50.3), fb = sb.frames(50.3);
-    for (std::size_t j = 0; j < fa.size(); ++j) differ += fa[j] != fb[j];
+    for (std::size_t j = 0; j < fa.size(); ++j)
+        differ += fa[j] != fb[j];
     EXPECT_GT(differ, static_cast<int>(fa.size()) / 2);
 }
 

@@ -35,10 +35,12 @@ TEST(SplashSystem, CountsRealAndArtificialSplashesOfTheRealSlices) {
     // 8 real slices x 3 splash particles x (1 real + 4 artificial).
     EXPECT_EQ(s.sprites(fx.allFrame(2), 0.3).size(), 8u * 3u * 5u);
     params.sliceStride = 2;
-    EXPECT_EQ(SplashSystem(fx.set, fx.grid, params, 1).sprites(fx.allFrame(2), 0.3).size(), 4u * 3u * 5u);
+    EXPECT_EQ(SplashSystem(fx.set, fx.grid, params, 1).sprites(fx.allFrame(2), 0.3).size(),
+              4u * 3u * 5u);
     // Frame 5 of the synthetic set is empty: those slices show no splash.
     auto frames = fx.allFrame(2);
-    for (std::size_t j = 0; j < frames.size(); j += 4) frames[j] = 5;
+    for (std::size_t j = 0; j < frames.size(); j += 4)
+        frames[j] = 5;
     EXPECT_EQ(s.sprites(frames, 0.3).size(), 4u * 3u * 5u);
     EXPECT_THROW((void)s.sprites(std::vector<std::uint32_t>(3, 0), 0.0), std::logic_error);
 }
@@ -75,7 +77,8 @@ TEST(SplashSystem, ArtificialSplashesFollowSection5) {
     double meanVx = 0.0;
     for (int a = 0; a < params.artificialPerReal; ++a) {
         const ArtificialSplash p = s.artificial(real, 4, 1, a);
-        const double r = std::sqrt(p.offset[0] * p.offset[0] + p.offset[1] * p.offset[1] + p.offset[2] * p.offset[2]);
+        const double r = std::sqrt(p.offset[0] * p.offset[0] + p.offset[1] * p.offset[1] +
+                                   p.offset[2] * p.offset[2]);
         EXPECT_LE(r, params.spawnRadius + 1e-12); // random offset in a sphere
         EXPECT_GE(p.lifetime, params.minLifetime);
         EXPECT_LE(p.lifetime, params.maxLifetime);
@@ -107,7 +110,8 @@ TEST(SplashSystem, SpritesMoveBallisticallyAndFadeOverTheirLife) {
         const double age = life * p.lifetime;
         const SplashSprite& sp = sprites[1 + static_cast<std::size_t>(a)];
         EXPECT_NEAR(sp.x, f.splash[0] + p.offset[0] + p.velocity[0] * age, 1e-5);
-        EXPECT_NEAR(sp.y, f.splash[1] + p.offset[1] + p.velocity[1] * age - 0.5 * 9.81 * age * age, 1e-5);
+        EXPECT_NEAR(sp.y, f.splash[1] + p.offset[1] + p.velocity[1] * age - 0.5 * 9.81 * age * age,
+                    1e-5);
         EXPECT_NEAR(sp.z, z0 + p.offset[2] + p.velocity[2] * age, 1e-5);
         EXPECT_NEAR(sp.alpha, 1.0 - life, 1e-6);
     }
@@ -116,7 +120,8 @@ TEST(SplashSystem, SpritesMoveBallisticallyAndFadeOverTheirLife) {
 TEST(SplashSystem, SameSeedSameSpritesOtherSeedOthers) {
     const Fixture fx;
     const SplashParams params;
-    const SplashSystem a(fx.set, fx.grid, params, 11), b(fx.set, fx.grid, params, 11), c(fx.set, fx.grid, params, 12);
+    const SplashSystem a(fx.set, fx.grid, params, 11), b(fx.set, fx.grid, params, 11),
+        c(fx.set, fx.grid, params, 12);
     const auto sa = a.sprites(fx.allFrame(6), 1.25);
     const auto sb = b.sprites(fx.allFrame(6), 1.25);
     const auto sc = c.sprites(fx.allFrame(6), 1.25);
@@ -124,7 +129,8 @@ TEST(SplashSystem, SameSeedSameSpritesOtherSeedOthers) {
     ASSERT_EQ(sa.size(), sc.size());
     std::size_t same = 0, differ = 0;
     for (std::size_t i = 0; i < sa.size(); ++i) {
-        same += sa[i].x == sb[i].x && sa[i].y == sb[i].y && sa[i].z == sb[i].z && sa[i].alpha == sb[i].alpha;
+        same += sa[i].x == sb[i].x && sa[i].y == sb[i].y && sa[i].z == sb[i].z &&
+                sa[i].alpha == sb[i].alpha;
         differ += sa[i].x != sc[i].x;
     }
     EXPECT_EQ(same, sa.size());
@@ -138,7 +144,8 @@ TEST(SplashSystem, NoSplashNoPassAndBadParametersThrow) {
     off.enabled = false;
     EXPECT_FALSE(SplashSystem(fx.set, fx.grid, off, 1).active());
     EXPECT_TRUE(SplashSystem(fx.set, fx.grid, off, 1).sprites(fx.allFrame(1), 0.0).empty());
-    for (cache::Frame& f : fx.set.frames) f.splash.clear();
+    for (cache::Frame& f : fx.set.frames)
+        f.splash.clear();
     EXPECT_FALSE(SplashSystem(fx.set, fx.grid, SplashParams{}, 1).active());
     SplashParams bad;
     bad.artificialPerReal = -1;

@@ -43,17 +43,22 @@ inline std::vector<cache::Frame> syntheticFrames(int count, int particles, std::
     for (int f = 0; f < count; ++f) {
         const double t = f * 0.01;
         cache::Frame& frame = frames[static_cast<std::size_t>(f)];
-        if (f == 5) continue;
+        if (f == 5)
+            continue;
         const double front = 3.2 + 0.6 * std::sin(t);
         for (int p = 0; p < particles; ++p) {
             const double x = 4.0 * (p + rng.uniform()) / particles;
-            if (x > front) continue;
-            if (f % 9 == 0 && x >= 1.6 && x < 2.4) continue;
+            if (x > front)
+                continue;
+            if (f % 9 == 0 && x >= 1.6 && x < 2.4)
+                continue;
             frame.surface.push_back(static_cast<float>(x));
-            frame.surface.push_back(static_cast<float>(syntheticWave(x, t) + 0.004 * (rng.uniform() - 0.5)));
+            frame.surface.push_back(
+                static_cast<float>(syntheticWave(x, t) + 0.004 * (rng.uniform() - 0.5)));
         }
         for (int s = 0; s < 3; ++s) {
-            for (float v : {static_cast<float>(front - 0.05 * s), 0.7f, 1.0f, 0.5f}) frame.splash.push_back(v);
+            for (float v : {static_cast<float>(front - 0.05 * s), 0.7f, 1.0f, 0.5f})
+                frame.splash.push_back(v);
         }
     }
     return frames;

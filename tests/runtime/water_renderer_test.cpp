@@ -46,7 +46,8 @@ std::vector<float> waveHeights(const Grid& g, double phase) {
     for (int m = 0; m < g.cellsZ; ++m) {
         for (int n = 0; n < g.cellsX; ++n) {
             const double x = g.x0 + (n + 0.5) * g.dx, z = (m + 0.5) * g.dz;
-            h.push_back(static_cast<float>(0.5 + 0.06 * std::cos(2.0 * x - phase) + 0.02 * std::sin(3.1 * x + 2.3 * z)));
+            h.push_back(static_cast<float>(0.5 + 0.06 * std::cos(2.0 * x - phase) +
+                                           0.02 * std::sin(3.1 * x + 2.3 * z)));
         }
     }
     return h;
@@ -56,7 +57,8 @@ std::vector<SplashSprite> fixedSplashes() {
     std::vector<SplashSprite> s;
     for (int i = 0; i < 40; ++i) {
         s.push_back({static_cast<float>(1.5 + 0.02 * i), static_cast<float>(0.62 + 0.003 * (i % 7)),
-                     static_cast<float>(1.0 + 0.03 * (i % 11)), 1.0f - 0.02f * static_cast<float>(i)});
+                     static_cast<float>(1.0 + 0.03 * (i % 11)),
+                     1.0f - 0.02f * static_cast<float>(i)});
     }
     return s;
 }
@@ -71,11 +73,14 @@ struct Scene {
         shading.height = h;
         shading.samples = samples;
     }
-    Image render(const std::vector<SplashSprite>& splashes, double phase = 0.0, const Camera* camera = nullptr) {
+    Image render(const std::vector<SplashSprite>& splashes, double phase = 0.0,
+                 const Camera* camera = nullptr) {
         const std::vector<float> h = waveHeights(grid, phase);
         GlBuffer buffer = makeStorageBuffer(h.size() * sizeof(float), h.data());
         WaterRenderer r(grid, kDomain, shading, proceduralSky(sky), sunDirection(sky));
-        const Camera cam = camera ? *camera : defaultCamera(grid, kDomain, 0.5, double(shading.width) / shading.height);
+        const Camera cam =
+            camera ? *camera
+                   : defaultCamera(grid, kDomain, 0.5, double(shading.width) / shading.height);
         r.draw(buffer.get(), cam, splashes, 0.02);
         lastSplashes = r.lastSplashCount();
         return r.readPixels();
@@ -83,7 +88,9 @@ struct Scene {
     std::size_t lastSplashes = 0;
 };
 
-std::filesystem::path goldenPath() { return std::filesystem::path(SWELL_TEST_DATA_DIR) / "water_golden.png"; }
+std::filesystem::path goldenPath() {
+    return std::filesystem::path(SWELL_TEST_DATA_DIR) / "water_golden.png";
+}
 
 TEST(WaterRenderer, GoldenImage) {
     const EglContext context;
@@ -97,7 +104,8 @@ TEST(WaterRenderer, GoldenImage) {
     const ImageDifference d = compareImages(image, golden);
     EXPECT_GE(d.psnr, 38.0) << "max channel error " << d.maxAbs << " on " << context.renderer();
     EXPECT_LE(d.maxAbs, 64);
-    if (d.psnr < 38.0) writePng(std::filesystem::temp_directory_path() / "water_golden_actual.png", image);
+    if (d.psnr < 38.0)
+        writePng(std::filesystem::temp_directory_path() / "water_golden_actual.png", image);
     // The tolerance is tight enough to catch a change: the same scene half a wave later fails it.
     const Image moved = scene.render(fixedSplashes(), 1.5);
     EXPECT_LT(compareImages(moved, golden).psnr, 38.0);
@@ -118,7 +126,8 @@ TEST(WaterRenderer, FrameIsNotBlankNorUniformAndShowsWaterAndSky) {
     EXPECT_GT(mid[1], mid[0] + 10) << int(mid[0]) << " " << int(mid[1]) << " " << int(mid[2]);
     EXPECT_GT(mid[2], mid[0] + 10);
     double top = 0.0;
-    for (int x = 0; x < 160; ++x) top += image.pixel(x, 0)[0] + image.pixel(x, 0)[1] + image.pixel(x, 0)[2];
+    for (int x = 0; x < 160; ++x)
+        top += image.pixel(x, 0)[0] + image.pixel(x, 0)[1] + image.pixel(x, 0)[2];
     EXPECT_GT(top / 160.0, mid[0] + mid[1] + mid[2]);
 }
 
@@ -130,7 +139,7 @@ TEST(WaterRenderer, SplashesAreDrawnOnlyWhenThereAreAny) {
     const Image with = scene.render(fixedSplashes());
     EXPECT_EQ(scene.lastSplashes, 40u);
     const ImageDifference d = compareImages(without, with);
-    EXPECT_GT(d.maxAbs, 40); // bright droplets over the water
+    EXPECT_GT(d.maxAbs, 40);   // bright droplets over the water
     EXPECT_LT(d.meanAbs, 5.0); // ... in a small part of the picture
 }
 
@@ -168,7 +177,8 @@ TEST(WaterRenderer, BadParametersThrow) {
 
 std::array<double, 4> transform(const Mat4& m, double x, double y, double z) {
     std::array<double, 4> r{};
-    for (int row = 0; row < 4; ++row) r[row] = m[row] * x + m[4 + row] * y + m[8 + row] * z + m[12 + row];
+    for (int row = 0; row < 4; ++row)
+        r[row] = m[row] * x + m[4 + row] * y + m[8 + row] * z + m[12 + row];
     return r;
 }
 
@@ -185,7 +195,8 @@ TEST(Camera, TargetProjectsToTheCentreAndInverseInverts) {
     EXPECT_NEAR(e[0], 0.0, 1e-5); // the eye is the origin of view space
     EXPECT_NEAR(e[2], 0.0, 1e-5);
     const Mat4 id = multiply(inverse(vp), vp);
-    for (int i = 0; i < 16; ++i) EXPECT_NEAR(id[i], i % 5 == 0 ? 1.0f : 0.0f, 1e-4) << i;
+    for (int i = 0; i < 16; ++i)
+        EXPECT_NEAR(id[i], i % 5 == 0 ? 1.0f : 0.0f, 1e-4) << i;
     EXPECT_THROW(inverse(Mat4{}), std::invalid_argument);
 }
 
@@ -244,7 +255,8 @@ TEST(SkyCubemap, ProceduralSkyIsDeterministicBlueAboveAndBrightAtTheSun) {
     p.faceSize = 32;
     p.cloudCover = 0.0;
     const CubeFaces a = proceduralSky(p), b = proceduralSky(p);
-    for (int f = 0; f < 6; ++f) EXPECT_EQ(a[f].rgb, b[f].rgb);
+    for (int f = 0; f < 6; ++f)
+        EXPECT_EQ(a[f].rgb, b[f].rgb);
     const std::uint8_t* zenith = a[2].pixel(16, 16);
     EXPECT_GT(zenith[2], zenith[0] + 40); // blue sky
     // Brightest texel of the sky lies near the sun direction.
@@ -278,13 +290,15 @@ TEST(SkyCubemap, ProceduralSkyIsDeterministicBlueAboveAndBrightAtTheSun) {
 }
 
 TEST(SkyCubemap, UserImagesLoadOrNameTheMissingFile) {
-    const auto dir = std::filesystem::temp_directory_path() / ("swell_sky_" + std::to_string(::getpid()));
+    const auto dir =
+        std::filesystem::temp_directory_path() / ("swell_sky_" + std::to_string(::getpid()));
     std::filesystem::create_directories(dir);
     SkyParams p;
     p.faceSize = 8;
     const CubeFaces faces = proceduralSky(p);
     const char* names[6] = {"px.png", "nx.png", "py.png", "ny.png", "pz.png", "nz.png"};
-    for (int i = 0; i < 5; ++i) writePng(dir / names[i], faces[i]);
+    for (int i = 0; i < 5; ++i)
+        writePng(dir / names[i], faces[i]);
     try {
         loadSkyImages(dir);
         FAIL();
@@ -293,7 +307,8 @@ TEST(SkyCubemap, UserImagesLoadOrNameTheMissingFile) {
     }
     writePng(dir / names[5], faces[5]);
     const CubeFaces back = loadSkyImages(dir);
-    for (int i = 0; i < 6; ++i) EXPECT_EQ(back[i].rgb, faces[i].rgb);
+    for (int i = 0; i < 6; ++i)
+        EXPECT_EQ(back[i].rgb, faces[i].rgb);
     writePng(dir / names[2], Image(8, 4));
     EXPECT_THROW(loadSkyImages(dir), RuntimeError);
     std::filesystem::remove_all(dir);

@@ -56,7 +56,7 @@ private:
     const SliceSampler& m_sampler;
     ReplayParams m_params;
     Grid m_grid;
-    std::vector<BinnedFrame> m_binned; ///< per held frame (FrameSet order)
+    std::vector<BinnedFrame> m_binned;         ///< per held frame (FrameSet order)
     std::vector<std::vector<int>> m_rowSlices; ///< slices in each row's z window
 };
 

@@ -20,7 +20,7 @@ namespace swell::runtime {
 /// z = (m + 1/2) dz; vertex m * N + n, as drawn by the renderer), two triangles per quad,
 /// counter-clockwise seen from above (+y).
 struct SurfaceMesh {
-    std::vector<float> positions;        ///< x, y, z per vertex, metres
+    std::vector<float> positions;         ///< x, y, z per vertex, metres
     std::vector<std::uint32_t> triangles; ///< three vertex indices per triangle
 };
 /// Throws std::invalid_argument when the field and grid disagree or N, M < 2.

@@ -18,9 +18,9 @@ enum class NoiseFilter {
 /// Noise shape. Frequencies are integer wavenumbers (cycles per period) per axis,
 /// |f| = sqrt(ft^2 + fk^2), ft in (-T/2, T/2], fk in [0, K/2].
 struct NoiseParams {
-    int timeSamples = 16;                     ///< T: noise samples along animation time (paper: 16)
-    double beta = 2.0;                        ///< power spectrum ~ |f|^-beta (paper Table 4: 2.0 surging)
-    double cutoff = 128.0;                    ///< c, in wavenumbers (paper Table 4: 128)
+    int timeSamples = 16;  ///< T: noise samples along animation time (paper: 16)
+    double beta = 2.0;     ///< power spectrum ~ |f|^-beta (paper Table 4: 2.0 surging)
+    double cutoff = 128.0; ///< c, in wavenumbers (paper Table 4: 128)
     NoiseFilter filter = NoiseFilter::LowPass; ///< band kept (paper: low-pass)
 
     /// Throws std::invalid_argument naming the key ("noise.beta", ...).

@@ -21,7 +21,7 @@ struct FrameSet {
     /// The held frame with cache index `id`, or null.
     const cache::Frame* find(std::uint32_t id) const;
     /// Throws std::invalid_argument if ids are not ascending, out of range or not matched by
-    /// frames, or a particle count is odd.
+    /// frames, a surface array has odd length, or a surface value is not finite.
     void validate() const;
 };
 

@@ -30,7 +30,8 @@ public:
 
     GlName get() const { return m_name; }
     void reset() {
-        if (m_name != 0) Deleter(m_name);
+        if (m_name != 0)
+            Deleter(m_name);
         m_name = 0;
     }
 

@@ -14,14 +14,14 @@
 namespace swell::runtime {
 
 struct SkyParams {
-    double sunAzimuthDegrees = 300.0;   ///< sun direction around y: 0 = +x, 90 = +z, degrees
-    double sunElevationDegrees = 32.0;  ///< sun height above the horizon, degrees (-90, 90)
-    Vec3 zenithColour{0.20, 0.42, 0.78}; ///< sky straight up, linear RGB 0..1
+    double sunAzimuthDegrees = 300.0;     ///< sun direction around y: 0 = +x, 90 = +z, degrees
+    double sunElevationDegrees = 32.0;    ///< sun height above the horizon, degrees (-90, 90)
+    Vec3 zenithColour{0.20, 0.42, 0.78};  ///< sky straight up, linear RGB 0..1
     Vec3 horizonColour{0.78, 0.86, 0.94}; ///< sky at the horizon, linear RGB 0..1
-    Vec3 groundColour{0.10, 0.17, 0.22}; ///< below the horizon, linear RGB 0..1
-    double cloudCover = 0.45;           ///< 0: clear sky .. 1: overcast
-    std::uint64_t cloudSeed = 3;        ///< seed of the cloud pattern
-    int faceSize = 256;                 ///< cube-face edge in texels
+    Vec3 groundColour{0.10, 0.17, 0.22};  ///< below the horizon, linear RGB 0..1
+    double cloudCover = 0.45;             ///< 0: clear sky .. 1: overcast
+    std::uint64_t cloudSeed = 3;          ///< seed of the cloud pattern
+    int faceSize = 256;                   ///< cube-face edge in texels
 
     /// Throws std::invalid_argument naming the field.
     void validate() const;

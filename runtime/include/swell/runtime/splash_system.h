@@ -16,16 +16,18 @@
 namespace swell::runtime {
 
 struct SplashParams {
-    bool enabled = true;          ///< draw splashes at all (a cache with none draws none anyway)
-    int artificialPerReal = 6;    ///< artificial splashes around each real one (Sec. 5)
-    double spawnRadius = 0.04;    ///< radius of the sphere around a real splash where artificial ones start, metres
-    double spriteRadius = 0.010;  ///< rendered radius of a splash sprite, metres
-    double velocityJitter = 0.4;  ///< random part of an artificial velocity, as a fraction of the real speed
-    double minSpeed = 0.3;        ///< speed scale used when the real particle is slower, m/s
-    double minLifetime = 0.15;    ///< shortest lifetime, seconds
-    double maxLifetime = 1.2;     ///< longest lifetime, seconds
-    double gravity = 9.81;        ///< downward acceleration of the ballistic motion, m/s^2
-    int sliceStride = 1;          ///< use every n-th real slice (1: all K)
+    bool enabled = true;       ///< draw splashes at all (a cache with none draws none anyway)
+    int artificialPerReal = 6; ///< artificial splashes around each real one (Sec. 5)
+    double spawnRadius =
+        0.04; ///< radius of the sphere around a real splash where artificial ones start, metres
+    double spriteRadius = 0.010; ///< rendered radius of a splash sprite, metres
+    double velocityJitter =
+        0.4; ///< random part of an artificial velocity, as a fraction of the real speed
+    double minSpeed = 0.3;     ///< speed scale used when the real particle is slower, m/s
+    double minLifetime = 0.15; ///< shortest lifetime, seconds
+    double maxLifetime = 1.2;  ///< longest lifetime, seconds
+    double gravity = 9.81;     ///< downward acceleration of the ballistic motion, m/s^2
+    int sliceStride = 1;       ///< use every n-th real slice (1: all K)
 
     /// Throws std::invalid_argument naming the field.
     void validate() const;
@@ -41,7 +43,8 @@ struct SplashSprite {
 
 /// The random properties of one artificial splash (Sec. 5), for tests and exporters.
 struct ArtificialSplash {
-    double offset[3] = {0.0, 0.0, 0.0};   ///< start relative to the real splash, |offset| <= spawnRadius
+    double offset[3] = {0.0, 0.0,
+                        0.0}; ///< start relative to the real splash, |offset| <= spawnRadius
     double velocity[3] = {0.0, 0.0, 0.0}; ///< initial velocity, m/s
     double lifetime = 0.0;                ///< seconds
     double phase = 0.0;                   ///< 0..1: where in its life it is at time 0
@@ -65,7 +68,8 @@ public:
     ///   p_i + offset + v t + (0, -g t^2 / 2, 0),  t = age = fract(seconds / L + phase) L,
     /// with opacity 1 - t / L (they respawn at the real particle when their life ends).
     /// Deterministic: the random properties depend on (seed, j, i, a) only.
-    std::vector<SplashSprite> sprites(std::span<const std::uint32_t> sliceFrames, double seconds) const;
+    std::vector<SplashSprite> sprites(std::span<const std::uint32_t> sliceFrames,
+                                      double seconds) const;
 
     /// The random properties of artificial splash `a` of splash particle `i` (position and
     /// velocity `realPosVel` = x, y, vx, vy) seen by slice j.

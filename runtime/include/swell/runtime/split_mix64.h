@@ -25,7 +25,8 @@ public:
     /// so the bits do not depend on the C library's log/cos.
     double gaussian() {
         double sum = 0.0;
-        for (int i = 0; i < 12; ++i) sum += uniform();
+        for (int i = 0; i < 12; ++i)
+            sum += uniform();
         return sum - 6.0;
     }
 

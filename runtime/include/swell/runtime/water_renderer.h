@@ -18,19 +18,22 @@
 namespace swell::runtime {
 
 struct ShadingParams {
-    int width = 1280;                         ///< image width, pixels
-    int height = 720;                         ///< image height, pixels
-    int samples = 4;                          ///< multisampling (1: off); capped by the driver
-    double refractiveIndex = 1.333;           ///< water; Schlick's F0 = ((n - 1) / (n + 1))^2
-    Vec3 absorption{2.2, 0.75, 0.55};         ///< Beer-Lambert coefficients along the refracted ray, per metre (R, G, B)
-    Vec3 scatterColour{0.015, 0.11, 0.15};    ///< colour deep water tends to, linear RGB
-    Vec3 bedColour{0.62, 0.55, 0.40};         ///< bed (sand) albedo seen through shallow water, linear RGB
-    double sunShininess = 900.0;              ///< exponent of the sun highlight lobe
-    double sunIntensity = 8.0;                ///< strength of the sun highlight
-    Vec3 sunColour{1.0, 0.95, 0.85};          ///< sun highlight colour, linear RGB
-    Vec3 splashColour{0.92, 0.95, 1.0};       ///< splash droplets, linear RGB
-    bool sides = true;                        ///< draw the block's four sides down to the bed
-    double reflectionLod = 1.0;               ///< cube-map mip level of reflections (fixed: no derivatives, fast on llvmpipe)
+    int width = 1280;               ///< image width, pixels
+    int height = 720;               ///< image height, pixels
+    int samples = 4;                ///< multisampling (1: off); capped by the driver
+    double refractiveIndex = 1.333; ///< water; Schlick's F0 = ((n - 1) / (n + 1))^2
+    Vec3 absorption{
+        2.2, 0.75,
+        0.55}; ///< Beer-Lambert coefficients along the refracted ray, per metre (R, G, B)
+    Vec3 scatterColour{0.015, 0.11, 0.15}; ///< colour deep water tends to, linear RGB
+    Vec3 bedColour{0.62, 0.55, 0.40}; ///< bed (sand) albedo seen through shallow water, linear RGB
+    double sunShininess = 900.0;      ///< exponent of the sun highlight lobe
+    double sunIntensity = 8.0;        ///< strength of the sun highlight
+    Vec3 sunColour{1.0, 0.95, 0.85};  ///< sun highlight colour, linear RGB
+    Vec3 splashColour{0.92, 0.95, 1.0}; ///< splash droplets, linear RGB
+    bool sides = true;                  ///< draw the block's four sides down to the bed
+    double reflectionLod =
+        1.0; ///< cube-map mip level of reflections (fixed: no derivatives, fast on llvmpipe)
 
     /// Throws std::invalid_argument naming the field.
     void validate() const;
@@ -38,10 +41,10 @@ struct ShadingParams {
 
 /// GPU time of each drawing stage of the last timed draw(), from GL timestamp queries (ms).
 struct RenderStageTimes {
-    double skyMs = 0.0;      ///< environment background (a copy of the cached sky pass)
-    double waterMs = 0.0;    ///< height-field mesh and sides
-    double splashMs = 0.0;   ///< point sprites (0 when no splash pass ran)
-    double resolveMs = 0.0;  ///< multisample resolve
+    double skyMs = 0.0;     ///< environment background (a copy of the cached sky pass)
+    double waterMs = 0.0;   ///< height-field mesh and sides
+    double splashMs = 0.0;  ///< point sprites (0 when no splash pass ran)
+    double resolveMs = 0.0; ///< multisample resolve
 };
 
 class WaterRenderer {
@@ -55,9 +58,10 @@ public:
     WaterRenderer(const WaterRenderer&) = delete;
     WaterRenderer& operator=(const WaterRenderer&) = delete;
 
-    /// Draws one frame: sky (rendered once per camera, then copied), the height field in `heightBuffer` (an SSBO of N x M floats,
-    /// [m * N + n], metres), the sides and, if `splashes` is not empty, the splash sprites of
-    /// radius `splashRadius` metres. Returns without waiting for the GPU.
+    /// Draws one frame: sky (rendered once per camera, then copied), the height field in
+    /// `heightBuffer` (an SSBO of N x M floats, [m * N + n], metres), the sides and, if `splashes`
+    /// is not empty, the splash sprites of radius `splashRadius` metres. Returns without waiting
+    /// for the GPU.
     void draw(GlName heightBuffer, const Camera& camera, std::span<const SplashSprite> splashes,
               double splashRadius);
     /// Resolves and reads the last frame back (blocks): 8-bit RGB, row 0 at the top.
@@ -92,7 +96,7 @@ private:
     GlProgram m_skirtProgram;
     GlProgram m_splashProgram;
     GlProgram m_backgroundProgram;
-    GlTexture m_background;          // the sky pass for m_backgroundCamera
+    GlTexture m_background; // the sky pass for m_backgroundCamera
     GlName m_backgroundFramebuffer = 0;
     Camera m_backgroundCamera;
     bool m_backgroundValid = false;
