@@ -18,9 +18,9 @@
 namespace swell::runtime {
 
 struct ShadingParams {
-    int width = 1280;               ///< image width, pixels
-    int height = 720;               ///< image height, pixels
-    int samples = 4;                ///< multisampling (1: off); capped by the driver
+    int width = 1280; ///< image width, pixels
+    int height = 720; ///< image height, pixels
+    int samples = 1;  ///< multisampling (1: off; 4 costs 2-3x on llvmpipe); capped by the driver
     double refractiveIndex = 1.333; ///< water; Schlick's F0 = ((n - 1) / (n + 1))^2
     Vec3 absorption{
         2.2, 0.75,
