@@ -1,6 +1,7 @@
 #version 450 core
 // A side of the water block, seen through a glass wall: light from above absorbed with depth
-// below the local surface (Beer-Lambert) plus in-scattering, a faint sky reflection.
+// below the local surface (Beer-Lambert) plus in-scattering, a faint sky reflection. Linear
+// RGB; the framebuffer is sRGB.
 
 in vec3 v_world;
 in float v_surface;
@@ -22,5 +23,5 @@ void main() {
     const vec3 V = normalize(u_eye - v_world);
     const float F = u_f0 + (1.0 - u_f0) * pow(1.0 - clamp(abs(dot(v_normal, V)), 0.0, 1.0), 5.0);
     colour = mix(colour, texture(u_sky, reflect(-V, v_normal)).rgb, F);
-    o_colour = vec4(pow(clamp(colour, 0.0, 1.0), vec3(1.0 / 2.2)), 1.0);
+    o_colour = vec4(colour, 1.0); // linear; the framebuffer is sRGB
 }

@@ -8,5 +8,5 @@ layout(location = 4) uniform vec3 u_eye;
 void main() {
     const vec4 p = u_invViewProj * vec4(v_ndc, 1.0, 1.0);
     const vec3 dir = p.xyz / p.w - u_eye;
-    o_colour = vec4(pow(texture(u_sky, dir).rgb, vec3(1.0 / 2.2)), 1.0);
+    o_colour = vec4(texture(u_sky, dir).rgb, 1.0); // linear; the framebuffer is sRGB
 }

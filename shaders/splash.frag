@@ -1,5 +1,6 @@
 #version 450 core
-// A splash sprite: a lit droplet disc (sun and sky), soft edge, premultiplied alpha.
+// A splash sprite: a lit droplet disc (sun and sky), soft edge, premultiplied alpha, blended
+// in linear RGB (sRGB framebuffer).
 in float v_alpha;
 layout(location = 0) out vec4 o_colour;
 layout(binding = 0) uniform samplerCube u_sky;
@@ -15,5 +16,5 @@ void main() {
     const float sun = 0.55 + 0.45 * max(dot(normalize(vec3(c.x, -c.y, nz)), normalize(u_sunDir + vec3(0.0, 0.0, 0.5))), 0.0);
     const vec3 colour = u_splashColour * (0.45 * ambient + 0.75 * sun);
     const float a = v_alpha * smoothstep(1.0, 0.55, r2) * 0.9;
-    o_colour = vec4(pow(clamp(colour, 0.0, 1.0), vec3(1.0 / 2.2)) * a, a);
+    o_colour = vec4(colour * a, a); // linear, premultiplied; the framebuffer is sRGB
 }

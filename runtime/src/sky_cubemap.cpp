@@ -204,7 +204,8 @@ GlTexture makeCubemapTexture(const CubeFaces& faces) {
     }
     glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
     glGenerateTextureMipmap(name);
-    glTextureParameteri(name, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+    // Reflections sample one fixed level (ShadingParams::reflectionLod): bilinear within it.
+    glTextureParameteri(name, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_NEAREST);
     glTextureParameteri(name, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     glTextureParameteri(name, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
     glTextureParameteri(name, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);

@@ -119,10 +119,10 @@ WaterRenderer::WaterRenderer(const Grid& grid, const cache::Domain& domain,
     glCreateRenderbuffers(3, m_renderbuffers);
     const int W = shading.width, H = shading.height;
     glNamedRenderbufferStorageMultisample(m_renderbuffers[0], m_samples > 1 ? m_samples : 0,
-                                          GL_RGBA8, W, H);
+                                          GL_SRGB8_ALPHA8, W, H);
     glNamedRenderbufferStorageMultisample(m_renderbuffers[1], m_samples > 1 ? m_samples : 0,
                                           GL_DEPTH24_STENCIL8, W, H);
-    glNamedRenderbufferStorage(m_renderbuffers[2], GL_RGBA8, W, H);
+    glNamedRenderbufferStorage(m_renderbuffers[2], GL_SRGB8_ALPHA8, W, H);
     glCreateFramebuffers(1, &m_msFramebuffer);
     glNamedFramebufferRenderbuffer(m_msFramebuffer, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER,
                                    m_renderbuffers[0]);
@@ -134,7 +134,7 @@ WaterRenderer::WaterRenderer(const Grid& grid, const cache::Domain& domain,
     GLuint bg = 0;
     glCreateTextures(GL_TEXTURE_2D, 1, &bg);
     m_background = GlTexture(bg);
-    glTextureStorage2D(bg, 1, GL_RGBA8, W, H);
+    glTextureStorage2D(bg, 1, GL_SRGB8_ALPHA8, W, H);
     glCreateFramebuffers(1, &m_backgroundFramebuffer);
     glNamedFramebufferTexture(m_backgroundFramebuffer, GL_COLOR_ATTACHMENT0, bg, 0);
     for (GLuint fb : {m_msFramebuffer, m_framebuffer, m_backgroundFramebuffer}) {
@@ -212,6 +212,7 @@ void WaterRenderer::draw(GlName heightBuffer, const Camera& camera,
     // 1. Environment: the cached sky pass, copied by a texel-fetch pass (a framebuffer blit
     //    cannot write a multisampled target).
     stamp(m_queries[0]);
+    glEnable(GL_FRAMEBUFFER_SRGB); // shaders write linear RGB; the colour buffers are sRGB
     glBindFramebuffer(GL_FRAMEBUFFER, m_msFramebuffer);
     glViewport(0, 0, W, H);
     glDisable(GL_BLEND);
@@ -293,6 +294,7 @@ void WaterRenderer::draw(GlName heightBuffer, const Camera& camera,
 void WaterRenderer::renderBackground(const Camera& camera, const Mat4& invViewProj) {
     // The environment seen through each pixel; it depends on the camera only, so it is drawn
     // once per camera and copied into every frame.
+    glEnable(GL_FRAMEBUFFER_SRGB);
     glBindFramebuffer(GL_FRAMEBUFFER, m_backgroundFramebuffer);
     glViewport(0, 0, m_shading.width, m_shading.height);
     glDisable(GL_DEPTH_TEST);
@@ -311,6 +313,7 @@ Image WaterRenderer::readPixels() const {
     const int W = m_shading.width, H = m_shading.height;
     Image image(W, H);
     std::vector<std::uint8_t> rows(static_cast<std::size_t>(W) * H * 3);
+    glDisable(GL_FRAMEBUFFER_SRGB); // read the stored sRGB bytes as they are
     glBindFramebuffer(GL_READ_FRAMEBUFFER, m_samples > 1 ? m_framebuffer : m_msFramebuffer);
     glReadBuffer(GL_COLOR_ATTACHMENT0);
     glPixelStorei(GL_PACK_ALIGNMENT, 1);

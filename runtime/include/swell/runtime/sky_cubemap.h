@@ -42,7 +42,8 @@ CubeFaces loadSkyImages(const std::filesystem::path& dir);
 /// Direction of texel (x, y) of face `face` (0..5) of an edge-`size` cube map (not normalised).
 Vec3 cubeDirection(int face, int x, int y, int size);
 
-/// A GL cube-map texture (RGB8, mipmapped, seamless filtering is enabled by the renderer).
+/// A GL cube-map texture (sRGB8, mipmapped, bilinear within a level; seamless filtering is
+/// enabled by the renderer).
 /// Needs a current context. Throws std::invalid_argument for faces that are not square or
 /// not all one size.
 GlTexture makeCubemapTexture(const CubeFaces& faces);
