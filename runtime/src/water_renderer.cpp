@@ -188,10 +188,13 @@ WaterRenderer::~WaterRenderer() {
 void WaterRenderer::stamp(const GlQuery& query) const {
     if (!m_timing)
         return;
-    // llvmpipe rasterises a whole scene when it is flushed, so a timestamp alone would charge
-    // every draw to whichever stage flushes; finishing first attributes work to its stage.
+    // llvmpipe rasterises a whole scene when it is flushed and writes a timestamp when the
+    // scene holding it has been rasterised: the query would be charged with the draws issued
+    // after it. Finishing before and after puts each timestamp in a scene of its own, between
+    // the stages (a timed frame is serialised stage by stage and a little slower).
     glFinish();
     glQueryCounter(query.get(), GL_TIMESTAMP);
+    glFinish();
 }
 
 void WaterRenderer::draw(GlName heightBuffer, const Camera& camera,
