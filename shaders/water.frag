@@ -1,6 +1,6 @@
 #version 450 core
 // Sec. 5: water shaded with the environment cube map: reflection, refraction (the
-// depth-dependent colour along the refracted ray, from water.vert) and the Fresnel effect
+// depth-dependent colour along the refracted ray, from surface_vertices.comp) and the Fresnel effect
 // (Schlick's approximation), plus a sun highlight. Linear RGB; the framebuffer is sRGB.
 
 in vec3 v_world;

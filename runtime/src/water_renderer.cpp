@@ -78,6 +78,7 @@ WaterRenderer::WaterRenderer(const Grid& grid, const cache::Domain& domain,
         throw std::invalid_argument("the mesh needs at least 2 x 2 cells");
     m_skyProgram = makeGraphicsProgram("sky.vert", "sky.frag");
     m_waterProgram = makeGraphicsProgram("water.vert", "water.frag");
+    m_surfaceProgram = makeEmbeddedProgram("surface_vertices.comp");
     m_skirtProgram = makeGraphicsProgram("skirt.vert", "skirt.frag");
     m_splashProgram = makeGraphicsProgram("splash.vert", "splash.frag");
     m_backgroundProgram = makeGraphicsProgram("sky.vert", "background.frag");
@@ -102,8 +103,22 @@ WaterRenderer::WaterRenderer(const Grid& grid, const cache::Domain& domain,
     m_indices = GlBuffer(name);
     glNamedBufferStorage(name, static_cast<GLsizeiptr>(indices.size() * sizeof(std::uint32_t)),
                          indices.data(), 0);
-    glCreateVertexArrays(1, &m_vertexArray);
-    glVertexArrayElementBuffer(m_vertexArray, m_indices.get());
+    // The mesh's vertices, written by surface_vertices.comp each frame: position, normal and
+    // refracted colour, three vec4 per vertex.
+    constexpr GLsizei kVertexBytes = 3 * 4 * sizeof(float);
+    glCreateBuffers(1, &name);
+    m_vertices = GlBuffer(name);
+    glNamedBufferStorage(name, static_cast<GLsizeiptr>(N) * M * kVertexBytes, nullptr, 0);
+    glCreateVertexArrays(1, &m_meshArray);
+    glVertexArrayElementBuffer(m_meshArray, m_indices.get());
+    glVertexArrayVertexBuffer(m_meshArray, 0, m_vertices.get(), 0, kVertexBytes);
+    for (GLuint attribute = 0; attribute < 3; ++attribute) {
+        glEnableVertexArrayAttrib(m_meshArray, attribute);
+        glVertexArrayAttribFormat(m_meshArray, attribute, 4, GL_FLOAT, GL_FALSE,
+                                  attribute * 4 * sizeof(float));
+        glVertexArrayAttribBinding(m_meshArray, attribute, 0);
+    }
+    glCreateVertexArrays(1, &m_vertexArray); // no attributes: full-screen passes, the sides
 
     glCreateBuffers(1, &name);
     m_splashBuffer = GlBuffer(name);
@@ -153,7 +168,7 @@ WaterRenderer::WaterRenderer(const Grid& grid, const cache::Domain& domain,
     const double r = (shading.refractiveIndex - 1.0) / (shading.refractiveIndex + 1.0);
     const auto f0 = static_cast<float>(r * r);
     const float bedY = domain.yMin;
-    for (GLuint p : {m_waterProgram.get(), m_skirtProgram.get()}) {
+    for (GLuint p : {m_surfaceProgram.get(), m_skirtProgram.get()}) {
         glProgramUniform2i(p, kCells, N, M);
         glProgramUniform2f(p, kOrigin, static_cast<float>(grid.x0 + 0.5 * grid.dx),
                            static_cast<float>(0.5 * grid.dz));
@@ -162,11 +177,14 @@ WaterRenderer::WaterRenderer(const Grid& grid, const cache::Domain& domain,
         glProgramUniform1f(p, kBedY, bedY);
         setVec3(p, kAbsorption, shading.absorption);
         setVec3(p, kScatter, shading.scatterColour);
-        glProgramUniform1f(p, kF0, f0);
     }
+    const GLuint v = m_surfaceProgram.get();
+    setVec3(v, kBed, shading.bedColour);
+    glProgramUniform1f(v, kEta, eta);
+    glProgramUniform1f(m_skirtProgram.get(), kF0, f0);
     const GLuint w = m_waterProgram.get();
-    setVec3(w, kBed, shading.bedColour);
-    glProgramUniform1f(w, kEta, eta);
+    setVec3(w, kSunDir, sun);
+    glProgramUniform1f(w, kF0, f0);
     glProgramUniform1f(w, kReflectionLod, static_cast<float>(shading.reflectionLod));
     glProgramUniform2f(w, kSun, static_cast<float>(shading.sunShininess),
                        static_cast<float>(shading.sunIntensity));
@@ -183,6 +201,7 @@ WaterRenderer::~WaterRenderer() {
     glDeleteRenderbuffers(3, m_renderbuffers);
     glDeleteVertexArrays(1, &m_splashArray);
     glDeleteVertexArrays(1, &m_vertexArray);
+    glDeleteVertexArrays(1, &m_meshArray);
 }
 
 void WaterRenderer::stamp(const GlQuery& query) const {
@@ -235,12 +254,21 @@ void WaterRenderer::draw(GlName heightBuffer, const Camera& camera,
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, heightBuffer);
-    for (GLuint p : {m_waterProgram.get(), m_skirtProgram.get()}) {
-        glProgramUniformMatrix4fv(p, kViewProj, 1, GL_FALSE, viewProj.data());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, m_vertices.get());
+    for (GLuint p : {m_surfaceProgram.get(), m_waterProgram.get(), m_skirtProgram.get()}) {
         setVec3(p, kEye, eye);
     }
+    for (GLuint p : {m_waterProgram.get(), m_skirtProgram.get()}) {
+        glProgramUniformMatrix4fv(p, kViewProj, 1, GL_FALSE, viewProj.data());
+    }
+    const auto vertexCount = static_cast<GLuint>(m_grid.cellsX * m_grid.cellsZ);
+    glUseProgram(m_surfaceProgram.get());
+    glDispatchCompute((vertexCount + 63) / 64, 1, 1);
+    glMemoryBarrier(GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT);
     glUseProgram(m_waterProgram.get());
+    glBindVertexArray(m_meshArray);
     glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(m_indexCount), GL_UNSIGNED_INT, nullptr);
+    glBindVertexArray(m_vertexArray);
     if (m_shading.sides) {
         glUseProgram(m_skirtProgram.get());
         for (int edge = 0; edge < 4; ++edge) {

@@ -93,6 +93,8 @@ private:
 
     GlProgram m_skyProgram;
     GlProgram m_waterProgram;
+    GlProgram m_surfaceProgram; // surface_vertices.comp
+    GlBuffer m_vertices;        // its output, the mesh's vertex buffer
     GlProgram m_skirtProgram;
     GlProgram m_splashProgram;
     GlProgram m_backgroundProgram;
@@ -103,7 +105,8 @@ private:
     GlTexture m_sky;
     GlBuffer m_indices;
     GlBuffer m_splashBuffer;
-    GlName m_vertexArray = 0;
+    GlName m_vertexArray = 0; // no attributes
+    GlName m_meshArray = 0;   // the mesh: m_vertices + m_indices
     GlName m_splashArray = 0;
     GlName m_msFramebuffer = 0;
     GlName m_framebuffer = 0;
