@@ -52,45 +52,76 @@ Camera defaultCamera(const Grid& grid, const cache::Domain& domain, double water
     using std::numbers::pi;
     const double sizeX = grid.cellsX * grid.dx;
     const double sizeZ = grid.extentZ;
-    const double sizeY = static_cast<double>(domain.yMax) - domain.yMin;
+    // The box to frame: the mesh's x and z extent, from the bed to halfway between the water
+    // level and the top of the domain (splashes rarely fly higher).
+    const double yLow = domain.yMin;
+    const double yHigh =
+        waterLevel + 0.5 * std::max(0.0, static_cast<double>(domain.yMax) - waterLevel);
     Camera c;
     c.fovYDegrees = fovYDegrees;
     c.target = {grid.x0 + 0.5 * sizeX, waterLevel, 0.5 * sizeZ};
-    const double radius = 0.5 * std::sqrt(sizeX * sizeX + sizeZ * sizeZ + sizeY * sizeY);
+    const double radius =
+        0.5 * std::sqrt(sizeX * sizeX + sizeZ * sizeZ + (yHigh - yLow) * (yHigh - yLow));
     const double elevation = 28.0 * pi / 180.0;
     const double azimuth = -35.0 * pi / 180.0; // from +z towards -x: the waves run to the right
     const Vec3 dir{std::cos(elevation) * std::sin(azimuth), std::sin(elevation),
                    std::cos(elevation) * std::cos(azimuth)};
-    // The nearest distance at which the 8 corners of the mesh's box (x, z extent, the domain's
-    // height) project inside 92% of the picture: bisection on the distance.
-    const double margin = 0.92;
-    auto fits = [&](double distance) {
+    const double margin = 0.92; // the box fills at most 92% of the picture
+    // NDC bounds (x0, x1, y0, y1) of the box's 8 corners seen from `target + distance dir`, or
+    // false if a corner is behind the eye.
+    auto bounds = [&](const Vec3& target, double distance, double out[4]) {
         Camera t = c;
-        t.position = {c.target[0] + distance * dir[0], c.target[1] + distance * dir[1],
-                      c.target[2] + distance * dir[2]};
+        t.target = target;
+        t.position = {target[0] + distance * dir[0], target[1] + distance * dir[1],
+                      target[2] + distance * dir[2]};
         t.nearPlane = 1e-4 * distance;
         t.farPlane = 10.0 * distance;
         const Mat4 vp = multiply(projectionMatrix(t, aspect), viewMatrix(t));
+        out[0] = out[2] = 1e300;
+        out[1] = out[3] = -1e300;
         for (int k = 0; k < 8; ++k) {
             const double x = grid.x0 + ((k & 1) ? sizeX : 0.0);
-            const double y = (k & 2) ? domain.yMax : domain.yMin;
+            const double y = (k & 2) ? yHigh : yLow;
             const double z = (k & 4) ? sizeZ : 0.0;
             double p[4];
             for (int r = 0; r < 4; ++r)
                 p[r] = vp[r] * x + vp[4 + r] * y + vp[8 + r] * z + vp[12 + r];
-            if (p[3] <= 0.0 || std::abs(p[0] / p[3]) > margin || std::abs(p[1] / p[3]) > margin)
+            if (p[3] <= 0.0)
                 return false;
+            out[0] = std::min(out[0], p[0] / p[3]);
+            out[1] = std::max(out[1], p[0] / p[3]);
+            out[2] = std::min(out[2], p[1] / p[3]);
+            out[3] = std::max(out[3], p[1] / p[3]);
         }
         return true;
     };
-    double lo = 0.0, hi = std::max(radius, 1e-6);
-    while (!fits(hi))
-        hi *= 2.0;
-    for (int i = 0; i < 50; ++i) {
-        const double mid = 0.5 * (lo + hi);
-        (fits(mid) ? hi : lo) = mid;
+    const Vec3 right = normalized(cross({-dir[0], -dir[1], -dir[2]}, {0.0, 1.0, 0.0}));
+    const Vec3 up = cross(right, {-dir[0], -dir[1], -dir[2]});
+    const double tanY = std::tan(0.5 * fovYDegrees * pi / 180.0);
+    double distance = 0.0;
+    for (int pass = 0; pass < 4; ++pass) {
+        // The nearest distance where the box fits (bisection), then move the target sideways
+        // and up or down so that the box's picture is centred.
+        auto fits = [&](double d) {
+            double b[4];
+            return bounds(c.target, d, b) && std::max(-b[0], b[1]) <= margin &&
+                   std::max(-b[2], b[3]) <= margin;
+        };
+        double lo = 0.0, hi = std::max(radius, 1e-6);
+        while (!fits(hi))
+            hi *= 2.0;
+        for (int i = 0; i < 50; ++i) {
+            const double mid = 0.5 * (lo + hi);
+            (fits(mid) ? hi : lo) = mid;
+        }
+        distance = hi;
+        double b[4];
+        bounds(c.target, distance, b);
+        const double sx = 0.5 * (b[0] + b[1]) * tanY * aspect * distance;
+        const double sy = 0.5 * (b[2] + b[3]) * tanY * distance;
+        for (int k = 0; k < 3; ++k)
+            c.target[k] += sx * right[k] + sy * up[k];
     }
-    const double distance = hi;
     c.position = {c.target[0] + distance * dir[0], c.target[1] + distance * dir[1],
                   c.target[2] + distance * dir[2]};
     c.nearPlane = std::max(distance - 2.0 * radius, distance * 0.02);

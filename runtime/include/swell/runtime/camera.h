@@ -26,11 +26,12 @@ struct Camera {
     void validate() const;
 };
 
-/// A three-quarter view of the whole base mesh: the target is the centre of the mesh at
-/// `waterLevel`; the eye looks across the propagation direction (x) from the far z side,
-/// slightly against the waves, 28 degrees above the horizon, at the nearest distance where the
-/// corners of the mesh's box (x and z extent, the domain's height) fill at most 92% of the
-/// picture at `aspect` (width / height). Clip planes follow from the distance.
+/// A three-quarter view of the whole base mesh: the eye looks across the propagation
+/// direction (x) from the far z side, slightly against the waves, 28 degrees above the
+/// horizon, at the nearest distance where the box of the mesh (x and z extent, from the bed to
+/// halfway between `waterLevel` and the domain's top) fills at most 92% of the picture at
+/// `aspect` (width / height), with the box centred in the picture. Clip planes follow from
+/// the distance.
 Camera defaultCamera(const Grid& grid, const cache::Domain& domain, double waterLevel,
                      double aspect, double fovYDegrees = 40.0);
 
