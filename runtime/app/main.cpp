@@ -727,6 +727,29 @@ int runRender(Options& o, RenderOptions& r) {
                    {"timed_frames", timedFrames}}},
                  {"frames", frames}});
     std::ofstream(out / "render.json") << meta.dump(2) << "\n";
+    if (exportHeights) {
+        // The sidecar `swell-play heights` writes, so tools read either folder the same way.
+        json heightFrames = json::array();
+        for (const json& f : frames) {
+            heightFrames.push_back(
+                {{"file",
+                  std::filesystem::path(f["heights"].get<std::string>()).filename().string()},
+                 {"tau", f["tau"]},
+                 {"seconds", f["seconds"]}});
+        }
+        json heightsMeta = paramsJson(o, set, A);
+        heightsMeta.update(
+            {{"renderer", context.renderer()},
+             {"format", "16-bit greyscale PNG; height_m = offset + value * scale"},
+             {"scale", {{"offset", scale.offset}, {"scale", scale.scale}, {"units", "m"}}},
+             {"layout", "column n = x cell (x = x0 + (n + 0.5) dx), row m = z cell"},
+             {"x0", grid.x0},
+             {"dx", grid.dx},
+             {"dz", grid.dz},
+             {"count", count},
+             {"frames", heightFrames}});
+        std::ofstream(out / "heights" / "heights.json") << heightsMeta.dump(2) << "\n";
+    }
     if (o.json) {
         json summary = meta;
         summary.erase("frames");

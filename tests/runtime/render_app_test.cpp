@@ -98,6 +98,11 @@ TEST_F(RenderApp, WritesFramesContactSheetSidecarAndExports) {
     // Exports: height map readable with the recorded scale, a 48 x 32 surface mesh, splashes.
     const HeightScale scale{meta["height_scale"]["offset"].get<double>(),
                             meta["height_scale"]["scale"].get<double>()};
+    const nlohmann::json heightsMeta =
+        nlohmann::json::parse(slurp(out / "heights" / "heights.json"));
+    EXPECT_EQ(heightsMeta["scale"]["offset"].get<double>(), scale.offset);
+    EXPECT_EQ(heightsMeta["frames"][2]["file"], "height_00002.png");
+    EXPECT_EQ(heightsMeta["seed"], 9);
     const HeightField h = readHeightPng(out / "heights" / "height_00002.png", scale);
     EXPECT_EQ(h.cellsX, 48);
     EXPECT_EQ(h.cellsZ, 32);
