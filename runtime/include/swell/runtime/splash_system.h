@@ -18,11 +18,11 @@ namespace swell::runtime {
 struct SplashParams {
     bool enabled = true;       ///< draw splashes at all (a cache with none draws none anyway)
     int artificialPerReal = 6; ///< artificial splashes around each real one (Sec. 5)
-    double spawnRadius =
-        0.04; ///< radius of the sphere around a real splash where artificial ones start, metres
+    /// Radius of the sphere around a real splash where artificial ones start, metres.
+    double spawnRadius = 0.04;
     double spriteRadius = 0.010; ///< rendered radius of a splash sprite, metres
-    double velocityJitter =
-        0.4; ///< random part of an artificial velocity, as a fraction of the real speed
+    /// Random part of an artificial velocity, as a fraction of the real speed.
+    double velocityJitter = 0.4;
     double minSpeed = 0.3;     ///< speed scale used when the real particle is slower, m/s
     double minLifetime = 0.15; ///< shortest lifetime, seconds
     double maxLifetime = 1.2;  ///< longest lifetime, seconds

@@ -1,9 +1,9 @@
 #pragma once
-// Shaded water (Sec. 5): draws a height field (GpuReplay::heightBuffer, or any mode's buffer of
-// the same layout) as a mesh with cube-map reflection, refraction and Fresnel, the block's
-// sides, and splash point sprites, into an offscreen multisampled framebuffer, and reads the
-// picture back. Needs a current GL context (EglContext). The renderer does not know where the
-// heights come from: a replay mode only changes who writes the buffer.
+// Shaded water (Sec. 5): draws a height field (GpuReplay::heightBuffer, or any mode's buffer
+// of the same layout) as a mesh with cube-map reflection, refraction and Fresnel, the block's
+// sides, and splash point sprites, into an offscreen (optionally multisampled) framebuffer,
+// and reads the picture back. Needs a current GL context (EglContext). The renderer does not
+// know where the heights come from: a replay mode only changes who writes the buffer.
 
 #include "swell/cache/header.h"
 #include "swell/runtime/camera.h"
@@ -22,9 +22,8 @@ struct ShadingParams {
     int height = 720; ///< image height, pixels
     int samples = 1;  ///< multisampling (1: off; 4 costs 2-3x on llvmpipe); capped by the driver
     double refractiveIndex = 1.333; ///< water; Schlick's F0 = ((n - 1) / (n + 1))^2
-    Vec3 absorption{
-        2.2, 0.75,
-        0.55}; ///< Beer-Lambert coefficients along the refracted ray, per metre (R, G, B)
+    /// Beer-Lambert coefficients along the refracted ray, per metre (R, G, B).
+    Vec3 absorption{2.2, 0.75, 0.55};
     Vec3 scatterColour{0.015, 0.11, 0.15}; ///< colour deep water tends to, linear RGB
     Vec3 bedColour{0.62, 0.55, 0.40}; ///< bed (sand) albedo seen through shallow water, linear RGB
     double sunShininess = 900.0;      ///< exponent of the sun highlight lobe
@@ -32,8 +31,8 @@ struct ShadingParams {
     Vec3 sunColour{1.0, 0.95, 0.85};  ///< sun highlight colour, linear RGB
     Vec3 splashColour{0.92, 0.95, 1.0}; ///< splash droplets, linear RGB
     bool sides = true;                  ///< draw the block's four sides down to the bed
-    double reflectionLod =
-        1.0; ///< cube-map mip level of reflections (fixed: no derivatives, fast on llvmpipe)
+    /// Cube-map mip level of the reflections (fixed: no derivatives, fast on llvmpipe).
+    double reflectionLod = 1.0;
 
     /// Throws std::invalid_argument naming the field.
     void validate() const;
