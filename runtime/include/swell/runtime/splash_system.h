@@ -43,8 +43,8 @@ struct SplashSprite {
 
 /// The random properties of one artificial splash (Sec. 5), for tests and exporters.
 struct ArtificialSplash {
-    double offset[3] = {0.0, 0.0,
-                        0.0}; ///< start relative to the real splash, |offset| <= spawnRadius
+    /// Start relative to the real splash, |offset| <= spawnRadius.
+    double offset[3] = {0.0, 0.0, 0.0};
     double velocity[3] = {0.0, 0.0, 0.0}; ///< initial velocity, m/s
     double lifetime = 0.0;                ///< seconds
     double phase = 0.0;                   ///< 0..1: where in its life it is at time 0
