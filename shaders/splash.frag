@@ -15,6 +15,6 @@ void main() {
     const vec3 ambient = texture(u_sky, vec3(0.0, 1.0, 0.0)).rgb;
     const float sun = 0.55 + 0.45 * max(dot(normalize(vec3(c.x, -c.y, nz)), normalize(u_sunDir + vec3(0.0, 0.0, 0.5))), 0.0);
     const vec3 colour = u_splashColour * (0.45 * ambient + 0.75 * sun);
-    const float a = v_alpha * smoothstep(1.0, 0.55, r2) * 0.9;
+    const float a = v_alpha * smoothstep(1.0, 0.2, r2) * 0.85; // soft, spray-like edge
     o_colour = vec4(colour * a, a); // linear, premultiplied; the framebuffer is sRGB
 }

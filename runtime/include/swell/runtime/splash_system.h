@@ -20,7 +20,7 @@ struct SplashParams {
     int artificialPerReal = 6; ///< artificial splashes around each real one (Sec. 5)
     /// Radius of the sphere around a real splash where artificial ones start, metres.
     double spawnRadius = 0.04;
-    double spriteRadius = 0.010; ///< rendered radius of a splash sprite, metres
+    double spriteRadius = 0.007; ///< rendered radius of a splash sprite, metres
     /// Random part of an artificial velocity, as a fraction of the real speed.
     double velocityJitter = 0.4;
     double minSpeed = 0.3;     ///< speed scale used when the real particle is slower, m/s
