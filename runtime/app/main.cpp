@@ -1,4 +1,5 @@
-// swell-play: headless replay of a .swell cache (paper Sec. 4): bench and height fields.
+// swell-play: headless replay of a .swell cache (paper Sec. 4): bench, height fields and shaded
+// renders (Sec. 5).
 // The library does the work; this file parses options, reads the cache, times and prints.
 
 #include "swell/cache/error.h"
@@ -6,10 +7,13 @@
 #include "swell/runtime/cpu_reconstruction.h"
 #include "swell/runtime/egl_context.h"
 #include "swell/runtime/error.h"
+#include "swell/runtime/exporters.h"
 #include "swell/runtime/gpu_reconstruction.h"
 #include "swell/runtime/height_png.h"
 #include "swell/runtime/mode_replay.h"
 #include "swell/runtime/slice_sampler.h"
+#include "swell/runtime/splash_system.h"
+#include "swell/runtime/water_renderer.h"
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
@@ -21,7 +25,11 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <spawn.h>
+#include <sys/wait.h>
 #include <unistd.h>
+
+extern char** environ;
 
 namespace {
 
@@ -426,6 +434,403 @@ int runHeights(Options& o, const std::string& outDir, double seconds) {
     return 0;
 }
 
+// ---- render (Sec. 5) -------------------------------------------------------------------
+
+/// Options of `swell-play render` beyond the shared ones.
+struct RenderOptions {
+    std::string outDir;            ///< output folder
+    std::string size = "1280x720"; ///< image width x height
+    double seconds = 3.0;          ///< simulated seconds to render
+    std::string video;             ///< mp4 to encode with ffmpeg (empty: none)
+    std::string exports;           ///< comma list: heights, mesh, splashes
+    std::string skyDir;            ///< folder with px, nx, py, ny, pz, nz .png (empty: procedural)
+    std::vector<double> eye;       ///< camera position x y z (empty: default framing)
+    std::vector<double> target;    ///< camera target x y z (empty: default framing)
+    double fov = 40.0;             ///< vertical field of view, degrees
+    int sheetFrames = 6;           ///< frames on the contact sheet
+    int pngCompression = 1;        ///< zlib level of the frame PNGs
+    bool noSplashes = false;       ///< skip the splash pass
+    ShadingParams shading;         ///< shading (size and samples are set from the options)
+    SplashParams splash;           ///< splash particles (Sec. 5)
+    SkyParams sky;                 ///< procedural sky and sun
+};
+
+/// The executable `name` on PATH, or empty.
+std::string findOnPath(const std::string& name) {
+    const char* path = std::getenv("PATH");
+    if (path == nullptr)
+        return {};
+    std::string dirs(path);
+    std::size_t start = 0;
+    while (start <= dirs.size()) {
+        const std::size_t end = std::min(dirs.find(':', start), dirs.size());
+        const std::filesystem::path candidate =
+            std::filesystem::path(end > start ? dirs.substr(start, end - start) : ".") / name;
+        if (::access(candidate.c_str(), X_OK) == 0)
+            return candidate.string();
+        start = end + 1;
+    }
+    return {};
+}
+
+/// Runs argv[0] with arguments (no shell), waits; returns its exit status (-1: not run).
+int runProcess(const std::vector<std::string>& args) {
+    std::vector<char*> argv;
+    for (const std::string& a : args)
+        argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    pid_t pid = 0;
+    if (posix_spawn(&pid, args[0].c_str(), nullptr, nullptr, argv.data(), environ) != 0)
+        return -1;
+    int status = 0;
+    if (waitpid(pid, &status, 0) < 0)
+        return -1;
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+Vec3 toVec3(const std::vector<double>& v, const char* what) {
+    if (v.size() != 3)
+        throw std::invalid_argument(fmt::format("{} needs three numbers x y z", what));
+    return {v[0], v[1], v[2]};
+}
+
+json vec3Json(const Vec3& v) {
+    return json::array({v[0], v[1], v[2]});
+}
+
+int runRender(Options& o, RenderOptions& r) {
+    finishOptions(o);
+    int width = 0, height = 0;
+    char x = 0, extra = 0;
+    if (std::sscanf(r.size.c_str(), "%d%c%d%c", &width, &x, &height, &extra) != 3 ||
+        (x != 'x' && x != 'X')) {
+        throw std::invalid_argument(
+            fmt::format("--size must look like 1280x720, got '{}'", r.size));
+    }
+    r.shading.width = width;
+    r.shading.height = height;
+    r.shading.validate();
+    r.splash.enabled = !r.noSplashes;
+    r.splash.validate();
+    r.sky.validate();
+    if (!(r.seconds > 0.0) || !std::isfinite(r.seconds)) {
+        throw std::invalid_argument(fmt::format("--seconds must be > 0, got {}", r.seconds));
+    }
+    bool exportHeights = false, exportMesh = false, exportSplashes = false;
+    for (std::size_t start = 0; start < r.exports.size();) {
+        const std::size_t end = std::min(r.exports.find(',', start), r.exports.size());
+        const std::string item = r.exports.substr(start, end - start);
+        if (item == "heights") {
+            exportHeights = true;
+        } else if (item == "mesh") {
+            exportMesh = true;
+        } else if (item == "splashes") {
+            exportSplashes = true;
+        } else if (!item.empty()) {
+            throw std::invalid_argument(
+                fmt::format("--export takes heights, mesh, splashes; got '{}'", item));
+        }
+        start = end + 1;
+    }
+    if (r.eye.empty() != r.target.empty())
+        throw std::invalid_argument("--camera and --target go together");
+    if (!r.video.empty() && r.video.find(".mp4") == std::string::npos) {
+        throw std::invalid_argument(
+            fmt::format("--video must name an .mp4 file, got '{}'", r.video));
+    }
+
+    const cache::Reader reader(o.cache);
+    const double A = framesPerTimeUnit(reader.header(), o.params);
+    const std::vector<SliceSampler> samplers =
+        makeSamplers(o.params, o.modeParams, reader.frameCount(), A);
+    const auto count =
+        static_cast<std::size_t>(std::max(1.0, std::round(r.seconds * o.playbackFps)));
+    std::vector<double> taus(count);
+    for (std::size_t i = 0; i < count; ++i)
+        taus[i] = tauOf(o, i);
+    const FrameSet set = loadUsed(reader, samplers, taus);
+    const CubeFaces faces = r.skyDir.empty() ? proceduralSky(r.sky) : loadSkyImages(r.skyDir);
+
+    const std::filesystem::path out(r.outDir);
+    std::filesystem::create_directories(out);
+    if (exportHeights)
+        std::filesystem::create_directories(out / "heights");
+    if (exportMesh)
+        std::filesystem::create_directories(out / "mesh");
+    if (exportSplashes)
+        std::filesystem::create_directories(out / "splashes");
+
+    const EglContext context;
+    ModeReplay gpu(set, o.params, o.modeParams, samplers);
+    const Grid& grid = gpu.grid();
+    // Splash sprites sit on straight transverse slices (Sec. 5, surging wave); the ripple's
+    // rotated slice sets and the whirlpool's spirals draw no splash pass yet.
+    const bool splashMode = o.modeParams.mode == ReplayMode::Surging;
+    const cache::Domain& domain = set.header.domain;
+    const double waterLevel = domain.yMin + waterDepth(set);
+    Camera camera =
+        defaultCamera(grid, domain, waterLevel, static_cast<double>(width) / height, r.fov);
+    if (!r.eye.empty()) {
+        camera.position = toVec3(r.eye, "--camera");
+        camera.target = toVec3(r.target, "--target");
+    }
+    camera.validate();
+    WaterRenderer renderer(grid, domain, r.shading, faces, sunDirection(r.sky));
+    // The artificial splashes get their own stream, derived from the run's seed.
+    const SplashSystem splashes(set, grid, r.splash, o.params.seed ^ 0x5b1a54e5ULL);
+    // Stage times (GL timestamp queries) on every 8th frame; the frame rate is taken over the
+    // other frames, so the queries do not slow what is measured.
+    constexpr std::size_t kTimedEvery = 8;
+
+    const cache::Domain& d = domain;
+    const HeightScale scale{d.yMin, (static_cast<double>(d.yMax) - d.yMin) / 65535.0};
+    // Contact sheet: sheetFrames frames evenly spread, each downscaled to about 320 px wide.
+    const std::size_t sheetCount =
+        std::min<std::size_t>(static_cast<std::size_t>(std::max(r.sheetFrames, 1)), count);
+    const int sheetFactor = std::max(1, width / 320);
+    std::vector<Image> sheet;
+    json frames = json::array();
+    double drawMs = 0.0, spriteMs = 0.0, readMs = 0.0, writeMs = 0.0, exportMs = 0.0;
+    double lookupMs = 0.0, reconstructMs = 0.0, timedDrawMs = 0.0;
+    std::size_t timedFrames = 0;
+    RenderStageTimes stages;
+    std::size_t spriteTotal = 0;
+    const bool progress = ::isatty(2) != 0 && !o.json;
+    const auto t0 = Clock::now();
+    for (std::size_t i = 0; i < count; ++i) {
+        const double seconds = o.start + static_cast<double>(i) / o.playbackFps;
+        auto ts = Clock::now();
+        // Each real slice shows its own frame's splashes: the same frame choice as the GPU (eq. 5).
+        std::vector<SplashSprite> sprites;
+        if (splashMode && splashes.active())
+            sprites = splashes.sprites(samplers.front().frames(taus[i]), seconds);
+        spriteMs += msSince(ts);
+        spriteTotal += sprites.size();
+
+        const bool timed =
+            i % kTimedEvery == kTimedEvery / 2 || count <= kTimedEvery / 2; // not frame 0 (set-up)
+        gpu.setTiming(timed);
+        renderer.setTiming(timed);
+        ts = Clock::now();
+        gpu.update(taus[i]);
+        renderer.draw(gpu.heightBuffer(), camera, sprites, r.splash.spriteRadius);
+        gpu.finish();
+        const double frameDrawMs = msSince(ts);
+        if (timed) {
+            ++timedFrames;
+            timedDrawMs += frameDrawMs;
+            const ModeStageTimes replayTimes = gpu.stageTimes();
+            lookupMs += replayTimes.sliceLookupMs;
+            reconstructMs += replayTimes.reconstructMs;
+            const RenderStageTimes st = renderer.stageTimes();
+            stages.skyMs += st.skyMs;
+            stages.waterMs += st.waterMs;
+            stages.splashMs += st.splashMs;
+            stages.resolveMs += st.resolveMs;
+        } else {
+            drawMs += frameDrawMs;
+        }
+
+        ts = Clock::now();
+        const Image image = renderer.readPixels();
+        readMs += msSince(ts);
+        ts = Clock::now();
+        const std::string name = fmt::format("frame_{:05d}.png", i);
+        writePng(out / name, image, r.pngCompression);
+        if (sheet.size() < sheetCount &&
+            i == sheet.size() * (count - 1) / std::max<std::size_t>(sheetCount - 1, 1)) {
+            sheet.push_back(downscale(image, sheetFactor));
+        }
+        writeMs += msSince(ts);
+
+        ts = Clock::now();
+        json entry{{"file", name},
+                   {"tau", taus[i]},
+                   {"seconds", seconds},
+                   {"splash_sprites", sprites.size()}};
+        if (exportHeights || exportMesh) {
+            const HeightField field = gpu.readHeights();
+            if (exportHeights) {
+                const std::string h = fmt::format("heights/height_{:05d}.png", i);
+                writeHeightPng(out / h, field, scale);
+                entry["heights"] = h;
+            }
+            if (exportMesh) {
+                const std::string m = fmt::format("mesh/surface_{:05d}.ply", i);
+                writeSurfacePly(out / m, makeSurfaceMesh(field, grid),
+                                fmt::format("swell-play surface, frame {}, t = {} s", i, seconds));
+                entry["mesh"] = m;
+            }
+        }
+        if (exportSplashes) {
+            const std::string sp = fmt::format("splashes/splashes_{:05d}.ply", i);
+            writeSplashPly(out / sp, sprites,
+                           fmt::format("swell-play splashes, frame {}, t = {} s", i, seconds));
+            entry["splashes"] = sp;
+        }
+        exportMs += msSince(ts);
+        frames.push_back(entry);
+        if (progress) {
+            const double eta = msSince(t0) / 1000.0 * static_cast<double>(count - i - 1) /
+                               static_cast<double>(i + 1);
+            std::cerr << fmt::format("\rswell-play render: {}/{} frames, ETA {:.0f} s ", i + 1,
+                                     count, eta);
+        }
+    }
+    if (progress)
+        std::cerr << "\n";
+    const double totalMs = msSince(t0);
+    const Image sheetImage = contactSheet(sheet, 3);
+    writePng(out / "contact_sheet.png", sheetImage, 6);
+
+    // Video through ffmpeg when it is installed; PNGs only (and a clear message) when not.
+    std::string videoStatus = "not requested";
+    if (!r.video.empty()) {
+        const std::string ffmpeg = findOnPath("ffmpeg");
+        if (ffmpeg.empty()) {
+            videoStatus = "skipped: ffmpeg not found";
+            std::cerr << "swell-play: ffmpeg not found on PATH: wrote the PNG frames only (install "
+                         "ffmpeg for --video)\n";
+        } else {
+            const std::filesystem::path videoPath(r.video);
+            if (videoPath.has_parent_path())
+                std::filesystem::create_directories(videoPath.parent_path());
+            const int rc = runProcess(
+                {ffmpeg, "-y", "-loglevel", "error", "-framerate", fmt::format("{}", o.playbackFps),
+                 "-i", (out / "frame_%05d.png").string(), "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2",
+                 "-c:v", "libx264", "-pix_fmt", "yuv420p", "-crf", "20", r.video});
+            if (rc != 0)
+                throw RuntimeError(fmt::format("ffmpeg failed (exit {}) writing {}", rc, r.video));
+            videoStatus = "written";
+        }
+    }
+
+    const double n = static_cast<double>(count);
+    const double nt = static_cast<double>(timedFrames);
+    // Frames without queries give the frame rate; a render shorter than kTimedEvery + 1 frames
+    // has only the first frame timed apart from them (its first draw includes shader set-up).
+    const double untimed = n - nt;
+    const double drawMsPerFrame = untimed > 0 ? drawMs / untimed : timedDrawMs / nt;
+    json meta = paramsJson(o, set, A);
+    meta.update({{"renderer", context.renderer()},
+                 {"gl_version", context.version()},
+                 {"egl_platform", context.platform()},
+                 {"size", {width, height}},
+                 {"samples", renderer.samples()},
+                 {"seconds", r.seconds},
+                 {"count", count},
+                 {"camera",
+                  {{"position", vec3Json(camera.position)},
+                   {"target", vec3Json(camera.target)},
+                   {"fov_y_degrees", camera.fovYDegrees},
+                   {"near", camera.nearPlane},
+                   {"far", camera.farPlane}}},
+                 {"sky",
+                  {{"source", r.skyDir.empty() ? std::string("procedural") : r.skyDir},
+                   {"sun_azimuth_degrees", r.sky.sunAzimuthDegrees},
+                   {"sun_elevation_degrees", r.sky.sunElevationDegrees},
+                   {"cloud_cover", r.sky.cloudCover},
+                   {"face_size", faces[0].width}}},
+                 {"shading",
+                  {{"refractive_index", r.shading.refractiveIndex},
+                   {"absorption_per_m", vec3Json(r.shading.absorption)},
+                   {"scatter_colour", vec3Json(r.shading.scatterColour)},
+                   {"bed_colour", vec3Json(r.shading.bedColour)},
+                   {"sun_shininess", r.shading.sunShininess},
+                   {"sun_intensity", r.shading.sunIntensity},
+                   {"sides", r.shading.sides}}},
+                 {"splash",
+                  {{"active", splashes.active()},
+                   {"artificial_per_real", r.splash.artificialPerReal},
+                   {"spawn_radius_m", r.splash.spawnRadius},
+                   {"sprite_radius_m", r.splash.spriteRadius},
+                   {"velocity_jitter", r.splash.velocityJitter},
+                   {"lifetime_s", {r.splash.minLifetime, r.splash.maxLifetime}},
+                   {"gravity", r.splash.gravity},
+                   {"seed", o.params.seed ^ 0x5b1a54e5ULL},
+                   {"sprites_mean", static_cast<double>(spriteTotal) / n}}},
+                 {"exports",
+                  {{"heights", exportHeights}, {"mesh", exportMesh}, {"splashes", exportSplashes}}},
+                 {"height_scale",
+                  {{"offset", scale.offset},
+                   {"scale", scale.scale},
+                   {"units", "m"},
+                   {"format", "16-bit greyscale PNG; height_m = offset + value * scale; "
+                              "column n = x cell (x = x0 + (n + 0.5) dx), row m = z cell"}}},
+                 {"x0", grid.x0},
+                 {"dx", grid.dx},
+                 {"dz", grid.dz},
+                 {"video", r.video},
+                 {"video_status", videoStatus},
+                 {"contact_sheet", "contact_sheet.png"},
+                 {"shaded_fps", 1000.0 / drawMsPerFrame},
+                 {"shaded_fps_frames", untimed > 0 ? untimed : nt},
+                 {"timing_ms_per_frame",
+                  {{"draw_synced", drawMsPerFrame},
+                   {"splash_sprites_cpu", spriteMs / n},
+                   {"readback", readMs / n},
+                   {"png_write", writeMs / n},
+                   {"exports", exportMs / n},
+                   {"total", totalMs / n}}},
+                 {"stage_gpu_ms",
+                  {{"slice_lookup", lookupMs / nt},
+                   {"reconstruct", reconstructMs / nt},
+                   {"sky", stages.skyMs / nt},
+                   {"water", stages.waterMs / nt},
+                   {"splashes", stages.splashMs / nt},
+                   {"resolve", stages.resolveMs / nt},
+                   {"timed_frames", timedFrames}}},
+                 {"frames", frames}});
+    std::ofstream(out / "render.json") << meta.dump(2) << "\n";
+    if (exportHeights) {
+        // The sidecar `swell-play heights` writes, so tools read either folder the same way.
+        json heightFrames = json::array();
+        for (const json& f : frames) {
+            heightFrames.push_back(
+                {{"file",
+                  std::filesystem::path(f["heights"].get<std::string>()).filename().string()},
+                 {"tau", f["tau"]},
+                 {"seconds", f["seconds"]}});
+        }
+        json heightsMeta = paramsJson(o, set, A);
+        heightsMeta.update(
+            {{"renderer", context.renderer()},
+             {"format", "16-bit greyscale PNG; height_m = offset + value * scale"},
+             {"scale", {{"offset", scale.offset}, {"scale", scale.scale}, {"units", "m"}}},
+             {"layout", "column n = x cell (x = x0 + (n + 0.5) dx), row m = z cell"},
+             {"x0", grid.x0},
+             {"dx", grid.dx},
+             {"dz", grid.dz},
+             {"count", count},
+             {"frames", heightFrames}});
+        std::ofstream(out / "heights" / "heights.json") << heightsMeta.dump(2) << "\n";
+    }
+    if (o.json) {
+        json summary = meta;
+        summary.erase("frames");
+        summary["out"] = r.outDir;
+        std::cout << summary.dump() << "\n";
+    } else {
+        std::cout << fmt::format(
+            "swell-play render: {} frames {}x{} ({} samples) in {}, contact sheet {}\n"
+            "  {}  ({}, EGL {})\n"
+            "  shaded {:.1f} fps (replay + draw, synced; splash sprites {:.0f} per frame), {:.1f} "
+            "frames/s with readback and PNG writing\n"
+            "  GPU ms/frame: slice lookup {:.3f}, reconstruct {:.3f}, sky {:.3f}, water {:.3f}, "
+            "splashes {:.3f}, resolve {:.3f}; CPU ms/frame: sprites {:.2f}, readback {:.2f}, PNG "
+            "{:.2f}\n"
+            "  video: {}\n",
+            count, width, height, renderer.samples(), r.outDir,
+            (out / "contact_sheet.png").string(), context.renderer(), context.version(),
+            context.platform(), 1000.0 / drawMsPerFrame, static_cast<double>(spriteTotal) / n,
+            1000.0 * n / totalMs, lookupMs / nt, reconstructMs / nt, stages.skyMs / nt,
+            stages.waterMs / nt, stages.splashMs / nt, stages.resolveMs / nt, spriteMs / n,
+            readMs / n, writeMs / n,
+            r.video.empty() ? videoStatus : r.video + " (" + videoStatus + ")");
+    }
+    return 0;
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
@@ -459,6 +864,63 @@ int main(int argc, char** argv) {
     heightsCmd->add_option("--seconds", seconds, "simulated seconds to write")
         ->capture_default_str();
 
+    Options render;
+    RenderOptions renderOpts;
+    auto* renderCmd = app.add_subcommand(
+        "render", "shaded frames (PNG), contact sheet, optional mp4 and exports (Sec. 5)");
+    addCommon(renderCmd, render);
+    renderCmd->add_option("--out", renderOpts.outDir, "output folder")->required();
+    renderCmd->add_option("--size", renderOpts.size, "image width x height")->capture_default_str();
+    renderCmd->add_option("--seconds", renderOpts.seconds, "simulated seconds to render")
+        ->capture_default_str();
+    renderCmd->add_option("--video", renderOpts.video,
+                          "also encode FILE.mp4 with ffmpeg (when installed)");
+    renderCmd->add_option("--export", renderOpts.exports,
+                          "per-frame exports, comma list of: heights (16-bit PNG + JSON), mesh "
+                          "(PLY), splashes (PLY)");
+    renderCmd->add_option("--samples", renderOpts.shading.samples, "multisampling (1: off)")
+        ->capture_default_str();
+    renderCmd
+        ->add_option("--camera", renderOpts.eye,
+                     "camera position x y z (metres; default: framing of the domain)")
+        ->expected(3);
+    renderCmd->add_option("--target", renderOpts.target, "camera target x y z (metres)")
+        ->expected(3);
+    renderCmd->add_option("--fov", renderOpts.fov, "vertical field of view, degrees")
+        ->capture_default_str();
+    renderCmd->add_option(
+        "--sky", renderOpts.skyDir,
+        "folder of six sky images px nx py ny pz nz .png (default: procedural sky)");
+    renderCmd
+        ->add_option("--sun-azimuth", renderOpts.sky.sunAzimuthDegrees,
+                     "sun azimuth, degrees (0 = +x, 90 = +z)")
+        ->capture_default_str();
+    renderCmd
+        ->add_option("--sun-elevation", renderOpts.sky.sunElevationDegrees,
+                     "sun elevation, degrees")
+        ->capture_default_str();
+    renderCmd
+        ->add_option("--splash-count", renderOpts.splash.artificialPerReal,
+                     "artificial splashes around each real one (Sec. 5)")
+        ->capture_default_str();
+    renderCmd
+        ->add_option("--splash-radius", renderOpts.splash.spriteRadius,
+                     "splash sprite radius, metres")
+        ->capture_default_str();
+    renderCmd
+        ->add_option("--splash-spread", renderOpts.splash.spawnRadius,
+                     "radius of the sphere artificial splashes start in, metres")
+        ->capture_default_str();
+    renderCmd->add_flag("--no-splashes", renderOpts.noSplashes, "skip the splash pass");
+    renderCmd->add_option("--sheet-frames", renderOpts.sheetFrames, "frames on the contact sheet")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 64));
+    renderCmd
+        ->add_option("--png-level", renderOpts.pngCompression,
+                     "zlib level of the frame PNGs (0..9)")
+        ->capture_default_str()
+        ->check(CLI::Range(0, 9));
+
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
@@ -472,6 +934,8 @@ int main(int argc, char** argv) {
     try {
         if (*benchCmd)
             return runBench(bench, frames, warmup, errorFrames, cpuFrames);
+        if (*renderCmd)
+            return runRender(render, renderOpts);
         return runHeights(heights, outDir, seconds);
     } catch (const cache::CacheError& e) {
         std::cerr << "swell-play: " << e.what() << "\n";

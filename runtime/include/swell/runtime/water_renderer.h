@@ -1,0 +1,117 @@
+#pragma once
+// Shaded water (Sec. 5): draws a height field (GpuReplay::heightBuffer, or any mode's buffer
+// of the same layout) as a mesh with cube-map reflection, refraction and Fresnel, the block's
+// sides, and splash point sprites, into an offscreen (optionally multisampled) framebuffer,
+// and reads the picture back. Needs a current GL context (EglContext). The renderer does not
+// know where the heights come from: a replay mode only changes who writes the buffer.
+
+#include "swell/cache/header.h"
+#include "swell/runtime/camera.h"
+#include "swell/runtime/gl_objects.h"
+#include "swell/runtime/image_io.h"
+#include "swell/runtime/replay_params.h"
+#include "swell/runtime/sky_cubemap.h"
+#include "swell/runtime/splash_system.h"
+
+#include <span>
+
+namespace swell::runtime {
+
+struct ShadingParams {
+    int width = 1280; ///< image width, pixels
+    int height = 720; ///< image height, pixels
+    int samples = 1;  ///< multisampling (1: off; 4 costs 2-3x on llvmpipe); capped by the driver
+    double refractiveIndex = 1.333; ///< water; Schlick's F0 = ((n - 1) / (n + 1))^2
+    /// Beer-Lambert coefficients along the refracted ray, per metre (R, G, B).
+    Vec3 absorption{2.2, 0.75, 0.55};
+    Vec3 scatterColour{0.015, 0.11, 0.15}; ///< colour deep water tends to, linear RGB
+    Vec3 bedColour{0.62, 0.55, 0.40}; ///< bed (sand) albedo seen through shallow water, linear RGB
+    double sunShininess = 900.0;      ///< exponent of the sun highlight lobe
+    double sunIntensity = 8.0;        ///< strength of the sun highlight
+    Vec3 sunColour{1.0, 0.95, 0.85};  ///< sun highlight colour, linear RGB
+    Vec3 splashColour{0.92, 0.95, 1.0}; ///< splash droplets, linear RGB
+    bool sides = true;                  ///< draw the block's four sides down to the bed
+    /// Cube-map mip level of the reflections (fixed: no derivatives, fast on llvmpipe).
+    double reflectionLod = 1.0;
+
+    /// Throws std::invalid_argument naming the field.
+    void validate() const;
+};
+
+/// GPU time of each drawing stage of the last timed draw(), from GL timestamp queries (ms).
+struct RenderStageTimes {
+    double skyMs = 0.0;     ///< environment background (a copy of the cached sky pass)
+    double waterMs = 0.0;   ///< height-field mesh and sides
+    double splashMs = 0.0;  ///< point sprites (0 when no splash pass ran)
+    double resolveMs = 0.0; ///< multisample resolve
+};
+
+class WaterRenderer {
+public:
+    /// `grid` and `domain` place the mesh (bed at domain.yMin); `sky` is the environment
+    /// (proceduralSky or loadSkyImages), `sun` the direction of the highlight. Throws
+    /// std::invalid_argument (parameters) or RuntimeError (GL: shaders, framebuffer).
+    WaterRenderer(const Grid& grid, const cache::Domain& domain, const ShadingParams& shading,
+                  const CubeFaces& sky, const Vec3& sun);
+    ~WaterRenderer();
+    WaterRenderer(const WaterRenderer&) = delete;
+    WaterRenderer& operator=(const WaterRenderer&) = delete;
+
+    /// Draws one frame: sky (rendered once per camera, then copied), the height field in
+    /// `heightBuffer` (an SSBO of N x M floats, [m * N + n], metres), the sides and, if `splashes`
+    /// is not empty, the splash sprites of radius `splashRadius` metres. Returns without waiting
+    /// for the GPU.
+    void draw(GlName heightBuffer, const Camera& camera, std::span<const SplashSprite> splashes,
+              double splashRadius);
+    /// Resolves and reads the last frame back (blocks): 8-bit RGB, row 0 at the top.
+    Image readPixels() const;
+    /// Puts GL timestamp queries around each stage of draw(), each after a glFinish (so a timed
+    /// frame is serialised stage by stage and a little slower).
+    void setTiming(bool on) { m_timing = on; }
+    /// Stage times of the last timed draw(); waits for the GPU.
+    RenderStageTimes stageTimes() const;
+    /// The multisample count in use (after the driver's cap).
+    int samples() const { return m_samples; }
+    /// Splash sprites drawn by the last draw() (0: no splash pass ran).
+    std::size_t lastSplashCount() const { return m_lastSplashes; }
+
+private:
+    void renderBackground(const Camera& camera, const Mat4& invViewProj);
+    void stamp(const GlQuery& query) const;
+
+    Grid m_grid;
+    cache::Domain m_domain;
+    ShadingParams m_shading;
+    Vec3 m_sun;
+    int m_samples = 1;
+    bool m_timing = false;
+    bool m_timed = false;
+    bool m_splashTimed = false;
+    std::size_t m_lastSplashes = 0;
+    std::size_t m_splashCapacity = 0;
+
+    GlProgram m_skyProgram;
+    GlProgram m_waterProgram;
+    GlProgram m_surfaceProgram; // surface_vertices.comp
+    GlBuffer m_vertices;        // its output, the mesh's vertex buffer
+    GlProgram m_skirtProgram;
+    GlProgram m_splashProgram;
+    GlProgram m_backgroundProgram;
+    GlTexture m_background; // the sky pass for m_backgroundCamera
+    GlName m_backgroundFramebuffer = 0;
+    Camera m_backgroundCamera;
+    bool m_backgroundValid = false;
+    GlTexture m_sky;
+    GlBuffer m_indices;
+    GlBuffer m_splashBuffer;
+    GlName m_vertexArray = 0; // no attributes
+    GlName m_meshArray = 0;   // the mesh: m_vertices + m_indices
+    GlName m_splashArray = 0;
+    GlName m_msFramebuffer = 0;
+    GlName m_framebuffer = 0;
+    GlName m_renderbuffers[3] = {0, 0, 0}; // multisampled colour, depth; resolved colour
+    GlQuery m_queries[5];
+    std::size_t m_indexCount = 0;
+};
+
+} // namespace swell::runtime
