@@ -27,7 +27,7 @@ int main(int argc, char** argv) {
     app.add_option("--threads", threads, "OpenMP threads (default: all)");
     app.add_option("--warmup", warmup, "steps run before timing");
     app.add_option("--steps", steps, "timed steps");
-    app.add_option("--set", sets, "override a key of the built-in scene: section.key=value");
+    app.add_option("--set", sets, "override a key of the built-in scene: section.key=value")->expected(1)->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
     app.add_flag("--json", asJson, "print one JSON object on stdout");
     CLI11_PARSE(app, argc, argv);
     if (threads > 0) omp_set_num_threads(threads);

@@ -106,7 +106,7 @@ json damBreak(const Scene& scene, double tEnd, const std::string& csv) {
     return out;
 }
 
-json stillTank(const Scene& scene, double settle, long steps) {
+json stillTank(const Scene& scene, double settle, long steps, long trace) {
     if (!scene.geometry.tank) throw SceneError("geometry.tank", "the still-tank check needs a tank");
     const Box tank = *scene.geometry.tank;
     const Box water = scene.geometry.water.at(0);
@@ -135,6 +135,16 @@ json stillTank(const Scene& scene, double settle, long steps) {
         for (long k = 0; k < steps; ++k) {
             const StepStats& s = solver.step();
             accumulate(totals, s);
+            if (trace > 0 && s.step % trace == 0) {
+                std::size_t fastest = 0;
+                for (std::size_t i = 0; i < P.size(); ++i) {
+                    if (std::hypot(P.vx[i], P.vy[i]) > std::hypot(P.vx[fastest], P.vy[fastest])) fastest = i;
+                }
+                std::fprintf(stderr, "step %ld t %.3f max|u| %.4f (particle %zu at %.4f, %.4f n/n0 %.3f) ppe %d "
+                             "surface %zu collisions %zu\n", s.step, s.time, s.maxSpeed, fastest, P.x[fastest],
+                             P.y[fastest], P.n[fastest] / solver.densityConstants().n0, s.ppeIterations,
+                             s.surfaceParticles, s.collisions);
+            }
             if (solver.time() >= settle) {
                 double p = 0.0;
                 for (std::size_t i : gauge) p += P.p[i];
@@ -169,10 +179,11 @@ json stillTank(const Scene& scene, double settle, long steps) {
 int main(int argc, char** argv) {
     CLI::App app{"swell-validate: dam-break and still-tank validation runs of the MPS solver"};
     app.require_subcommand(1);
+    app.fallthrough();
     std::vector<std::string> sets;
     int threads = 0;
     bool asJson = false;
-    app.add_option("--set", sets, "override a scene key: section.key=value (repeatable)");
+    app.add_option("--set", sets, "override a scene key: section.key=value (repeatable)")->expected(1)->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
     app.add_option("--threads", threads, "OpenMP threads (default: all)");
     app.add_flag("--json", asJson, "print one JSON object on stdout");
 
@@ -189,9 +200,11 @@ int main(int argc, char** argv) {
     std::string stillScene;
     double settle = 2.0;
     long steps = -1;
+    long trace = 0;
     still->add_option("scene", stillScene, "scene JSON (the first water rectangle sets H)")->required();
     still->add_option("--settle", settle, "time (s) after which averages start");
     still->add_option("--steps", steps, "steps to run (default: end_time / dt)");
+    still->add_option("--trace", trace, "print step stats to stderr every N steps");
 
     CLI11_PARSE(app, argc, argv);
     if (threads > 0) omp_set_num_threads(threads);
@@ -203,7 +216,7 @@ int main(int argc, char** argv) {
         } else {
             const Scene scene = sceneWithOverrides(stillScene, sets);
             if (steps < 0) steps = std::lround(scene.solver.endTime / scene.solver.dt);
-            out = stillTank(scene, settle, steps);
+            out = stillTank(scene, settle, steps, trace);
         }
         out["wall_seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         out["threads"] = omp_get_max_threads();

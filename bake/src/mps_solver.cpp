@@ -57,7 +57,12 @@ std::string_view toString(Phase phase) {
 }
 
 std::string_view toString(Preconditioner p) {
-    return p == Preconditioner::Jacobi ? "jacobi" : "incomplete_cholesky";
+    switch (p) {
+    case Preconditioner::Jacobi: return "jacobi";
+    case Preconditioner::SymmetricGaussSeidel: return "symmetric_gauss_seidel";
+    case Preconditioner::IncompleteCholesky: return "incomplete_cholesky";
+    }
+    return "?";
 }
 
 std::string_view toString(SourceTerm s) { return s == SourceTerm::Relaxed ? "relaxed" : "mixed"; }
@@ -153,9 +158,14 @@ void MpsSolver::fail(std::size_t particle, const std::string& reason) const {
 void MpsSolver::rebuildNeighbors(const std::vector<double>& x, const std::vector<double>& y) {
     const std::size_t n = m_p.size();
     for (std::size_t i = 0; i < n; ++i) {
-        if (!std::isfinite(x[i]) || !std::isfinite(y[i]) || !m_domain.contains(x[i], y[i])) {
-            fail(i, fmt::format("{} particle at ({:.6g}, {:.6g}) m is outside the domain or not finite",
-                                toString(m_p.kind[i]), x[i], y[i]));
+        if (!std::isfinite(x[i]) || !std::isfinite(y[i])) {
+            fail(i, fmt::format("non-finite position of {} particle: ({}, {}) m, velocity ({}, {}) m/s",
+                                toString(m_p.kind[i]), x[i], y[i], m_p.vx[i], m_p.vy[i]));
+        }
+        if (!m_domain.contains(x[i], y[i])) {
+            fail(i, fmt::format("{} particle at ({:.6g}, {:.6g}) m left the domain [{:.6g}, {:.6g}] x [{:.6g}, {:.6g}] m",
+                                toString(m_p.kind[i]), x[i], y[i], m_domain.x0, m_domain.x1, m_domain.y0,
+                                m_domain.y1));
         }
     }
     if (!m_grid.build(x, y, m_reList)) {
@@ -456,6 +466,27 @@ void MpsSolver::applyPreconditioner(const double* r, double* z) const {
         for (int i = 0; i < rows; ++i) z[i] = r[i] * m_invDiag[static_cast<std::size_t>(i)];
         return;
     }
+    if (m_par.preconditioner == Preconditioner::SymmetricGaussSeidel) {
+        // M = (D + L) D^-1 (D + U), U = L^T: forward sweep (D + L) y = r, then backward
+        // sweep (D + U) z = D y, i.e. z_i = y_i - (sum_{j>i} a_ij z_j) / a_ii.
+        for (int i = 0; i < rows; ++i) {
+            double s = r[i];
+            const int dpos = m_diagPos[static_cast<std::size_t>(i)];
+            for (int k = m_rowPtr[static_cast<std::size_t>(i)]; k < dpos; ++k) {
+                s -= m_val[static_cast<std::size_t>(k)] * z[m_col[static_cast<std::size_t>(k)]];
+            }
+            z[i] = s * m_invDiag[static_cast<std::size_t>(i)];
+        }
+        for (int i = rows - 1; i >= 0; --i) {
+            double s = 0.0;
+            const int dpos = m_diagPos[static_cast<std::size_t>(i)];
+            for (int k = dpos + 1; k < m_rowPtr[static_cast<std::size_t>(i) + 1]; ++k) {
+                s += m_val[static_cast<std::size_t>(k)] * z[m_col[static_cast<std::size_t>(k)]];
+            }
+            z[i] -= s * m_invDiag[static_cast<std::size_t>(i)];
+        }
+        return;
+    }
     // Forward solve L y = r (y stored in z), then backward L^T z = y.
     for (int i = 0; i < rows; ++i) {
         double s = r[i];
@@ -566,6 +597,7 @@ void MpsSolver::correctionPhase(double dt) {
     // correction u' = -dt/rho grad p, u = u* + u', r = r* + dt u' (K&O eq. (14)-(15)).
     const double coefG = kDim / m_latN.n0;
     const double k = dt / m_phys.density;
+    const bool gc = m_par.gradientCorrection;
     double maxSpeed2 = 0.0;
 #pragma omp parallel for schedule(static) reduction(max : maxSpeed2)
     for (std::size_t i = 0; i < n; ++i) {
@@ -580,6 +612,33 @@ void MpsSolver::correctionPhase(double dt) {
             const double f = (m_p.p[j] - m_pMin[i]) / r2 * mpsWeight(std::sqrt(r2), m_reN);
             gx += f * dx;
             gy += f * dy;
+        }
+        if (gc) {
+            // Khayyer & Gotoh (2011) eq. (14)-(15): C_i = (d/n0 sum w r_ij r_ij^T / r^2)^-1.
+            double cxx = 0.0, cxy = 0.0, cyy = 0.0;
+            for (std::uint32_t j : m_grid.neighbors(i)) {
+                if (m_p.kind[j] == ParticleKind::Dummy) continue;
+                const double dx = m_xStar[j] - m_xStar[i];
+                const double dy = m_yStar[j] - m_yStar[i];
+                const double r2 = dx * dx + dy * dy;
+                if (r2 >= reN2 || r2 <= 0.0) continue;
+                const double w = mpsWeight(std::sqrt(r2), m_reN) / r2;
+                cxx += w * dx * dx;
+                cxy += w * dx * dy;
+                cyy += w * dy * dy;
+            }
+            cxx *= coefG;
+            cxy *= coefG;
+            cyy *= coefG;
+            const double det = cxx * cyy - cxy * cxy;
+            // Use the correction only where the tensor is well conditioned (not for a particle
+            // with neighbours on one line, e.g. a lone splash pair).
+            if (det > 0.1) {
+                const double hx = (cyy * gx - cxy * gy) / det;
+                const double hy = (-cxy * gx + cxx * gy) / det;
+                gx = hx;
+                gy = hy;
+            }
         }
         const double ux = -k * coefG * gx;
         const double uy = -k * coefG * gy;

@@ -194,8 +194,10 @@ Scene parseScene(const json& j) {
         p.collisionDistance = s.number("collision_distance", p.collisionDistance, 0.0, 1.0, false, " (l0)");
         p.restitution = s.number("restitution", p.restitution, 0.0, 1.0);
         p.sourceTerm = s.enumeration("source_term", p.sourceTerm, {SourceTerm::Relaxed, SourceTerm::Mixed});
+        p.gradientCorrection = s.boolean("gradient_correction", p.gradientCorrection);
         p.preconditioner = s.enumeration("preconditioner", p.preconditioner,
-                                         {Preconditioner::Jacobi, Preconditioner::IncompleteCholesky});
+                                         {Preconditioner::Jacobi, Preconditioner::SymmetricGaussSeidel,
+                                          Preconditioner::IncompleteCholesky});
         p.ppeTolerance = s.number("ppe_tolerance", p.ppeTolerance, 0.0, 0.5, true);
         p.ppeMaxIterations = s.integer("ppe_max_iterations", p.ppeMaxIterations, 1, 1000000);
         p.neighborSkin = s.number("neighbor_skin", p.neighborSkin, 0.0, 2.0, false, " (l0)");
@@ -271,6 +273,7 @@ json toJson(const Scene& sc) {
                     {"relaxation", s.relaxation}, {"compressibility", s.compressibility},
                     {"collision_distance", s.collisionDistance}, {"restitution", s.restitution},
                     {"source_term", std::string(toString(s.sourceTerm))},
+                    {"gradient_correction", s.gradientCorrection},
                     {"preconditioner", std::string(toString(s.preconditioner))},
                     {"ppe_tolerance", s.ppeTolerance}, {"ppe_max_iterations", s.ppeMaxIterations},
                     {"neighbor_skin", s.neighborSkin}, {"max_neighbors", s.maxNeighbors}}},
