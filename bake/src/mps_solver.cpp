@@ -15,6 +15,12 @@ namespace {
 
 constexpr double kDim = 2.0; // d in K&O's Laplacian and gradient models
 
+// Loops shorter than this run on one thread: below it an OpenMP fork/join costs more than
+// it saves, and on a busy machine a woken thread may wait a whole scheduler slice.
+constexpr std::size_t kParallelMin = 4096;
+// Same for the cheap per-element vector operations of the conjugate gradient.
+constexpr std::size_t kParallelVector = 65536;
+
 using Clock = std::chrono::steady_clock;
 
 /// Adds the wall time since construction (or the last lap) to one phase slot.
@@ -37,7 +43,7 @@ bool isFixed(ParticleKind k) { return k != ParticleKind::Water; }
 
 double dot(const double* a, const double* b, std::size_t n) {
     double s = 0.0;
-#pragma omp parallel for reduction(+ : s) schedule(static)
+#pragma omp parallel for reduction(+ : s) schedule(static) if(n >= kParallelVector)
     for (std::size_t i = 0; i < n; ++i) s += a[i] * b[i];
     return s;
 }
@@ -61,6 +67,7 @@ std::string_view toString(Preconditioner p) {
     case Preconditioner::Jacobi: return "jacobi";
     case Preconditioner::SymmetricGaussSeidel: return "symmetric_gauss_seidel";
     case Preconditioner::IncompleteCholesky: return "incomplete_cholesky";
+    case Preconditioner::TwoLevel: return "two_level";
     }
     return "?";
 }
@@ -122,6 +129,11 @@ MpsSolver::MpsSolver(const PhysicsParams& physics, const SolverParams& solver, P
     m_ic.assign(cap, 0.0);
     m_diagPos.assign(n, 0);
     m_icMark.assign(n, -1);
+    m_aggStart.assign(n + 1, 0);
+    m_aggOf.assign(n, 0);
+    m_rc.assign(n, 0.0);
+    m_zc.assign(n, 0.0);
+    m_band.assign(std::min<std::size_t>(n * 64, std::size_t{1} << 22), 0.0);
     for (auto* v : {&m_b, &m_x, &m_r, &m_z, &m_d, &m_q, &m_invDiag}) v->assign(n, 0.0);
     // Initial number density, so n is meaningful before the first step.
     rebuildNeighbors(m_p.x, m_p.y);
@@ -185,7 +197,7 @@ bool MpsSolver::skinUsedUp(const std::vector<double>& x, const std::vector<doubl
     const double limit2 = half * half;
     const std::size_t n = m_p.size();
     int used = 0;
-#pragma omp parallel for reduction(| : used) schedule(static)
+#pragma omp parallel for reduction(| : used) schedule(static) if(n >= kParallelMin)
     for (std::size_t i = 0; i < n; ++i) {
         const double dx = x[i] - m_xs[i];
         const double dy = y[i] - m_ys[i];
@@ -237,7 +249,7 @@ void MpsSolver::explicitPhase(double dt) {
     const double nu = m_phys.kinematicViscosity;
     const double g = m_phys.gravity;
     const double reL2 = m_reL * m_reL;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if(n >= kParallelMin)
     for (std::size_t i = 0; i < n; ++i) {
         if (isFixed(m_p.kind[i])) {
             m_xStar[i] = m_p.x[i];
@@ -270,7 +282,7 @@ void MpsSolver::explicitPhase(double dt) {
     const double c2 = m_collide * m_collide;
     const double e = m_par.restitution;
     std::size_t collisions = 0;
-#pragma omp parallel for schedule(static) reduction(+ : collisions)
+#pragma omp parallel for schedule(static) reduction(+ : collisions) if(n >= kParallelMin)
     for (std::size_t i = 0; i < n; ++i) {
         m_uC[i] = m_uStar[i];
         m_vC[i] = m_vStar[i];
@@ -292,7 +304,7 @@ void MpsSolver::explicitPhase(double dt) {
         }
     }
     m_stats.collisions = collisions;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if(n >= kParallelMin)
     for (std::size_t i = 0; i < n; ++i) {
         if (isFixed(m_p.kind[i])) continue;
         m_xStar[i] += (m_uC[i] - m_uStar[i]) * dt;
@@ -309,7 +321,7 @@ void MpsSolver::densityPhase(double /*dt*/) {
     const bool mixed = m_par.sourceTerm == SourceTerm::Mixed;
     const double coefD = kDim / m_latN.n0;
     std::size_t surface = 0;
-#pragma omp parallel for schedule(static) reduction(+ : surface)
+#pragma omp parallel for schedule(static) reduction(+ : surface) if(n >= kParallelMin)
     for (std::size_t i = 0; i < n; ++i) {
         double s = 0.0;
         double div = 0.0;
@@ -355,7 +367,7 @@ void MpsSolver::assemblePpe(double dt) {
     m_rows = static_cast<std::size_t>(rows);
     const double reL2 = m_reL * m_reL;
     // First pass: entries per row (off-diagonals to other unknowns, plus the diagonal).
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if(static_cast<std::size_t>(rows) >= kParallelMin)
     for (int r = 0; r < rows; ++r) {
         const std::uint32_t i = m_rowParticle[static_cast<std::size_t>(r)];
         int count = 1;
@@ -380,7 +392,7 @@ void MpsSolver::assemblePpe(double dt) {
     const double gamma = m_par.relaxation;
     const double n0 = m_latN.n0;
     const bool mixed = m_par.sourceTerm == SourceTerm::Mixed;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if(static_cast<std::size_t>(rows) >= kParallelMin)
     for (int r = 0; r < rows; ++r) {
         const std::uint32_t i = m_rowParticle[static_cast<std::size_t>(r)];
         int pos = m_rowPtr[static_cast<std::size_t>(r)];
@@ -419,7 +431,7 @@ void MpsSolver::assemblePpe(double dt) {
 
 void MpsSolver::matVec(const double* v, double* out) const {
     const int rows = static_cast<int>(m_rows);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if(static_cast<std::size_t>(rows) >= kParallelMin)
     for (int r = 0; r < rows; ++r) {
         double s = 0.0;
         for (int k = m_rowPtr[static_cast<std::size_t>(r)]; k < m_rowPtr[static_cast<std::size_t>(r) + 1]; ++k) {
@@ -459,10 +471,97 @@ void MpsSolver::factorIncompleteCholesky() {
     }
 }
 
+void MpsSolver::setupTwoLevel() {
+    // Aggregates: rows are in grid order, so the rows of one cell are one contiguous run.
+    const int rows = static_cast<int>(m_rows);
+    int nAgg = 0;
+    std::uint32_t prevCell = 0;
+    for (int r = 0; r < rows; ++r) {
+        const std::uint32_t cell = m_grid.cellIndex(m_rowParticle[static_cast<std::size_t>(r)]);
+        if (r == 0 || cell != prevCell) m_aggStart[static_cast<std::size_t>(nAgg++)] = r;
+        m_aggOf[static_cast<std::size_t>(r)] = nAgg - 1;
+        prevCell = cell;
+    }
+    m_aggStart[static_cast<std::size_t>(nAgg)] = rows;
+    m_nAgg = nAgg;
+    int bw = 0;
+    for (int r = 0; r < rows; ++r) {
+        const int I = m_aggOf[static_cast<std::size_t>(r)];
+        for (int k = m_rowPtr[static_cast<std::size_t>(r)]; k < m_diagPos[static_cast<std::size_t>(r)]; ++k) {
+            bw = std::max(bw, I - m_aggOf[static_cast<std::size_t>(m_col[static_cast<std::size_t>(k)])]);
+        }
+    }
+    m_bandwidth = bw;
+    const std::size_t width = static_cast<std::size_t>(bw) + 1;
+    const std::size_t need = static_cast<std::size_t>(nAgg) * width;
+    if (m_band.size() < need) m_band.resize(need); // grows only for an unusually wide band
+    double* band = m_band.data();
+    // Coarse matrix A_c = P^T A P (P: piecewise constant on aggregates), lower band only:
+    // band[I * width + (I - J)] = sum of A_ij over i in I, j in J.
+#pragma omp parallel for schedule(static) if(m_rows >= kParallelMin)
+    for (int I = 0; I < nAgg; ++I) {
+        double* rowI = band + static_cast<std::size_t>(I) * width;
+        std::fill(rowI, rowI + width, 0.0);
+        for (int r = m_aggStart[static_cast<std::size_t>(I)]; r < m_aggStart[static_cast<std::size_t>(I) + 1]; ++r) {
+            for (int k = m_rowPtr[static_cast<std::size_t>(r)]; k < m_rowPtr[static_cast<std::size_t>(r) + 1]; ++k) {
+                const int J = m_aggOf[static_cast<std::size_t>(m_col[static_cast<std::size_t>(k)])];
+                if (J <= I) rowI[I - J] += m_val[static_cast<std::size_t>(k)];
+            }
+        }
+    }
+    // Band Cholesky in place: L(i, j) at band[i * width + (i - j)].
+    for (int i = 0; i < nAgg; ++i) {
+        double* Li = band + static_cast<std::size_t>(i) * width;
+        for (int j = std::max(0, i - bw); j <= i; ++j) {
+            const double* Lj = band + static_cast<std::size_t>(j) * width;
+            double s = Li[i - j];
+            for (int k = std::max(0, i - bw); k < j; ++k) s -= Li[i - k] * Lj[j - k];
+            if (j == i) {
+                Li[0] = std::sqrt(std::max(s, 1e-300)); // SPD: s > 0 up to round-off
+            } else {
+                Li[i - j] = s / Lj[0];
+            }
+        }
+    }
+}
+
 void MpsSolver::applyPreconditioner(const double* r, double* z) const {
     const int rows = static_cast<int>(m_rows);
+    if (m_par.preconditioner == Preconditioner::TwoLevel) {
+        // z = D^-1 r + P A_c^-1 P^T r (additive two-level, symmetric positive definite).
+        const int nAgg = m_nAgg;
+        const int bw = m_bandwidth;
+        const std::size_t width = static_cast<std::size_t>(bw) + 1;
+        const double* band = m_band.data();
+        double* rc = const_cast<double*>(m_rc.data()); // scratch (logically const)
+        double* zc = const_cast<double*>(m_zc.data());
+#pragma omp parallel for schedule(static) if(m_rows >= kParallelMin)
+        for (int I = 0; I < nAgg; ++I) {
+            double s = 0.0;
+            for (int q = m_aggStart[static_cast<std::size_t>(I)]; q < m_aggStart[static_cast<std::size_t>(I) + 1]; ++q) s += r[q];
+            rc[I] = s;
+        }
+        for (int i = 0; i < nAgg; ++i) { // L y = rc
+            const double* Li = band + static_cast<std::size_t>(i) * width;
+            double s = rc[i];
+            for (int k = std::max(0, i - bw); k < i; ++k) s -= Li[i - k] * zc[k];
+            zc[i] = s / Li[0];
+        }
+        for (int i = nAgg - 1; i >= 0; --i) { // L^T zc = y
+            double s = zc[i];
+            for (int k = i + 1; k <= std::min(nAgg - 1, i + bw); ++k) {
+                s -= band[static_cast<std::size_t>(k) * width + static_cast<std::size_t>(k - i)] * zc[k];
+            }
+            zc[i] = s / band[static_cast<std::size_t>(i) * width];
+        }
+#pragma omp parallel for schedule(static) if(static_cast<std::size_t>(rows) >= kParallelVector)
+        for (int q = 0; q < rows; ++q) {
+            z[q] = r[q] * m_invDiag[static_cast<std::size_t>(q)] + zc[m_aggOf[static_cast<std::size_t>(q)]];
+        }
+        return;
+    }
     if (m_par.preconditioner == Preconditioner::Jacobi) {
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if(static_cast<std::size_t>(rows) >= kParallelMin)
         for (int i = 0; i < rows; ++i) z[i] = r[i] * m_invDiag[static_cast<std::size_t>(i)];
         return;
     }
@@ -514,6 +613,7 @@ void MpsSolver::solvePpe() {
     m_stats.ppeResidual = 0.0;
     if (n == 0) return;
     if (m_par.preconditioner == Preconditioner::IncompleteCholesky) factorIncompleteCholesky();
+    if (m_par.preconditioner == Preconditioner::TwoLevel) setupTwoLevel();
     double* x = m_x.data();
     double* r = m_r.data();
     double* z = m_z.data();
@@ -527,7 +627,7 @@ void MpsSolver::solvePpe() {
     }
     if (!std::isfinite(bNorm)) fail(m_rowParticle[0], "pressure Poisson source term is not finite");
     matVec(x, q);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if(n >= kParallelVector)
     for (std::size_t i = 0; i < n; ++i) r[i] = b[i] - q[i];
     double rNorm = std::sqrt(dot(r, r, n));
     const double target = m_par.ppeTolerance * bNorm;
@@ -539,7 +639,7 @@ void MpsSolver::solvePpe() {
         while (it < m_par.ppeMaxIterations) {
             matVec(d, q);
             const double alpha = rz / dot(d, q, n);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if(n >= kParallelVector)
             for (std::size_t i = 0; i < n; ++i) {
                 x[i] += alpha * d[i];
                 r[i] -= alpha * q[i];
@@ -551,7 +651,7 @@ void MpsSolver::solvePpe() {
             const double rzNew = dot(r, z, n);
             const double beta = rzNew / rz;
             rz = rzNew;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if(n >= kParallelVector)
             for (std::size_t i = 0; i < n; ++i) d[i] = z[i] + beta * d[i];
         }
     }
@@ -573,14 +673,14 @@ void MpsSolver::correctionPhase(double dt) {
     const std::size_t n = m_p.size();
     // Pressures: unknowns from the solve, negative ones cut to 0 (textbook code); surface
     // and dummy particles at 0 (K&O eq. (20) Dirichlet condition).
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if(n >= kParallelMin)
     for (std::size_t i = 0; i < n; ++i) {
         const int r = m_row[i];
         m_p.p[i] = r >= 0 ? std::max(0.0, m_x[static_cast<std::size_t>(r)]) : 0.0;
     }
     const double reN2 = m_reN * m_reN;
     // Minimum pressure among neighbours within re (K&O eq. (13) uses p_i^min for stability).
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if(n >= kParallelMin)
     for (std::size_t i = 0; i < n; ++i) {
         double pm = m_p.p[i];
         if (m_p.kind[i] == ParticleKind::Water) {
@@ -599,7 +699,7 @@ void MpsSolver::correctionPhase(double dt) {
     const double k = dt / m_phys.density;
     const bool gc = m_par.gradientCorrection;
     double maxSpeed2 = 0.0;
-#pragma omp parallel for schedule(static) reduction(max : maxSpeed2)
+#pragma omp parallel for schedule(static) reduction(max : maxSpeed2) if(n >= kParallelMin)
     for (std::size_t i = 0; i < n; ++i) {
         if (isFixed(m_p.kind[i])) continue;
         double gx = 0.0, gy = 0.0;
@@ -657,7 +757,7 @@ void MpsSolver::checkState(double dt) {
     std::size_t bad = n;    // first non-finite particle
     std::size_t out = 0;    // particles out of the domain
     std::size_t firstOut = n;
-#pragma omp parallel for schedule(static) reduction(min : bad, firstOut) reduction(+ : out)
+#pragma omp parallel for schedule(static) reduction(min : bad, firstOut) reduction(+ : out) if(n >= kParallelMin)
     for (std::size_t i = 0; i < n; ++i) {
         const bool finite = std::isfinite(m_p.x[i]) && std::isfinite(m_p.y[i]) && std::isfinite(m_p.vx[i]) &&
                             std::isfinite(m_p.vy[i]) && std::isfinite(m_p.p[i]);

@@ -76,7 +76,7 @@ bool NeighborGrid::build(std::span<const double> x, std::span<const double> y, d
     // sorted by rank.
     const double r2max = radius * radius;
     std::size_t overflow = count;
-#pragma omp parallel for schedule(static) reduction(min : overflow)
+#pragma omp parallel for schedule(static) reduction(min : overflow) if(count >= 4096)
     for (std::size_t i = 0; i < count; ++i) {
         const int c = static_cast<int>(m_cellOf[i]);
         const int cx = c % m_nx;

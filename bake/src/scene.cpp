@@ -197,7 +197,7 @@ Scene parseScene(const json& j) {
         p.gradientCorrection = s.boolean("gradient_correction", p.gradientCorrection);
         p.preconditioner = s.enumeration("preconditioner", p.preconditioner,
                                          {Preconditioner::Jacobi, Preconditioner::SymmetricGaussSeidel,
-                                          Preconditioner::IncompleteCholesky});
+                                          Preconditioner::IncompleteCholesky, Preconditioner::TwoLevel});
         p.ppeTolerance = s.number("ppe_tolerance", p.ppeTolerance, 0.0, 0.5, true);
         p.ppeMaxIterations = s.integer("ppe_max_iterations", p.ppeMaxIterations, 1, 1000000);
         p.neighborSkin = s.number("neighbor_skin", p.neighborSkin, 0.0, 2.0, false, " (l0)");

@@ -52,7 +52,7 @@ std::string runUntilFailure(MpsSolver& solver, int steps) {
 
 TEST(MpsSolver, PpeMatrixIsSymmetricDiagonallyDominantAndSolvedExactly) {
     for (Preconditioner pc : {Preconditioner::Jacobi, Preconditioner::SymmetricGaussSeidel,
-                              Preconditioner::IncompleteCholesky}) {
+                              Preconditioner::IncompleteCholesky, Preconditioner::TwoLevel}) {
         SCOPED_TRACE(std::string(toString(pc)));
         Scene scene = smallDamBreak();
         scene.solver.preconditioner = pc;
@@ -85,10 +85,10 @@ TEST(MpsSolver, PpeMatrixIsSymmetricDiagonallyDominantAndSolvedExactly) {
 }
 
 TEST(MpsSolver, PreconditionersCutIterations) {
-    int iterations[3] = {0, 0, 0};
+    int iterations[4] = {0, 0, 0, 0};
     int k = 0;
     for (Preconditioner pc : {Preconditioner::Jacobi, Preconditioner::SymmetricGaussSeidel,
-                              Preconditioner::IncompleteCholesky}) {
+                              Preconditioner::IncompleteCholesky, Preconditioner::TwoLevel}) {
         Scene scene = smallDamBreak();
         scene.solver.preconditioner = pc;
         MpsSolver solver = makeSolver(scene);
@@ -97,6 +97,7 @@ TEST(MpsSolver, PreconditionersCutIterations) {
     }
     EXPECT_LT(iterations[1], iterations[0]);
     EXPECT_LT(iterations[2], iterations[1]);
+    EXPECT_LT(iterations[3], iterations[0]); // the coarse solve removes smooth error modes
 }
 
 TEST(MpsSolver, StepReportsStatsAndPhaseTimes) {

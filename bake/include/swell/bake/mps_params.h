@@ -14,7 +14,10 @@ struct PhysicsParams {
 enum class Preconditioner {
     Jacobi,                 ///< diagonal: parallel, weakest
     SymmetricGaussSeidel,   ///< (D+L) D^-1 (D+L)^T: no set-up, serial sweeps
-    IncompleteCholesky,     ///< IC(0) on A's pattern: strongest per iteration, serial set-up each step
+    IncompleteCholesky,     ///< IC(0) on A's pattern: strong per iteration, serial set-up each step
+    /// Additive two-level: Jacobi plus an exact coarse solve on aggregates (one per grid cell,
+    /// piecewise constant), which removes the smooth error modes Jacobi cannot reach.
+    TwoLevel,
 };
 /// Source term of the pressure Poisson equation.
 enum class SourceTerm {
@@ -49,7 +52,7 @@ struct SolverParams {
     /// of d/n0 sum w r_ij (x) r_ij / r^2, which is the identity on a full lattice and corrects
     /// truncated (surface, wall) neighbourhoods.
     bool gradientCorrection = false;
-    Preconditioner preconditioner = Preconditioner::SymmetricGaussSeidel; ///< PCG preconditioner (fastest measured)
+    Preconditioner preconditioner = Preconditioner::TwoLevel; ///< PCG preconditioner (fastest measured, docs/BENCHMARKS.md)
     double ppeTolerance = 1e-6;     ///< relative residual |b - Ax| / |b| at which PCG stops (-)
     int ppeMaxIterations = 2000;    ///< PCG iterations before the step is declared unconverged
     double neighborSkin = 0.4;      ///< Verlet skin (l0): lists are rebuilt when a particle moves skin/2

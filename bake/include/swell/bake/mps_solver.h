@@ -61,6 +61,7 @@ private:
     void assemblePpe(double dt);
     void solvePpe();
     void factorIncompleteCholesky();
+    void setupTwoLevel();
     void applyPreconditioner(const double* r, double* z) const;
     void matVec(const double* v, double* out) const;
     void correctionPhase(double dt);
@@ -102,6 +103,12 @@ private:
     std::vector<double> m_ic;          // IC(0) factor L (lower triangle incl. diagonal) on A's pattern
     std::vector<int> m_icMark;         // column -> position scratch for the factorisation
     std::size_t m_rows = 0;
+    // Two-level preconditioner: aggregates (runs of rows in one grid cell) and the banded
+    // Cholesky factor of the coarse matrix P^T A P. The band grows only when it must.
+    std::vector<int> m_aggStart, m_aggOf;
+    std::vector<double> m_band, m_rc, m_zc;
+    int m_nAgg = 0;
+    int m_bandwidth = 0;
 };
 
 } // namespace swell::bake

@@ -34,6 +34,8 @@ public:
         return {m_list.data() + i * m_stride, m_listCount[i]};
     }
     std::size_t overflowParticle() const { return m_overflow; }
+    /// Cell of particle i at the last build.
+    std::uint32_t cellIndex(std::size_t i) const { return m_cellOf[i]; }
     int cellsX() const { return m_nx; }
     int cellsY() const { return m_ny; }
     /// Cell index of a point inside the domain.
