@@ -129,7 +129,7 @@ MpsSolver::MpsSolver(const PhysicsParams& physics, const SolverParams& solver, P
     m_ic.assign(cap, 0.0);
     m_diagPos.assign(n, 0);
     m_icMark.assign(n, -1);
-    m_aggStart.assign(n + 1, 0);
+    m_aggMap.assign(static_cast<std::size_t>(m_grid.cellsX()) * static_cast<std::size_t>(m_grid.cellsY()), -1);
     m_aggOf.assign(n, 0);
     m_rc.assign(n, 0.0);
     m_zc.assign(n, 0.0);
@@ -472,22 +472,46 @@ void MpsSolver::factorIncompleteCholesky() {
 }
 
 void MpsSolver::setupTwoLevel() {
-    // Aggregates: rows are in grid order, so the rows of one cell are one contiguous run.
+    // Aggregates: one per grid cell holding unknowns, numbered along the shorter side of the
+    // occupied cells first, so the coarse matrix (cells couple only to adjacent cells) has a
+    // band about as wide as the shorter side.
     const int rows = static_cast<int>(m_rows);
-    int nAgg = 0;
-    std::uint32_t prevCell = 0;
+    const int nx = m_grid.cellsX();
+    int x0 = nx, x1 = -1, y0 = m_grid.cellsY(), y1 = -1;
     for (int r = 0; r < rows; ++r) {
         const std::uint32_t cell = m_grid.cellIndex(m_rowParticle[static_cast<std::size_t>(r)]);
-        if (r == 0 || cell != prevCell) m_aggStart[static_cast<std::size_t>(nAgg++)] = r;
-        m_aggOf[static_cast<std::size_t>(r)] = nAgg - 1;
-        prevCell = cell;
+        m_aggMap[cell] = -2; // used
+        const int cx = static_cast<int>(cell) % nx, cy = static_cast<int>(cell) / nx;
+        x0 = std::min(x0, cx);
+        x1 = std::max(x1, cx);
+        y0 = std::min(y0, cy);
+        y1 = std::max(y1, cy);
     }
-    m_aggStart[static_cast<std::size_t>(nAgg)] = rows;
+    int nAgg = 0;
+    if (x1 - x0 >= y1 - y0) { // wide: number column by column
+        for (int cx = x0; cx <= x1; ++cx) {
+            for (int cy = y0; cy <= y1; ++cy) {
+                int& id = m_aggMap[static_cast<std::size_t>(cy * nx + cx)];
+                if (id == -2) id = nAgg++;
+            }
+        }
+    } else { // tall: row by row
+        for (int cy = y0; cy <= y1; ++cy) {
+            for (int cx = x0; cx <= x1; ++cx) {
+                int& id = m_aggMap[static_cast<std::size_t>(cy * nx + cx)];
+                if (id == -2) id = nAgg++;
+            }
+        }
+    }
+    for (int r = 0; r < rows; ++r) {
+        m_aggOf[static_cast<std::size_t>(r)] = m_aggMap[m_grid.cellIndex(m_rowParticle[static_cast<std::size_t>(r)])];
+    }
+    for (int r = 0; r < rows; ++r) m_aggMap[m_grid.cellIndex(m_rowParticle[static_cast<std::size_t>(r)])] = -1;
     m_nAgg = nAgg;
     int bw = 0;
     for (int r = 0; r < rows; ++r) {
         const int I = m_aggOf[static_cast<std::size_t>(r)];
-        for (int k = m_rowPtr[static_cast<std::size_t>(r)]; k < m_diagPos[static_cast<std::size_t>(r)]; ++k) {
+        for (int k = m_rowPtr[static_cast<std::size_t>(r)]; k < m_rowPtr[static_cast<std::size_t>(r) + 1]; ++k) {
             bw = std::max(bw, I - m_aggOf[static_cast<std::size_t>(m_col[static_cast<std::size_t>(k)])]);
         }
     }
@@ -498,15 +522,13 @@ void MpsSolver::setupTwoLevel() {
     double* band = m_band.data();
     // Coarse matrix A_c = P^T A P (P: piecewise constant on aggregates), lower band only:
     // band[I * width + (I - J)] = sum of A_ij over i in I, j in J.
-#pragma omp parallel for schedule(static) if(m_rows >= kParallelMin)
-    for (int I = 0; I < nAgg; ++I) {
+    std::fill(band, band + need, 0.0);
+    for (int r = 0; r < rows; ++r) {
+        const int I = m_aggOf[static_cast<std::size_t>(r)];
         double* rowI = band + static_cast<std::size_t>(I) * width;
-        std::fill(rowI, rowI + width, 0.0);
-        for (int r = m_aggStart[static_cast<std::size_t>(I)]; r < m_aggStart[static_cast<std::size_t>(I) + 1]; ++r) {
-            for (int k = m_rowPtr[static_cast<std::size_t>(r)]; k < m_rowPtr[static_cast<std::size_t>(r) + 1]; ++k) {
-                const int J = m_aggOf[static_cast<std::size_t>(m_col[static_cast<std::size_t>(k)])];
-                if (J <= I) rowI[I - J] += m_val[static_cast<std::size_t>(k)];
-            }
+        for (int k = m_rowPtr[static_cast<std::size_t>(r)]; k < m_rowPtr[static_cast<std::size_t>(r) + 1]; ++k) {
+            const int J = m_aggOf[static_cast<std::size_t>(m_col[static_cast<std::size_t>(k)])];
+            if (J <= I) rowI[I - J] += m_val[static_cast<std::size_t>(k)];
         }
     }
     // Band Cholesky in place: L(i, j) at band[i * width + (i - j)].
@@ -535,12 +557,8 @@ void MpsSolver::applyPreconditioner(const double* r, double* z) const {
         const double* band = m_band.data();
         double* rc = const_cast<double*>(m_rc.data()); // scratch (logically const)
         double* zc = const_cast<double*>(m_zc.data());
-#pragma omp parallel for schedule(static) if(m_rows >= kParallelMin)
-        for (int I = 0; I < nAgg; ++I) {
-            double s = 0.0;
-            for (int q = m_aggStart[static_cast<std::size_t>(I)]; q < m_aggStart[static_cast<std::size_t>(I) + 1]; ++q) s += r[q];
-            rc[I] = s;
-        }
+        std::fill(rc, rc + nAgg, 0.0);
+        for (int q = 0; q < rows; ++q) rc[m_aggOf[static_cast<std::size_t>(q)]] += r[q];
         for (int i = 0; i < nAgg; ++i) { // L y = rc
             const double* Li = band + static_cast<std::size_t>(i) * width;
             double s = rc[i];

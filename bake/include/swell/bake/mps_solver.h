@@ -103,9 +103,9 @@ private:
     std::vector<double> m_ic;          // IC(0) factor L (lower triangle incl. diagonal) on A's pattern
     std::vector<int> m_icMark;         // column -> position scratch for the factorisation
     std::size_t m_rows = 0;
-    // Two-level preconditioner: aggregates (runs of rows in one grid cell) and the banded
+    // Two-level preconditioner: aggregates (the unknowns of one grid cell) and the banded
     // Cholesky factor of the coarse matrix P^T A P. The band grows only when it must.
-    std::vector<int> m_aggStart, m_aggOf;
+    std::vector<int> m_aggMap, m_aggOf; // grid cell -> aggregate (-1 unused); row -> aggregate
     std::vector<double> m_band, m_rc, m_zc;
     int m_nAgg = 0;
     int m_bandwidth = 0;
