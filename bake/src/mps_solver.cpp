@@ -121,7 +121,6 @@ MpsSolver::MpsSolver(const PhysicsParams& physics, const SolverParams& solver, P
     m_surface.assign(n, 0);
     m_row.assign(n, -1);
     m_rowParticle.assign(n, 0);
-    m_collisions.assign(n, 0);
     const std::size_t cap = n * (static_cast<std::size_t>(m_par.maxNeighbors) + 1);
     m_rowPtr.assign(n + 1, 0);
     m_col.assign(cap, 0);

@@ -90,7 +90,6 @@ private:
     std::vector<std::uint8_t> m_surface;
     std::vector<std::int32_t> m_row;  // PPE row of each particle, -1 if none
     std::vector<std::uint32_t> m_rowParticle;
-    std::vector<std::uint32_t> m_collisions;
 
     std::vector<double> m_uC, m_vC;   // velocities after collisions
 
