@@ -1,0 +1,234 @@
+// swell-validate: developer runs behind docs/validation.md (dam break against Martin & Moyce,
+// still-tank hydrostatics). Thin: scene loading, the solver and the comparisons are library code.
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+#include <omp.h>
+
+#include "swell/bake/error.h"
+#include "swell/bake/scene.h"
+#include "swell/bake/validation.h"
+
+using namespace swell::bake;
+using nlohmann::json;
+
+namespace {
+
+Scene sceneWithOverrides(const std::string& path, const std::vector<std::string>& sets) {
+    std::ifstream in(path);
+    if (!in) throw SceneError("", "cannot open scene file " + path);
+    json j;
+    try {
+        j = json::parse(in);
+    } catch (const json::parse_error& e) {
+        throw SceneError("", path + " is not valid JSON: " + e.what());
+    }
+    for (const auto& s : sets) applyOverride(j, s);
+    return parseScene(j);
+}
+
+struct RunTotals {
+    long steps = 0;
+    double ppeIterations = 0.0;
+    double maxResidual = 0.0;
+    double seconds = 0.0;
+};
+
+void accumulate(RunTotals& t, const StepStats& s) {
+    ++t.steps;
+    t.ppeIterations += s.ppeIterations;
+    t.maxResidual = std::max(t.maxResidual, s.ppeResidual);
+    t.seconds += s.seconds();
+}
+
+json damBreak(const Scene& scene, double tEnd, const std::string& csv) {
+    const Box column = scene.geometry.water.at(0);
+    const double a = column.width();
+    const double g = scene.physics.gravity;
+    const double tScale = std::sqrt(2.0 * g / a); // T = t sqrt(2 g / a)
+    MpsSolver solver = makeSolver(scene);
+    const double n0 = solver.densityConstants().n0;
+    std::vector<FrontPoint> series{{0.0, surgeFront(solver.particles(), n0, scene.output.splashRatio, column.x0) / a}};
+    RunTotals totals;
+    json out{{"scene", scene.name}, {"a", a}, {"l0", scene.geometry.particleSpacing},
+             {"particles", solver.particles().size()},
+             {"water", solver.particles().count(ParticleKind::Water)}};
+    try {
+        while (solver.time() * tScale < tEnd) {
+            const StepStats& s = solver.step();
+            accumulate(totals, s);
+            series.push_back({solver.time() * tScale,
+                              surgeFront(solver.particles(), n0, scene.output.splashRatio, column.x0) / a});
+        }
+        out["outcome"] = "stable";
+    } catch (const DivergenceError& e) {
+        out["outcome"] = std::string("stopped: ") + e.what();
+    }
+    if (!csv.empty()) {
+        std::ofstream f(csv);
+        f << "T,Z\n";
+        for (const auto& p : series) f << fmt::format("{:.5f},{:.5f}\n", p.T, p.Z);
+    }
+    if (out["outcome"] == "stable") {
+        const FrontError e225 = compareFront(series, martinMoyceA225(), 0.8, 3.0);
+        const FrontError e1125 = compareFront(series, martinMoyceA1125(), 0.8, 3.0);
+        const double mean = (e225.mean * e225.points + e1125.mean * e1125.points) / (e225.points + e1125.points);
+        const double signedMean =
+            (e225.meanSigned * e225.points + e1125.meanSigned * e1125.points) / (e225.points + e1125.points);
+        out["front_error_mean"] = mean;
+        out["front_error_max"] = std::max(e225.max, e1125.max);
+        out["front_error_mean_signed"] = signedMean;
+        out["front_error_mean_a225"] = e225.mean;
+        out["front_error_mean_a1125"] = e1125.mean;
+        out["points"] = e225.points + e1125.points;
+        json z = json::object();
+        for (double T : {1.0, 2.0, 3.0}) {
+            for (std::size_t k = 1; k < series.size(); ++k) {
+                if (series[k].T >= T) {
+                    z[fmt::format("{:.1f}", T)] = series[k].Z;
+                    break;
+                }
+            }
+        }
+        out["Z_at_T"] = z;
+    }
+    out["steps"] = totals.steps;
+    out["ppe_iterations_mean"] = totals.steps ? totals.ppeIterations / totals.steps : 0.0;
+    out["ppe_tolerance"] = scene.solver.ppeTolerance;
+    out["solver_seconds"] = totals.seconds;
+    return out;
+}
+
+json stillTank(const Scene& scene, double settle, long steps, long trace) {
+    if (!scene.geometry.tank) throw SceneError("geometry.tank", "the still-tank check needs a tank");
+    const Box tank = *scene.geometry.tank;
+    const Box water = scene.geometry.water.at(0);
+    const double l0 = scene.geometry.particleSpacing;
+    const double H = water.height();
+    const double expected = scene.physics.density * scene.physics.gravity * H; // rho g H
+    const double waveSpeed = std::sqrt(scene.physics.gravity * H);
+    MpsSolver solver = makeSolver(scene);
+    // Bottom gauge: the wall layer touching the water (y = y0 - l0/2) under the middle half.
+    std::vector<std::size_t> gauge;
+    const Particles& P = solver.particles();
+    for (std::size_t i = 0; i < P.size(); ++i) {
+        if (P.kind[i] == ParticleKind::Wall && std::abs(P.y[i] - (tank.y0 - 0.5 * l0)) < 0.25 * l0 &&
+            P.x[i] > tank.x0 + 0.25 * tank.width() && P.x[i] < tank.x1 - 0.25 * tank.width()) {
+            gauge.push_back(i);
+        }
+    }
+    RunTotals totals;
+    double pSum = 0.0;
+    long pCount = 0;
+    double maxSpeedAfter = 0.0;
+    std::size_t escaped = 0;
+    json out{{"scene", scene.name}, {"H", H}, {"l0", l0}, {"particles", P.size()},
+             {"water", P.count(ParticleKind::Water)}, {"gauge_particles", gauge.size()}};
+    try {
+        for (long k = 0; k < steps; ++k) {
+            const StepStats& s = solver.step();
+            accumulate(totals, s);
+            if (trace > 0 && s.step % trace == 0) {
+                std::size_t fastest = 0;
+                for (std::size_t i = 0; i < P.size(); ++i) {
+                    if (std::hypot(P.vx[i], P.vy[i]) > std::hypot(P.vx[fastest], P.vy[fastest])) fastest = i;
+                }
+                std::fprintf(stderr, "step %ld t %.3f max|u| %.4f (particle %zu at %.4f, %.4f n/n0 %.3f) ppe %d "
+                             "surface %zu collisions %zu\n", s.step, s.time, s.maxSpeed, fastest, P.x[fastest],
+                             P.y[fastest], P.n[fastest] / solver.densityConstants().n0, s.ppeIterations,
+                             s.surfaceParticles, s.collisions);
+            }
+            if (solver.time() >= settle) {
+                double p = 0.0;
+                for (std::size_t i : gauge) p += P.p[i];
+                pSum += p / static_cast<double>(gauge.size());
+                ++pCount;
+                maxSpeedAfter = std::max(maxSpeedAfter, s.maxSpeed);
+            }
+        }
+        out["outcome"] = "stable";
+    } catch (const DivergenceError& e) {
+        out["outcome"] = std::string("stopped: ") + e.what();
+    }
+    for (std::size_t i = 0; i < P.size(); ++i) {
+        if (P.kind[i] == ParticleKind::Water && !tank.contains(P.x[i], P.y[i])) ++escaped;
+    }
+    const double pMean = pCount ? pSum / static_cast<double>(pCount) : 0.0;
+    out["steps"] = totals.steps;
+    out["time"] = solver.time();
+    out["bottom_pressure_mean"] = pMean;
+    out["rho_g_H"] = expected;
+    out["bottom_pressure_ratio"] = pMean / expected;
+    out["max_speed_after_settle"] = maxSpeedAfter;
+    out["max_speed_over_sqrt_gH"] = maxSpeedAfter / waveSpeed;
+    out["escaped"] = escaped;
+    out["ppe_iterations_mean"] = totals.steps ? totals.ppeIterations / totals.steps : 0.0;
+    out["solver_seconds"] = totals.seconds;
+    return out;
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{"swell-validate: dam-break and still-tank validation runs of the MPS solver"};
+    app.require_subcommand(1);
+    app.fallthrough();
+    std::vector<std::string> sets;
+    int threads = 0;
+    bool asJson = false;
+    app.add_option("--set", sets, "override a scene key: section.key=value (repeatable)")->expected(1)->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+    app.add_option("--threads", threads, "OpenMP threads (default: all)");
+    app.add_flag("--json", asJson, "print one JSON object on stdout");
+
+    auto* dam = app.add_subcommand("dam-break", "run a dam-break scene and compare the surge front with "
+                                                "Martin & Moyce (1952) over T in [0.8, 3.0]");
+    std::string damScene;
+    double tEnd = 3.2;
+    std::string csv;
+    dam->add_option("scene", damScene, "scene JSON (the first water rectangle is the column)")->required();
+    dam->add_option("--until", tEnd, "stop at this T = t sqrt(2g/a)");
+    dam->add_option("--csv", csv, "write the front series T,Z to this file");
+
+    auto* still = app.add_subcommand("still-tank", "run a still-tank scene and check hydrostatics");
+    std::string stillScene;
+    double settle = 2.0;
+    long steps = -1;
+    long trace = 0;
+    still->add_option("scene", stillScene, "scene JSON (the first water rectangle sets H)")->required();
+    still->add_option("--settle", settle, "time (s) after which averages start");
+    still->add_option("--steps", steps, "steps to run (default: end_time / dt)");
+    still->add_option("--trace", trace, "print step stats to stderr every N steps");
+
+    CLI11_PARSE(app, argc, argv);
+    if (threads > 0) omp_set_num_threads(threads);
+    try {
+        json out;
+        const auto start = std::chrono::steady_clock::now();
+        if (*dam) {
+            out = damBreak(sceneWithOverrides(damScene, sets), tEnd, csv);
+        } else {
+            const Scene scene = sceneWithOverrides(stillScene, sets);
+            if (steps < 0) steps = std::lround(scene.solver.endTime / scene.solver.dt);
+            out = stillTank(scene, settle, steps, trace);
+        }
+        out["wall_seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        out["threads"] = omp_get_max_threads();
+        out["overrides"] = sets;
+        if (asJson) {
+            std::printf("%s\n", out.dump().c_str());
+        } else {
+            for (const auto& [k, v] : out.items()) std::printf("%-26s %s\n", k.c_str(), v.dump().c_str());
+        }
+        return out["outcome"] == "stable" ? 0 : 2;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "swell-validate: %s\n", e.what());
+        return 1;
+    }
+}

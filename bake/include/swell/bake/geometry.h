@@ -1,0 +1,40 @@
+#pragma once
+#include <optional>
+#include <vector>
+
+#include "swell/bake/box.h"
+#include "swell/bake/particles.h"
+
+namespace swell::bake {
+
+/// Scene geometry: rectangles of water and solid, turned into particles on a
+/// square lattice of spacing `particle_spacing`.
+struct GeometryParams {
+    double particleSpacing = 0.01; ///< l0 (m): lattice spacing of all particles; sets resolution
+    /// Open-topped tank given by its inner faces (m): back wall inner face at x0, front
+    /// wall inner face at x1, bed at y0, side walls up to y1. Walls are generated outside.
+    std::optional<Box> tank;
+    std::vector<Box> water;  ///< water rectangles (m); each holds at least one particle
+    std::vector<Box> solids; ///< extra solid blocks (m), filled with wall + dummy particles
+    int wallLayers = 2;  ///< layers of pressure-solved wall particles (textbook code: 2)
+    int dummyLayers = 2; ///< dummy layers behind them, completing wall density (textbook: 2)
+    /// Simulation domain (m); a particle leaving it stops the run. Default: the bounding box B
+    /// of all particles (plus one spacing) grown by B's width/2 left and right, B's height/4
+    /// down and B's height up.
+    std::optional<Box> domain;
+};
+
+/// The particles and domain a geometry describes.
+struct GeneratedGeometry {
+    Particles particles;
+    Box domain;
+};
+
+/// Generates water, wall and dummy particles (water first, then walls, then dummies).
+/// Water rectangles hold the lattice sites (x0 + (i + 1/2) l0, y0 + (j + 1/2) l0) inside
+/// them; tank walls and solid blocks put their innermost `wallLayers` as Wall particles
+/// and the next `dummyLayers` as Dummy. Throws SceneError naming the key for an empty
+/// water rectangle, water overlapping a solid, or particles outside the domain.
+GeneratedGeometry generateGeometry(const GeometryParams& geometry);
+
+} // namespace swell::bake

@@ -1,0 +1,113 @@
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include <Eigen/Sparse>
+
+#include "swell/bake/box.h"
+#include "swell/bake/kernel.h"
+#include "swell/bake/mps_params.h"
+#include "swell/bake/neighbor_grid.h"
+#include "swell/bake/particles.h"
+#include "swell/bake/step_stats.h"
+
+namespace swell::bake {
+
+/// Semi-implicit 2D MPS solver (Koshizuka & Oka 1996; the paper's Sec. 3.1).
+/// Advances plain particle arrays; no I/O. All buffers are sized at construction,
+/// so step() allocates nothing. Loops over particles run in OpenMP threads.
+class MpsSolver {
+public:
+    /// Takes the particles (water, wall, dummy) of a scene. `spacing` is l0 (m); the
+    /// standard number densities n0 and lambda come from a perfect lattice of that
+    /// spacing. Throws std::invalid_argument for unusable parameters or no water.
+    MpsSolver(const PhysicsParams& physics, const SolverParams& solver, Particles particles,
+              double spacing, const Box& domain);
+
+    /// One time step. Throws DivergenceError (naming step, time, particle and cause)
+    /// when the new state contains NaN/Inf, the PPE did not converge, the Courant number
+    /// exceeds the limit, a particle left the domain, or a neighbour list overflowed.
+    const StepStats& step();
+
+    const Particles& particles() const { return m_p; }
+    double time() const { return m_time; }
+    long stepCount() const { return m_step; }
+    double spacing() const { return m_l0; }
+    const Box& domain() const { return m_domain; }
+    const PhysicsParams& physics() const { return m_phys; }
+    const SolverParams& params() const { return m_par; }
+    /// Lattice constants for re = reDensity (n0 used for density, gradient, surface test).
+    const LatticeConstants& densityConstants() const { return m_latN; }
+    /// Lattice constants for re = reLaplacian (viscosity and PPE Laplacian).
+    const LatticeConstants& laplacianConstants() const { return m_latL; }
+    /// The PPE matrix of the last step, -Laplacian/rho + compressibility/dt^2 (rows in
+    /// neighbour-grid order), as an Eigen view of the solver's buffers (for tests).
+    Eigen::Map<const Eigen::SparseMatrix<double, Eigen::RowMajor, int>> ppeMatrix() const;
+    /// Right-hand side of the last PPE (for tests).
+    Eigen::Map<const Eigen::VectorXd> ppeRhs() const;
+    /// Solution of the last PPE before negative pressures were cut to 0 (for tests).
+    Eigen::Map<const Eigen::VectorXd> ppeSolution() const;
+    /// Particle of each PPE row of the last step (for tests).
+    std::vector<std::uint32_t> ppeRowParticles() const;
+    /// Free-surface flags of the last step (1 = p fixed at 0).
+    const std::vector<std::uint8_t>& surfaceFlags() const { return m_surface; }
+
+private:
+    void rebuildNeighbors(const std::vector<double>& x, const std::vector<double>& y);
+    bool skinUsedUp(const std::vector<double>& x, const std::vector<double>& y) const;
+    void explicitPhase(double dt);
+    void densityPhase(double dt);
+    void assemblePpe(double dt);
+    void solvePpe();
+    void factorIncompleteCholesky();
+    void setupTwoLevel();
+    void applyPreconditioner(const double* r, double* z) const;
+    void matVec(const double* v, double* out) const;
+    void correctionPhase(double dt);
+    void checkState(double dt);
+    double chooseDt() const;
+    [[noreturn]] void fail(std::size_t particle, const std::string& reason) const;
+
+    PhysicsParams m_phys;
+    SolverParams m_par;
+    Particles m_p;
+    double m_l0;
+    Box m_domain;
+    LatticeConstants m_latN;
+    LatticeConstants m_latL;
+    double m_reN, m_reL, m_reList, m_collide;
+    double m_time = 0.0;
+    long m_step = 0;
+    StepStats m_stats;
+    NeighborGrid m_grid;
+
+    // work arrays (structure of arrays, sized once)
+    std::vector<double> m_xs, m_ys;   // positions at the last neighbour build
+    std::vector<double> m_xStar, m_yStar, m_uStar, m_vStar; // predicted state
+    std::vector<double> m_pMin;       // minimum neighbour pressure (K&O 1996 gradient model)
+    std::vector<double> m_divU;       // velocity divergence (mixed source term)
+    std::vector<std::uint8_t> m_surface;
+    std::vector<std::int32_t> m_row;  // PPE row of each particle, -1 if none
+    std::vector<std::uint32_t> m_rowParticle;
+
+    std::vector<double> m_uC, m_vC;   // velocities after collisions
+
+    // PPE in compressed sparse rows (rows in neighbour-grid order), viewed by Eigen as a
+    // SparseMatrix map. Our own PCG runs on it so a step allocates nothing.
+    std::vector<int> m_rowPtr, m_col;
+    std::vector<double> m_val;
+    std::vector<int> m_diagPos;        // position of the diagonal entry in each row
+    std::vector<double> m_b, m_x, m_r, m_z, m_d, m_q, m_invDiag;
+    std::vector<double> m_ic;          // IC(0) factor L (lower triangle incl. diagonal) on A's pattern
+    std::vector<int> m_icMark;         // column -> position scratch for the factorisation
+    std::size_t m_rows = 0;
+    // Two-level preconditioner: aggregates (the unknowns of one grid cell) and the banded
+    // Cholesky factor of the coarse matrix P^T A P. The band grows only when it must.
+    std::vector<int> m_aggMap, m_aggOf; // grid cell -> aggregate (-1 unused); row -> aggregate
+    std::vector<double> m_band, m_rc, m_zc;
+    int m_nAgg = 0;
+    int m_bandwidth = 0;
+};
+
+} // namespace swell::bake

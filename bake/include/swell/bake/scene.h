@@ -1,0 +1,56 @@
+#pragma once
+#include <filesystem>
+#include <string>
+
+#include <nlohmann/json_fwd.hpp>
+
+#include "swell/bake/geometry.h"
+#include "swell/bake/mps_params.h"
+#include "swell/bake/mps_solver.h"
+
+namespace swell::bake {
+
+/// Settings for what a bake stores (used by the bake driver; the solver ignores them).
+struct OutputParams {
+    double frameInterval = 0.02; ///< simulated time between stored frames (s): 50 frames per second
+    double splashRatio = 0.49;   ///< d1: water with n < d1 n0 is splash (paper eq. (4), Table 1)
+    double surfaceRatio = 0.96;  ///< d2: water with d1 n0 <= n <= d2 n0 is surface (paper eq. (4), Table 1)
+};
+
+/// A scene file: separate physics, geometry, solver and output sections (docs/scenes.md).
+struct Scene {
+    std::string name;        ///< short identifier
+    std::string description; ///< free text
+    PhysicsParams physics;
+    GeometryParams geometry;
+    SolverParams solver;
+    OutputParams output;
+};
+
+/// Parses and validates a scene. Every key is optional (defaults in docs/scenes.md) except
+/// geometry.water; unknown keys, wrong types and bad values throw SceneError naming the key.
+/// Also generates the geometry once to reject unusable rectangles, and checks dt against
+/// the Courant limit for the scene's expected speed (unless solver.adaptive_dt).
+Scene parseScene(const nlohmann::json& json);
+
+/// Reads and parses a scene file; unreadable files and JSON syntax errors also throw
+/// SceneError (key "") with the file name.
+Scene loadScene(const std::filesystem::path& path);
+
+/// The fully resolved scene (every key, defaults filled in) as JSON; parseScene of it
+/// gives the same scene.
+nlohmann::json toJson(const Scene& scene);
+
+/// Speed (m/s) used to check dt at load: solver.expectedSpeed, or if that is 0,
+/// 2 sqrt(g H) with H the water column height (Ritter's dam-break front speed).
+double expectedSpeed(const Scene& scene);
+
+/// Applies one "--set" override "section.key=value" to scene JSON before parseScene.
+/// The value is parsed as JSON (numbers, true/false, arrays, objects) or else taken as a
+/// string. Throws SceneError for a malformed assignment.
+void applyOverride(nlohmann::json& json, const std::string& assignment);
+
+/// Generates the scene's particles and builds a solver for them.
+MpsSolver makeSolver(const Scene& scene);
+
+} // namespace swell::bake

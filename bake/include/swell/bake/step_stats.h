@@ -1,0 +1,43 @@
+#pragma once
+#include <array>
+#include <cstddef>
+#include <string_view>
+
+namespace swell::bake {
+
+/// The named phases of one MPS step, in order (STYLE.md #4).
+enum class Phase : int {
+    Neighbors,   ///< cell grid counting sort + neighbour lists (only when the skin is used up)
+    Explicit,    ///< gravity + viscosity, predict u* and r*, collisions
+    Density,     ///< number density n*, free-surface flags, PPE source
+    PpeAssembly, ///< sparse PPE matrix
+    PpeSolve,    ///< preconditioned conjugate gradient
+    Correction,  ///< minimum-pressure gradient, velocity/position correction, checks
+};
+inline constexpr std::size_t kPhaseCount = 6;
+std::string_view toString(Phase phase);
+
+/// What one step did; returned by MpsSolver::step().
+struct StepStats {
+    long step = 0;            ///< index of the step just taken (1 = first)
+    double time = 0.0;        ///< simulated time after the step (s)
+    double dt = 0.0;          ///< time step used (s)
+    int ppeIterations = 0;    ///< PCG iterations
+    double ppeResidual = 0.0; ///< final relative residual |b - Ax| / |b|
+    std::size_t ppeUnknowns = 0;
+    double maxSpeed = 0.0;    ///< max |u| of water after the step (m/s)
+    double courant = 0.0;     ///< max |u| dt / l0 (-)
+    std::size_t outOfBounds = 0;  ///< particles outside the domain (a non-zero count throws)
+    std::size_t surfaceParticles = 0; ///< water + wall flagged free surface (p = 0)
+    std::size_t collisions = 0;   ///< colliding pairs handled
+    int neighborRebuilds = 0;     ///< times the neighbour lists were rebuilt this step (0-2)
+    std::array<double, kPhaseCount> phaseSeconds{}; ///< wall time per Phase (s)
+
+    double seconds() const {
+        double s = 0.0;
+        for (double t : phaseSeconds) s += t;
+        return s;
+    }
+};
+
+} // namespace swell::bake

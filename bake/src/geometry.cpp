@@ -1,0 +1,182 @@
+#include "swell/bake/geometry.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include <fmt/format.h>
+
+#include "swell/bake/error.h"
+
+namespace swell::bake {
+namespace {
+
+/// Number of whole lattice cells of size l0 in `length`, tolerating rounding.
+long cellsIn(double length, double l0) {
+    return static_cast<long>(std::floor(length / l0 + 1e-6));
+}
+
+bool isWholeMultiple(double length, double l0) {
+    const double k = length / l0;
+    return std::abs(k - std::round(k)) < 1e-6 && std::round(k) >= 1.0;
+}
+
+ParticleKind layerKind(long layer, int wallLayers) {
+    return layer < wallLayers ? ParticleKind::Wall : ParticleKind::Dummy;
+}
+
+void checkBox(const Box& b, const std::string& key) {
+    if (!std::isfinite(b.x0) || !std::isfinite(b.x1) || !std::isfinite(b.y0) || !std::isfinite(b.y1)) {
+        throw SceneError(key, "coordinates must be finite numbers");
+    }
+    if (!(b.x1 > b.x0) || !(b.y1 > b.y0)) {
+        throw SceneError(key, fmt::format("empty rectangle: need x1 > x0 and y1 > y0 (got x0 = {}, x1 = {}, "
+                                          "y0 = {}, y1 = {})", b.x0, b.x1, b.y0, b.y1));
+    }
+}
+
+} // namespace
+
+GeneratedGeometry generateGeometry(const GeometryParams& g) {
+    const double l0 = g.particleSpacing;
+    if (!(l0 > 0.0) || !std::isfinite(l0)) {
+        throw SceneError("geometry.particle_spacing", fmt::format("must be a positive length in m, got {}", l0));
+    }
+    if (g.wallLayers < 1) throw SceneError("geometry.wall_layers", "must be at least 1");
+    if (g.dummyLayers < 0) throw SceneError("geometry.dummy_layers", "must not be negative");
+    if (g.water.empty()) throw SceneError("geometry.water", "the scene has no water rectangle");
+    const int layers = g.wallLayers + g.dummyLayers;
+
+    // Solid regions (m) used to reject water placed inside walls.
+    std::vector<std::pair<Box, std::string>> solidRegions;
+    if (g.tank) {
+        const Box& t = *g.tank;
+        checkBox(t, "geometry.tank");
+        if (!isWholeMultiple(t.width(), l0) || !isWholeMultiple(t.height(), l0)) {
+            throw SceneError("geometry.tank", fmt::format("width {} m and height {} m must be whole multiples of "
+                                                          "particle_spacing {} m", t.width(), t.height(), l0));
+        }
+        const double L = layers * l0;
+        solidRegions.push_back({Box{t.x0 - L, t.y0 - L, t.x1 + L, t.y0}, "geometry.tank (bed)"});
+        solidRegions.push_back({Box{t.x0 - L, t.y0, t.x0, t.y1}, "geometry.tank (back wall)"});
+        solidRegions.push_back({Box{t.x1, t.y0, t.x1 + L, t.y1}, "geometry.tank (front wall)"});
+    }
+    for (std::size_t s = 0; s < g.solids.size(); ++s) {
+        const std::string key = fmt::format("geometry.solids[{}]", s);
+        checkBox(g.solids[s], key);
+        if (cellsIn(g.solids[s].width(), l0) < 1 || cellsIn(g.solids[s].height(), l0) < 1) {
+            throw SceneError(key, "solid block is thinner than one particle spacing");
+        }
+        solidRegions.push_back({g.solids[s], key});
+    }
+
+    GeneratedGeometry out;
+    Particles& P = out.particles;
+
+    // Water: lattice sites (x0 + (i + 1/2) l0, y0 + (j + 1/2) l0).
+    for (std::size_t w = 0; w < g.water.size(); ++w) {
+        const std::string key = fmt::format("geometry.water[{}]", w);
+        const Box& b = g.water[w];
+        checkBox(b, key);
+        const long nx = cellsIn(b.width(), l0);
+        const long ny = cellsIn(b.height(), l0);
+        if (nx < 1 || ny < 1) {
+            throw SceneError(key, fmt::format("holds no particle: {} x {} m is smaller than particle_spacing {} m",
+                                              b.width(), b.height(), l0));
+        }
+        for (std::size_t v = 0; v < w; ++v) {
+            const Box& o = g.water[v];
+            const double ox = std::min(b.x1, o.x1) - std::max(b.x0, o.x0);
+            const double oy = std::min(b.y1, o.y1) - std::max(b.y0, o.y0);
+            if (ox > 1e-9 && oy > 1e-9) {
+                throw SceneError(key, fmt::format("overlaps geometry.water[{}]", v));
+            }
+        }
+        for (long j = 0; j < ny; ++j) {
+            for (long i = 0; i < nx; ++i) {
+                const double x = b.x0 + (static_cast<double>(i) + 0.5) * l0;
+                const double y = b.y0 + (static_cast<double>(j) + 0.5) * l0;
+                for (const auto& [box, name] : solidRegions) {
+                    const double m = 0.25 * l0; // a particle centre strictly inside a solid
+                    if (x > box.x0 + m && x < box.x1 - m && y > box.y0 + m && y < box.y1 - m) {
+                        throw SceneError(key, fmt::format("water at ({:.6g}, {:.6g}) m lies inside {}", x, y, name));
+                    }
+                }
+                P.add(x, y, ParticleKind::Water);
+            }
+        }
+    }
+
+    // Tank: bed (with corners) and two side walls; layer 0 is the one touching the water.
+    if (g.tank) {
+        const Box& t = *g.tank;
+        const long nIn = std::lround(t.width() / l0);
+        const long nUp = std::lround(t.height() / l0);
+        for (long k = 0; k < layers; ++k) { // bed rows, corners included
+            const double y = t.y0 - (static_cast<double>(k) + 0.5) * l0;
+            for (long i = -layers; i < nIn + layers; ++i) {
+                const double x = t.x0 + (static_cast<double>(i) + 0.5) * l0;
+                const long side = i < 0 ? -i - 1 : (i >= nIn ? i - nIn : 0);
+                P.add(x, y, layerKind(std::max(k, side), g.wallLayers));
+            }
+        }
+        for (long j = 0; j < nUp; ++j) { // side walls
+            const double y = t.y0 + (static_cast<double>(j) + 0.5) * l0;
+            for (long k = 0; k < layers; ++k) {
+                P.add(t.x0 - (static_cast<double>(k) + 0.5) * l0, y, layerKind(k, g.wallLayers));
+                P.add(t.x1 + (static_cast<double>(k) + 0.5) * l0, y, layerKind(k, g.wallLayers));
+            }
+        }
+    }
+    // Solid blocks: outer wallLayers are wall, the next dummyLayers dummy, the core is left empty.
+    for (const Box& s : g.solids) {
+        const long nx = cellsIn(s.width(), l0);
+        const long ny = cellsIn(s.height(), l0);
+        for (long j = 0; j < ny; ++j) {
+            for (long i = 0; i < nx; ++i) {
+                const long layer = std::min({i, j, nx - 1 - i, ny - 1 - j});
+                if (layer >= layers) continue;
+                P.add(s.x0 + (static_cast<double>(i) + 0.5) * l0, s.y0 + (static_cast<double>(j) + 0.5) * l0,
+                      layerKind(layer, g.wallLayers));
+            }
+        }
+    }
+
+    // Stable order: water, wall, dummy (keeps indices meaningful for users and tests).
+    Particles sorted;
+    sorted.reserve(P.size());
+    for (ParticleKind k : {ParticleKind::Water, ParticleKind::Wall, ParticleKind::Dummy}) {
+        for (std::size_t i = 0; i < P.size(); ++i) {
+            if (P.kind[i] == k) sorted.add(P.x[i], P.y[i], k);
+        }
+    }
+    out.particles = std::move(sorted);
+
+    double bx0 = std::numeric_limits<double>::max(), by0 = bx0;
+    double bx1 = std::numeric_limits<double>::lowest(), by1 = bx1;
+    for (std::size_t i = 0; i < out.particles.size(); ++i) {
+        bx0 = std::min(bx0, out.particles.x[i]);
+        bx1 = std::max(bx1, out.particles.x[i]);
+        by0 = std::min(by0, out.particles.y[i]);
+        by1 = std::max(by1, out.particles.y[i]);
+    }
+    bx0 -= l0; bx1 += l0; by0 -= l0; by1 += l0;
+    if (g.domain) {
+        checkBox(*g.domain, "geometry.domain");
+        const Box& d = *g.domain;
+        if (bx0 < d.x0 || bx1 > d.x1 || by0 < d.y0 || by1 > d.y1) {
+            throw SceneError("geometry.domain", fmt::format("must contain every particle with a margin of one "
+                                                            "spacing: particles span [{:.6g}, {:.6g}] x [{:.6g}, {:.6g}] m",
+                                                            bx0 + l0, bx1 - l0, by0 + l0, by1 - l0));
+        }
+        out.domain = d;
+    } else {
+        const double w = bx1 - bx0;
+        const double h = by1 - by0;
+        out.domain = Box{bx0 - 0.5 * w, by0 - 0.25 * h, bx1 + 0.5 * w, by1 + h};
+    }
+    return out;
+}
+
+} // namespace swell::bake

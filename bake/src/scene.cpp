@@ -1,0 +1,321 @@
+#include "swell/bake/scene.h"
+
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <set>
+#include <sstream>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "swell/bake/error.h"
+
+namespace swell::bake {
+namespace {
+
+using nlohmann::json;
+
+/// Reads the keys of one JSON object, remembering which were used so that
+/// finish() can reject the unknown ones.
+class Section {
+public:
+    Section(const json& j, std::string path) : m_json(j), m_path(std::move(path)) {
+        if (!m_json.is_object()) throw SceneError(m_path, "must be a JSON object");
+    }
+
+    std::string key(const std::string& k) const { return m_path.empty() ? k : m_path + "." + k; }
+    bool has(const std::string& k) const { return m_json.contains(k); }
+
+    const json* get(const std::string& k) {
+        m_used.insert(k);
+        const auto it = m_json.find(k);
+        return it == m_json.end() ? nullptr : &*it;
+    }
+
+    /// A finite number within [lo, hi] (bounds exclusive where asked).
+    double number(const std::string& k, double def, double lo, double hi, bool loOpen = false,
+                  const char* unit = "") {
+        const json* v = get(k);
+        if (!v) return def;
+        if (!v->is_number()) throw SceneError(key(k), fmt::format("must be a number{}, got {}", unit, v->dump()));
+        const double x = v->get<double>();
+        if (!std::isfinite(x) || x < lo || x > hi || (loOpen && x == lo)) {
+            throw SceneError(key(k), fmt::format("{} is out of range: must be {} {}{}", x, loOpen ? ">" : ">=", lo,
+                                                 hi < std::numeric_limits<double>::max()
+                                                     ? fmt::format(" and <= {}", hi)
+                                                     : std::string()));
+        }
+        return x;
+    }
+
+    int integer(const std::string& k, int def, int lo, int hi) {
+        const json* v = get(k);
+        if (!v) return def;
+        if (!v->is_number_integer()) throw SceneError(key(k), fmt::format("must be an integer, got {}", v->dump()));
+        const auto x = v->get<long long>();
+        if (x < lo || x > hi) {
+            throw SceneError(key(k), fmt::format("{} is out of range: must be in [{}, {}]", x, lo, hi));
+        }
+        return static_cast<int>(x);
+    }
+
+    bool boolean(const std::string& k, bool def) {
+        const json* v = get(k);
+        if (!v) return def;
+        if (!v->is_boolean()) throw SceneError(key(k), fmt::format("must be true or false, got {}", v->dump()));
+        return v->get<bool>();
+    }
+
+    std::string string(const std::string& k, const std::string& def) {
+        const json* v = get(k);
+        if (!v) return def;
+        if (!v->is_string()) throw SceneError(key(k), fmt::format("must be a string, got {}", v->dump()));
+        return v->get<std::string>();
+    }
+
+    template <typename E>
+    E enumeration(const std::string& k, E def, std::initializer_list<E> values) {
+        const json* v = get(k);
+        if (!v) return def;
+        std::string names;
+        for (E e : values) names += (names.empty() ? "\"" : ", \"") + std::string(toString(e)) + "\"";
+        if (!v->is_string()) throw SceneError(key(k), fmt::format("must be one of {}, got {}", names, v->dump()));
+        const auto s = v->get<std::string>();
+        for (E e : values) {
+            if (toString(e) == s) return e;
+        }
+        throw SceneError(key(k), fmt::format("unknown value \"{}\": must be one of {}", s, names));
+    }
+
+    void finish() const {
+        for (const auto& [k, v] : m_json.items()) {
+            if (!m_used.count(k)) throw SceneError(key(k), "unknown key");
+        }
+    }
+
+private:
+    const json& m_json;
+    std::string m_path;
+    std::set<std::string> m_used;
+};
+
+constexpr double kInf = std::numeric_limits<double>::max();
+
+Box readBox(const json& j, const std::string& path) {
+    Section s(j, path);
+    Box b;
+    for (const char* k : {"x0", "y0", "x1", "y1"}) {
+        if (!s.has(k)) throw SceneError(s.key(k), "missing (a rectangle needs x0, y0, x1, y1 in m)");
+    }
+    b.x0 = s.number("x0", 0.0, -kInf, kInf, false, " (m)");
+    b.y0 = s.number("y0", 0.0, -kInf, kInf, false, " (m)");
+    b.x1 = s.number("x1", 0.0, -kInf, kInf, false, " (m)");
+    b.y1 = s.number("y1", 0.0, -kInf, kInf, false, " (m)");
+    s.finish();
+    if (!(b.x1 > b.x0)) throw SceneError(path, fmt::format("empty rectangle: x1 = {} must exceed x0 = {}", b.x1, b.x0));
+    if (!(b.y1 > b.y0)) throw SceneError(path, fmt::format("empty rectangle: y1 = {} must exceed y0 = {}", b.y1, b.y0));
+    return b;
+}
+
+std::vector<Box> readBoxes(Section& parent, const std::string& k) {
+    std::vector<Box> out;
+    const json* v = parent.get(k);
+    if (!v) return out;
+    if (!v->is_array()) throw SceneError(parent.key(k), "must be an array of rectangles {x0, y0, x1, y1}");
+    for (std::size_t i = 0; i < v->size(); ++i) {
+        out.push_back(readBox((*v)[i], fmt::format("{}[{}]", parent.key(k), i)));
+    }
+    return out;
+}
+
+json boxJson(const Box& b) { return json{{"x0", b.x0}, {"y0", b.y0}, {"x1", b.x1}, {"y1", b.y1}}; }
+
+} // namespace
+
+double expectedSpeed(const Scene& scene) {
+    if (scene.solver.expectedSpeed > 0.0) return scene.solver.expectedSpeed;
+    double lo = kInf, hi = -kInf;
+    for (const Box& b : scene.geometry.water) {
+        lo = std::min(lo, b.y0);
+        hi = std::max(hi, b.y1);
+    }
+    const double h = hi > lo ? hi - lo : 0.0;
+    return 2.0 * std::sqrt(scene.physics.gravity * h); // Ritter: dry-bed dam-break front speed
+}
+
+Scene parseScene(const json& j) {
+    Scene scene;
+    Section top(j, "");
+    scene.name = top.string("name", "");
+    scene.description = top.string("description", "");
+
+    static const json kEmpty = json::object();
+    const json* phys = top.get("physics");
+    {
+        Section s(phys ? *phys : kEmpty, "physics");
+        PhysicsParams& p = scene.physics;
+        p.density = s.number("density", p.density, 0.0, kInf, true, " (kg/m^3)");
+        p.kinematicViscosity = s.number("kinematic_viscosity", p.kinematicViscosity, 0.0, kInf, false, " (m^2/s)");
+        p.gravity = s.number("gravity", p.gravity, 0.0, kInf, false, " (m/s^2)");
+        s.finish();
+    }
+    const json* geo = top.get("geometry");
+    if (!geo) throw SceneError("geometry", "missing: a scene needs at least one water rectangle");
+    {
+        Section s(*geo, "geometry");
+        GeometryParams& g = scene.geometry;
+        g.particleSpacing = s.number("particle_spacing", g.particleSpacing, 0.0, kInf, true, " (m)");
+        if (const json* t = s.get("tank")) g.tank = readBox(*t, "geometry.tank");
+        if (!s.has("water")) throw SceneError("geometry.water", "missing: a scene needs at least one water rectangle");
+        g.water = readBoxes(s, "water");
+        if (g.water.empty()) throw SceneError("geometry.water", "is empty: a scene needs at least one water rectangle");
+        g.solids = readBoxes(s, "solids");
+        g.wallLayers = s.integer("wall_layers", g.wallLayers, 1, 10);
+        g.dummyLayers = s.integer("dummy_layers", g.dummyLayers, 0, 10);
+        if (const json* d = s.get("domain")) g.domain = readBox(*d, "geometry.domain");
+        s.finish();
+    }
+    const json* sol = top.get("solver");
+    {
+        Section s(sol ? *sol : kEmpty, "solver");
+        SolverParams& p = scene.solver;
+        p.dt = s.number("dt", p.dt, 0.0, kInf, true, " (s)");
+        p.endTime = s.number("end_time", p.endTime, 0.0, kInf, true, " (s)");
+        p.adaptiveDt = s.boolean("adaptive_dt", p.adaptiveDt);
+        p.courantTarget = s.number("courant_target", p.courantTarget, 0.0, 1.0, true);
+        p.courantLimit = s.number("courant_limit", p.courantLimit, 0.0, 2.0, true);
+        p.expectedSpeed = s.number("expected_speed", p.expectedSpeed, 0.0, kInf, false, " (m/s)");
+        p.reDensity = s.number("re_density", p.reDensity, 1.0, 10.0, true, " (l0)");
+        p.reLaplacian = s.number("re_laplacian", p.reLaplacian, 1.0, 10.0, true, " (l0)");
+        p.surfaceThreshold = s.number("surface_threshold", p.surfaceThreshold, 0.0, 1.0, true);
+        p.relaxation = s.number("relaxation", p.relaxation, 0.0, 1.0, true);
+        p.compressibility = s.number("compressibility", p.compressibility, 0.0, kInf, false, " (1/Pa)");
+        p.collisionDistance = s.number("collision_distance", p.collisionDistance, 0.0, 1.0, false, " (l0)");
+        p.restitution = s.number("restitution", p.restitution, 0.0, 1.0);
+        p.sourceTerm = s.enumeration("source_term", p.sourceTerm, {SourceTerm::Relaxed, SourceTerm::Mixed});
+        p.gradientCorrection = s.boolean("gradient_correction", p.gradientCorrection);
+        p.preconditioner = s.enumeration("preconditioner", p.preconditioner,
+                                         {Preconditioner::Jacobi, Preconditioner::SymmetricGaussSeidel,
+                                          Preconditioner::IncompleteCholesky, Preconditioner::TwoLevel});
+        p.ppeTolerance = s.number("ppe_tolerance", p.ppeTolerance, 0.0, 0.5, true);
+        p.ppeMaxIterations = s.integer("ppe_max_iterations", p.ppeMaxIterations, 1, 1000000);
+        p.neighborSkin = s.number("neighbor_skin", p.neighborSkin, 0.0, 2.0, false, " (l0)");
+        p.maxNeighbors = s.integer("max_neighbors", p.maxNeighbors, 8, 1024);
+        s.finish();
+    }
+    const json* outp = top.get("output");
+    {
+        Section s(outp ? *outp : kEmpty, "output");
+        OutputParams& o = scene.output;
+        o.frameInterval = s.number("frame_interval", o.frameInterval, 0.0, kInf, true, " (s)");
+        o.splashRatio = s.number("splash_ratio", o.splashRatio, 0.0, 1.0, true);
+        o.surfaceRatio = s.number("surface_ratio", o.surfaceRatio, 0.0, 1.0, true);
+        s.finish();
+        if (!(o.splashRatio < o.surfaceRatio)) {
+            throw SceneError("output.splash_ratio", fmt::format("d1 = {} must be below output.surface_ratio d2 = {}",
+                                                                o.splashRatio, o.surfaceRatio));
+        }
+    }
+    top.finish();
+
+    // Geometry: generate once so bad rectangles are reported now, naming their key.
+    (void)generateGeometry(scene.geometry);
+
+    // Time step against the Courant limit for the expected speed.
+    const double speed = expectedSpeed(scene);
+    const double courant = speed * scene.solver.dt / scene.geometry.particleSpacing;
+    if (!scene.solver.adaptiveDt && courant > scene.solver.courantLimit) {
+        throw SceneError("solver.dt", fmt::format("dt = {} s gives Courant number {:.3g} = {:.3g} m/s x dt / {} m at "
+                                                  "the expected speed, above solver.courant_limit {}; use dt <= {:.3g} s "
+                                                  "or solver.adaptive_dt", scene.solver.dt, courant, speed,
+                                                  scene.geometry.particleSpacing, scene.solver.courantLimit,
+                                                  scene.solver.courantLimit * scene.geometry.particleSpacing / speed));
+    }
+    return scene;
+}
+
+Scene loadScene(const std::filesystem::path& path) {
+    std::ifstream in(path);
+    if (!in) throw SceneError("", fmt::format("cannot open scene file {}", path.string()));
+    std::stringstream buffer;
+    buffer << in.rdbuf();
+    json j;
+    try {
+        j = json::parse(buffer.str());
+    } catch (const json::parse_error& e) {
+        throw SceneError("", fmt::format("{} is not valid JSON: {}", path.string(), e.what()));
+    }
+    return parseScene(j);
+}
+
+json toJson(const Scene& sc) {
+    const GeometryParams& g = sc.geometry;
+    json water = json::array();
+    for (const Box& b : g.water) water.push_back(boxJson(b));
+    json solids = json::array();
+    for (const Box& b : g.solids) solids.push_back(boxJson(b));
+    json geo{{"particle_spacing", g.particleSpacing}, {"water", water}, {"solids", solids},
+             {"wall_layers", g.wallLayers}, {"dummy_layers", g.dummyLayers}};
+    if (g.tank) geo["tank"] = boxJson(*g.tank);
+    if (g.domain) geo["domain"] = boxJson(*g.domain);
+    const SolverParams& s = sc.solver;
+    return json{
+        {"name", sc.name},
+        {"description", sc.description},
+        {"physics", {{"density", sc.physics.density}, {"kinematic_viscosity", sc.physics.kinematicViscosity},
+                     {"gravity", sc.physics.gravity}}},
+        {"geometry", geo},
+        {"solver", {{"dt", s.dt}, {"end_time", s.endTime}, {"adaptive_dt", s.adaptiveDt},
+                    {"courant_target", s.courantTarget}, {"courant_limit", s.courantLimit},
+                    {"expected_speed", s.expectedSpeed}, {"re_density", s.reDensity},
+                    {"re_laplacian", s.reLaplacian}, {"surface_threshold", s.surfaceThreshold},
+                    {"relaxation", s.relaxation}, {"compressibility", s.compressibility},
+                    {"collision_distance", s.collisionDistance}, {"restitution", s.restitution},
+                    {"source_term", std::string(toString(s.sourceTerm))},
+                    {"gradient_correction", s.gradientCorrection},
+                    {"preconditioner", std::string(toString(s.preconditioner))},
+                    {"ppe_tolerance", s.ppeTolerance}, {"ppe_max_iterations", s.ppeMaxIterations},
+                    {"neighbor_skin", s.neighborSkin}, {"max_neighbors", s.maxNeighbors}}},
+        {"output", {{"frame_interval", sc.output.frameInterval}, {"splash_ratio", sc.output.splashRatio},
+                    {"surface_ratio", sc.output.surfaceRatio}}},
+    };
+}
+
+void applyOverride(json& j, const std::string& assignment) {
+    const auto eq = assignment.find('=');
+    if (eq == std::string::npos || eq == 0) {
+        throw SceneError("", fmt::format("override \"{}\" must look like section.key=value", assignment));
+    }
+    const std::string path = assignment.substr(0, eq);
+    const std::string text = assignment.substr(eq + 1);
+    json value;
+    try {
+        value = json::parse(text);
+    } catch (const json::parse_error&) {
+        value = text;
+    }
+    json* node = &j;
+    std::size_t start = 0;
+    while (true) {
+        const auto dot = path.find('.', start);
+        const std::string part = path.substr(start, dot == std::string::npos ? std::string::npos : dot - start);
+        if (part.empty()) throw SceneError(path, "empty key in override");
+        if (!node->is_object()) throw SceneError(path, "override goes through a value that is not an object");
+        if (dot == std::string::npos) {
+            (*node)[part] = value;
+            return;
+        }
+        node = &(*node)[part];
+        if (node->is_null()) *node = json::object();
+        start = dot + 1;
+    }
+}
+
+MpsSolver makeSolver(const Scene& scene) {
+    GeneratedGeometry geo = generateGeometry(scene.geometry);
+    return MpsSolver(scene.physics, scene.solver, std::move(geo.particles), scene.geometry.particleSpacing,
+                     geo.domain);
+}
+
+} // namespace swell::bake

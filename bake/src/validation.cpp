@@ -1,0 +1,62 @@
+#include "swell/bake/validation.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <stdexcept>
+
+namespace swell::bake {
+namespace {
+
+// Martin & Moyce (1952) Fig. 3, n^2 = 2, digitised in PySPH's db_exp_data.py.
+constexpr std::array<FrontPoint, 15> kA225{{{0.832, 1.217}, {1.219, 1.474}, {1.997, 2.292}, {2.547, 2.995},
+                                             {3.345, 4.134}, {4.034, 4.944}, {4.418, 5.881}, {5.091, 6.980},
+                                             {5.685, 7.945}, {6.306, 8.966}, {6.822, 9.986}, {7.439, 10.963},
+                                             {8.031, 11.977}, {8.633, 13.005}, {9.237, 13.970}}};
+constexpr std::array<FrontPoint, 10> kA1125{{{0.849, 1.245}, {1.212, 1.443}, {1.602, 1.884}, {2.283, 2.689},
+                                              {2.950, 3.728}, {3.598, 4.528}, {3.905, 4.999}, {4.592, 5.841},
+                                              {4.961, 6.271}, {5.316, 6.717}}};
+
+} // namespace
+
+std::span<const FrontPoint> martinMoyceA225() { return kA225; }
+std::span<const FrontPoint> martinMoyceA1125() { return kA1125; }
+
+double surgeFront(const Particles& particles, double n0, double splashRatio, double x0) {
+    double front = x0;
+    for (std::size_t i = 0; i < particles.size(); ++i) {
+        if (particles.kind[i] != ParticleKind::Water) continue;
+        if (particles.n[i] < splashRatio * n0) continue; // splash, paper eq. (4)
+        front = std::max(front, particles.x[i]);
+    }
+    return front - x0;
+}
+
+FrontError compareFront(std::span<const FrontPoint> sim, std::span<const FrontPoint> exp, double tLo,
+                        double tHi) {
+    if (sim.size() < 2) throw std::invalid_argument("compareFront: need at least two simulated points");
+    FrontError e;
+    for (const FrontPoint& p : exp) {
+        if (p.T < tLo || p.T > tHi) continue;
+        if (p.T < sim.front().T || p.T > sim.back().T) {
+            throw std::invalid_argument("compareFront: the simulation does not cover the experimental times");
+        }
+        const auto hi = std::lower_bound(sim.begin(), sim.end(), p.T,
+                                         [](const FrontPoint& a, double t) { return a.T < t; });
+        const auto lo = hi == sim.begin() ? hi : hi - 1;
+        const double span = hi->T - lo->T;
+        const double z = span > 0.0 ? lo->Z + (hi->Z - lo->Z) * (p.T - lo->T) / span : hi->Z;
+        const double d = z - p.Z;
+        e.mean += std::abs(d);
+        e.meanSigned += d;
+        e.max = std::max(e.max, std::abs(d));
+        ++e.points;
+    }
+    if (e.points > 0) {
+        e.mean /= e.points;
+        e.meanSigned /= e.points;
+    }
+    return e;
+}
+
+} // namespace swell::bake

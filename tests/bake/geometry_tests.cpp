@@ -1,0 +1,113 @@
+#include <cmath>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "swell/bake/error.h"
+#include "swell/bake/geometry.h"
+
+using namespace swell::bake;
+
+namespace {
+
+GeometryParams tankWithColumn() {
+    GeometryParams g;
+    g.particleSpacing = 0.01;
+    g.tank = Box{0.0, 0.0, 0.5, 0.3};
+    g.water = {Box{0.0, 0.0, 0.1, 0.2}};
+    return g;
+}
+
+template <typename F>
+std::string sceneErrorKey(F&& f) {
+    try {
+        f();
+    } catch (const SceneError& e) {
+        return e.key();
+    }
+    return "<no SceneError>";
+}
+
+} // namespace
+
+TEST(Geometry, TankAndColumnParticleCounts) {
+    const GeneratedGeometry g = generateGeometry(tankWithColumn());
+    const Particles& P = g.particles;
+    EXPECT_EQ(P.count(ParticleKind::Water), 10u * 20u);
+    // Bed: 4 layers x (50 + 2 * 4) sites; side walls: 2 x 4 layers x 30 sites.
+    const std::size_t fixed = 4 * 58 + 2 * 4 * 30;
+    EXPECT_EQ(P.count(ParticleKind::Wall) + P.count(ParticleKind::Dummy), fixed);
+    // Innermost two layers are wall: bed 2 x 54 (corners beyond the 2nd layer are dummy), sides 2 x 2 x 30.
+    EXPECT_EQ(P.count(ParticleKind::Wall), 2u * 54u + 2u * 2u * 30u);
+    // Water first, then wall, then dummy.
+    for (std::size_t i = 1; i < P.size(); ++i) EXPECT_LE(P.kind[i - 1], P.kind[i]);
+}
+
+TEST(Geometry, WaterSitsOnTheLatticeOneSpacingFromTheWalls) {
+    const GeneratedGeometry g = generateGeometry(tankWithColumn());
+    const Particles& P = g.particles;
+    double minX = 1.0, minY = 1.0;
+    for (std::size_t i = 0; i < P.size(); ++i) {
+        if (P.kind[i] != ParticleKind::Water) continue;
+        minX = std::min(minX, P.x[i]);
+        minY = std::min(minY, P.y[i]);
+        const double fx = P.x[i] / 0.01 - 0.5, fy = P.y[i] / 0.01 - 0.5;
+        EXPECT_NEAR(fx, std::round(fx), 1e-9);
+        EXPECT_NEAR(fy, std::round(fy), 1e-9);
+    }
+    EXPECT_NEAR(minX, 0.005, 1e-12); // back wall's first layer is at x = -0.005
+    EXPECT_NEAR(minY, 0.005, 1e-12);
+    for (std::size_t i = 0; i < P.size(); ++i) {
+        if (P.kind[i] == ParticleKind::Wall && std::abs(P.x[i] - 0.205) < 1e-9) {
+            EXPECT_TRUE(std::abs(P.y[i] + 0.005) < 1e-9 || std::abs(P.y[i] + 0.015) < 1e-9);
+        }
+    }
+}
+
+TEST(Geometry, DefaultDomainContainsEveryParticleWithRoomAbove) {
+    const GeneratedGeometry g = generateGeometry(tankWithColumn());
+    for (std::size_t i = 0; i < g.particles.size(); ++i) {
+        EXPECT_TRUE(g.domain.contains(g.particles.x[i], g.particles.y[i]));
+    }
+    EXPECT_GT(g.domain.y1, 0.3 + 0.2);
+}
+
+TEST(Geometry, SolidBlockHasWallSkinAndDummyCore) {
+    GeometryParams g;
+    g.particleSpacing = 0.01;
+    g.water = {Box{0.0, 0.0, 0.05, 0.05}};
+    g.solids = {Box{0.1, 0.0, 0.2, 0.1}}; // 10 x 10 sites
+    const GeneratedGeometry out = generateGeometry(g);
+    EXPECT_EQ(out.particles.count(ParticleKind::Wall), 100u - 36u);  // layers 0-1
+    EXPECT_EQ(out.particles.count(ParticleKind::Dummy), 36u - 4u);   // layers 2-3; the 2x2 core is left out
+}
+
+TEST(Geometry, BadRectanglesNameTheirKey) {
+    GeometryParams g = tankWithColumn();
+    g.water.push_back(Box{0.2, 0.0, 0.2 + 0.004, 0.1}); // thinner than one spacing
+    EXPECT_EQ(sceneErrorKey([&] { generateGeometry(g); }), "geometry.water[1]");
+
+    g = tankWithColumn();
+    g.water = {Box{-0.05, 0.0, 0.05, 0.1}}; // reaches into the back wall
+    EXPECT_EQ(sceneErrorKey([&] { generateGeometry(g); }), "geometry.water[0]");
+
+    g = tankWithColumn();
+    g.water.push_back(Box{0.05, 0.1, 0.15, 0.15}); // overlaps water[0]
+    EXPECT_EQ(sceneErrorKey([&] { generateGeometry(g); }), "geometry.water[1]");
+
+    g = tankWithColumn();
+    g.tank = Box{0.0, 0.0, 0.505, 0.3}; // not a whole number of spacings
+    EXPECT_EQ(sceneErrorKey([&] { generateGeometry(g); }), "geometry.tank");
+
+    g = tankWithColumn();
+    g.particleSpacing = -0.01;
+    EXPECT_EQ(sceneErrorKey([&] { generateGeometry(g); }), "geometry.particle_spacing");
+
+    g = tankWithColumn();
+    g.water.clear();
+    EXPECT_EQ(sceneErrorKey([&] { generateGeometry(g); }), "geometry.water");
+
+    g = tankWithColumn();
+    g.domain = Box{0.0, 0.0, 0.2, 0.2}; // cuts through the tank
+    EXPECT_EQ(sceneErrorKey([&] { generateGeometry(g); }), "geometry.domain");
+}

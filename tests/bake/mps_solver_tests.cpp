@@ -1,0 +1,243 @@
+#include <atomic>
+#include <cmath>
+#include <cstdlib>
+#include <limits>
+#include <new>
+#include <string>
+
+#include <Eigen/SparseCholesky>
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include "swell/bake/error.h"
+#include "swell/bake/scene.h"
+
+using namespace swell::bake;
+
+// Allocation counter for the "no allocation in the step loop" test: replaces global
+// operator new in this test binary only (not under AddressSanitizer, which owns it).
+#if defined(__SANITIZE_ADDRESS__)
+#define SWELL_COUNT_ALLOCATIONS 0
+#else
+#define SWELL_COUNT_ALLOCATIONS 1
+#endif
+namespace {
+std::atomic<long> g_allocations{0};
+}
+#if SWELL_COUNT_ALLOCATIONS
+void* operator new(std::size_t size) {
+    g_allocations.fetch_add(1, std::memory_order_relaxed);
+    if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
+    throw std::bad_alloc();
+}
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+#endif
+
+namespace {
+
+Scene smallDamBreak() {
+    Scene s;
+    s.geometry.particleSpacing = 0.01;
+    s.geometry.tank = Box{0.0, 0.0, 0.4, 0.3};
+    s.geometry.water = {Box{0.0, 0.0, 0.1, 0.2}};
+    s.solver.dt = 0.001;
+    return s;
+}
+
+/// Runs `steps` steps and returns the DivergenceError message, or "" if none.
+std::string runUntilFailure(MpsSolver& solver, int steps) {
+    try {
+        for (int k = 0; k < steps; ++k) solver.step();
+    } catch (const DivergenceError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+} // namespace
+
+TEST(MpsSolver, PpeMatrixIsSymmetricDiagonallyDominantAndSolvedExactly) {
+    for (Preconditioner pc : {Preconditioner::Jacobi, Preconditioner::SymmetricGaussSeidel,
+                              Preconditioner::IncompleteCholesky, Preconditioner::TwoLevel}) {
+        SCOPED_TRACE(std::string(toString(pc)));
+        Scene scene = smallDamBreak();
+        scene.solver.preconditioner = pc;
+        scene.solver.ppeTolerance = 1e-10;
+        MpsSolver solver = makeSolver(scene);
+        for (int k = 0; k < 30; ++k) solver.step();
+        const Eigen::SparseMatrix<double, Eigen::RowMajor> A = solver.ppeMatrix();
+        ASSERT_GT(A.rows(), 100);
+        const Eigen::SparseMatrix<double, Eigen::RowMajor> At = A.transpose();
+        EXPECT_LT((A - At).norm(), 1e-12 * A.norm());
+        for (Eigen::Index r = 0; r < A.rows(); ++r) {
+            double off = 0.0, diag = 0.0;
+            for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(A, r); it; ++it) {
+                if (it.col() == r) diag = it.value();
+                else {
+                    EXPECT_LE(it.value(), 0.0);
+                    off += std::abs(it.value());
+                }
+            }
+            ASSERT_GT(diag, off) << "row " << r; // strictly dominant thanks to compressibility
+        }
+        // Our PCG result against a direct sparse Cholesky solve of the same system.
+        const Eigen::SparseMatrix<double> Ac = A;
+        Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> direct(Ac);
+        ASSERT_EQ(direct.info(), Eigen::Success);
+        const Eigen::VectorXd exact = direct.solve(solver.ppeRhs());
+        const Eigen::VectorXd ours = solver.ppeSolution();
+        EXPECT_LT((ours - exact).norm(), 1e-7 * exact.norm());
+    }
+}
+
+TEST(MpsSolver, PreconditionersCutIterations) {
+    int iterations[4] = {0, 0, 0, 0};
+    int k = 0;
+    for (Preconditioner pc : {Preconditioner::Jacobi, Preconditioner::SymmetricGaussSeidel,
+                              Preconditioner::IncompleteCholesky, Preconditioner::TwoLevel}) {
+        Scene scene = smallDamBreak();
+        scene.solver.preconditioner = pc;
+        MpsSolver solver = makeSolver(scene);
+        for (int s = 0; s < 20; ++s) iterations[k] += solver.step().ppeIterations;
+        ++k;
+    }
+    EXPECT_LT(iterations[1], iterations[0]);
+    EXPECT_LT(iterations[2], iterations[1]);
+    EXPECT_LT(iterations[3], iterations[0]); // the coarse solve removes smooth error modes
+}
+
+TEST(MpsSolver, StepReportsStatsAndPhaseTimes) {
+    MpsSolver solver = makeSolver(smallDamBreak());
+    const StepStats& s = solver.step();
+    EXPECT_EQ(s.step, 1);
+    EXPECT_DOUBLE_EQ(s.dt, 0.001);
+    EXPECT_DOUBLE_EQ(solver.time(), 0.001);
+    EXPECT_GT(s.ppeIterations, 0);
+    EXPECT_LE(s.ppeResidual, solver.params().ppeTolerance);
+    EXPECT_GT(s.ppeUnknowns, 0u);
+    EXPECT_GT(s.surfaceParticles, 0u);
+    EXPECT_EQ(s.outOfBounds, 0u);
+    EXPECT_NEAR(s.courant, s.maxSpeed * s.dt / 0.01, 1e-12);
+    for (double t : s.phaseSeconds) EXPECT_GE(t, 0.0);
+    EXPECT_GT(s.seconds(), 0.0);
+}
+
+TEST(MpsSolver, WaterAtRestOnALatticeWithoutGravityStaysAtRest) {
+    Scene scene = smallDamBreak();
+    scene.physics.gravity = 0.0;
+    MpsSolver solver = makeSolver(scene);
+    const Particles before = solver.particles();
+    for (int k = 0; k < 50; ++k) solver.step();
+    const Particles& after = solver.particles();
+    for (std::size_t i = 0; i < after.size(); ++i) {
+        ASSERT_NEAR(after.x[i], before.x[i], 1e-9);
+        ASSERT_NEAR(after.y[i], before.y[i], 1e-9);
+    }
+}
+
+TEST(MpsSolver, AdaptiveStepKeepsTheCourantTarget) {
+    Scene scene = smallDamBreak();
+    scene.solver.dt = 0.004;
+    scene.solver.adaptiveDt = true;
+    scene.solver.courantTarget = 0.2;
+    MpsSolver solver = makeSolver(scene);
+    double smallest = 1.0;
+    for (int k = 0; k < 150; ++k) {
+        const StepStats& s = solver.step();
+        smallest = std::min(smallest, s.dt);
+        ASSERT_LE(s.dt, 0.004);
+    }
+    EXPECT_LT(smallest, 0.004); // the column collapses fast enough to need smaller steps
+}
+
+TEST(MpsSolver, StepLoopDoesNotAllocate) {
+    if (!SWELL_COUNT_ALLOCATIONS) GTEST_SKIP() << "allocation counting is off under AddressSanitizer";
+    MpsSolver solver = makeSolver(smallDamBreak());
+    for (int k = 0; k < 20; ++k) solver.step(); // warm-up (OpenMP thread pool, first rebuilds)
+    const long before = g_allocations.load();
+    int rebuilds = 0;
+    for (int k = 0; k < 100; ++k) rebuilds += solver.step().neighborRebuilds;
+    EXPECT_EQ(g_allocations.load() - before, 0);
+    EXPECT_GT(rebuilds, 0); // the rebuild path was exercised too
+}
+
+TEST(MpsSolver, DetectorStopsOnCourantNumberAboveTheLimit) {
+    Scene scene = smallDamBreak();
+    scene.solver.dt = 0.006; // far above what the collapse allows
+    MpsSolver solver = makeSolver(scene);
+    const std::string msg = runUntilFailure(solver, 200);
+    ASSERT_FALSE(msg.empty()) << "a too-large step must be stopped";
+    EXPECT_NE(msg.find("step"), std::string::npos);
+    EXPECT_NE(msg.find("particle"), std::string::npos);
+}
+
+TEST(MpsSolver, DetectorNamesStepTimeAndParticleForNonFiniteState) {
+    GeneratedGeometry g = generateGeometry(smallDamBreak().geometry);
+    g.particles.vx[17] = std::numeric_limits<double>::quiet_NaN();
+    MpsSolver solver(PhysicsParams{}, smallDamBreak().solver, g.particles, 0.01, g.domain);
+    try {
+        solver.step();
+        FAIL() << "NaN velocity not detected";
+    } catch (const DivergenceError& e) {
+        EXPECT_EQ(e.step(), 1);
+        EXPECT_NEAR(e.time(), 0.001, 1e-12);
+        // The NaN spreads to neighbours through viscosity within the step; the detector
+        // names the lowest-index non-finite particle: 17 or one of its neighbours.
+        const Particles& P = g.particles;
+        const std::size_t named = e.particle();
+        EXPECT_LT(std::hypot(P.x[named] - P.x[17], P.y[named] - P.y[17]), 3.6 * 0.01) << e.what();
+        EXPECT_NE(std::string(e.what()).find(fmt::format("particle {}", named)), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("non-finite"), std::string::npos) << e.what();
+    }
+}
+
+TEST(MpsSolver, DetectorStopsWhenAParticleLeavesTheDomain) {
+    const Scene scene = smallDamBreak();
+    GeneratedGeometry g = generateGeometry(scene.geometry);
+    g.particles.vx[5] = 400.0; // 0.4 m per step: out of the domain at once
+    SolverParams par = scene.solver;
+    par.courantLimit = 1e9;    // so the domain check is the one that fires
+    MpsSolver solver(PhysicsParams{}, par, g.particles, 0.01, g.domain);
+    const std::string msg = runUntilFailure(solver, 3);
+    ASSERT_FALSE(msg.empty());
+    EXPECT_NE(msg.find("particle 5"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("domain"), std::string::npos) << msg;
+}
+
+TEST(MpsSolver, DetectorStopsOnAnUnconvergedPressureSolve) {
+    Scene scene = smallDamBreak();
+    scene.solver.ppeMaxIterations = 2;
+    scene.solver.ppeTolerance = 1e-12;
+    MpsSolver solver = makeSolver(scene);
+    const std::string msg = runUntilFailure(solver, 5);
+    EXPECT_NE(msg.find("did not converge"), std::string::npos) << msg;
+}
+
+TEST(MpsSolver, RejectsUnusableConstruction) {
+    const GeneratedGeometry g = generateGeometry(smallDamBreak().geometry);
+    SolverParams bad;
+    bad.dt = 0.0;
+    EXPECT_THROW(MpsSolver(PhysicsParams{}, bad, g.particles, 0.01, g.domain), std::invalid_argument);
+    EXPECT_THROW(MpsSolver(PhysicsParams{}, SolverParams{}, g.particles, 0.01, Box{0, 0, 0.01, 0.01}),
+                 std::invalid_argument);
+    Particles walls;
+    walls.add(0.0, 0.0, ParticleKind::Wall);
+    EXPECT_THROW(MpsSolver(PhysicsParams{}, SolverParams{}, walls, 0.01, g.domain), std::invalid_argument);
+}
+
+TEST(MpsSolver, TwoSolversInOneProcessAreIndependent) {
+    MpsSolver a = makeSolver(smallDamBreak());
+    MpsSolver b = makeSolver(smallDamBreak());
+    for (int k = 0; k < 10; ++k) a.step();
+    b.step();
+    EXPECT_EQ(a.stepCount(), 10);
+    EXPECT_EQ(b.stepCount(), 1);
+    MpsSolver c = makeSolver(smallDamBreak());
+    for (int k = 0; k < 9; ++k) b.step();
+    for (int k = 0; k < 10; ++k) c.step();
+    for (std::size_t i = 0; i < a.particles().size(); ++i) {
+        ASSERT_NEAR(a.particles().x[i], b.particles().x[i], 1e-8);
+        ASSERT_NEAR(c.particles().y[i], b.particles().y[i], 1e-8);
+    }
+}

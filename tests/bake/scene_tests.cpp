@@ -1,0 +1,194 @@
+#include <filesystem>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "swell/bake/error.h"
+#include "swell/bake/scene.h"
+
+using namespace swell::bake;
+using nlohmann::json;
+
+namespace {
+
+const std::filesystem::path kScenes = SWELL_SCENES_DIR;
+
+json minimal() {
+    return json::parse(R"({
+        "geometry": {
+            "particle_spacing": 0.01,
+            "tank": {"x0": 0, "y0": 0, "x1": 0.5, "y1": 0.3},
+            "water": [{"x0": 0, "y0": 0, "x1": 0.1, "y1": 0.2}]
+        },
+        "solver": {"dt": 0.001}
+    })");
+}
+
+/// The key named by the SceneError that parsing `j` throws.
+std::string errorKey(const json& j) {
+    try {
+        parseScene(j);
+    } catch (const SceneError& e) {
+        EXPECT_NE(std::string(e.what()).find(e.key()), std::string::npos) << "message must name the key";
+        return e.key();
+    }
+    return "<accepted>";
+}
+
+} // namespace
+
+TEST(Scene, ShippedScenesLoad) {
+    for (const char* name : {"still_tank.json", "still_tank_small.json", "dam_break.json", "dam_break_small.json"}) {
+        SCOPED_TRACE(name);
+        const Scene s = loadScene(kScenes / name);
+        EXPECT_FALSE(s.name.empty());
+        EXPECT_FALSE(s.geometry.water.empty());
+        EXPECT_TRUE(s.geometry.tank.has_value());
+    }
+}
+
+TEST(Scene, DamBreakSceneIsTheMartinMoyceSetUp) {
+    for (const char* name : {"dam_break.json", "dam_break_small.json"}) {
+        const Scene s = loadScene(kScenes / name);
+        const Box col = s.geometry.water.at(0);
+        const Box tank = *s.geometry.tank;
+        EXPECT_DOUBLE_EQ(col.x0, 0.0);                        // back wall inner face at x = 0
+        EXPECT_DOUBLE_EQ(col.y0, 0.0);                        // bed at y = 0
+        EXPECT_DOUBLE_EQ(tank.x0, 0.0);
+        EXPECT_DOUBLE_EQ(tank.y0, 0.0);
+        EXPECT_NEAR(col.height(), 2.0 * col.width(), 1e-12); // height 2a
+        EXPECT_GE(tank.width(), 5.0 * col.width() - 1e-12);  // tank at least 5a long
+    }
+}
+
+TEST(Scene, DefaultsFillMissingSectionsAndKeys) {
+    const Scene s = parseScene(minimal());
+    const SolverParams d;
+    EXPECT_DOUBLE_EQ(s.solver.reDensity, d.reDensity);
+    EXPECT_DOUBLE_EQ(s.solver.reLaplacian, 3.1);
+    EXPECT_DOUBLE_EQ(s.physics.density, 1000.0);
+    EXPECT_EQ(s.geometry.wallLayers, 2);
+    EXPECT_DOUBLE_EQ(s.output.splashRatio, 0.49);
+    EXPECT_DOUBLE_EQ(s.output.surfaceRatio, 0.96);
+}
+
+TEST(Scene, EnumsAreReadByName) {
+    json j = minimal();
+    j["solver"]["preconditioner"] = "jacobi";
+    j["solver"]["source_term"] = "mixed";
+    const Scene s = parseScene(j);
+    EXPECT_EQ(s.solver.preconditioner, Preconditioner::Jacobi);
+    EXPECT_EQ(s.solver.sourceTerm, SourceTerm::Mixed);
+    j["solver"]["preconditioner"] = "multigrid";
+    EXPECT_EQ(errorKey(j), "solver.preconditioner");
+    j["solver"]["preconditioner"] = 1;
+    EXPECT_EQ(errorKey(j), "solver.preconditioner");
+}
+
+TEST(Scene, UnknownKeysAreRejectedNamingTheKey) {
+    json j = minimal();
+    j["solver"]["dtt"] = 0.001;
+    EXPECT_EQ(errorKey(j), "solver.dtt");
+    j = minimal();
+    j["physic"] = json::object();
+    EXPECT_EQ(errorKey(j), "physic");
+    j = minimal();
+    j["geometry"]["water"][0]["z0"] = 0.0;
+    EXPECT_EQ(errorKey(j), "geometry.water[0].z0");
+}
+
+TEST(Scene, WrongTypesAreRejectedNamingTheKey) {
+    json j = minimal();
+    j["solver"]["dt"] = "0.001";
+    EXPECT_EQ(errorKey(j), "solver.dt");
+    j = minimal();
+    j["solver"]["adaptive_dt"] = 1;
+    EXPECT_EQ(errorKey(j), "solver.adaptive_dt");
+    j = minimal();
+    j["geometry"]["wall_layers"] = 2.5;
+    EXPECT_EQ(errorKey(j), "geometry.wall_layers");
+    j = minimal();
+    j["geometry"]["water"] = json::object();
+    EXPECT_EQ(errorKey(j), "geometry.water");
+    j = minimal();
+    j["physics"] = 3;
+    EXPECT_EQ(errorKey(j), "physics");
+}
+
+TEST(Scene, BadValuesAreRejectedNamingTheKey) {
+    json j = minimal();
+    j["geometry"]["particle_spacing"] = -0.01;
+    EXPECT_EQ(errorKey(j), "geometry.particle_spacing");
+    j = minimal();
+    j["geometry"]["water"] = json::array();
+    EXPECT_EQ(errorKey(j), "geometry.water");
+    j = minimal();
+    j["geometry"]["water"][0]["x1"] = 0.0; // empty fluid region
+    EXPECT_EQ(errorKey(j), "geometry.water[0]");
+    j = minimal();
+    j["geometry"]["water"][0]["x1"] = 0.005; // holds no particle
+    EXPECT_EQ(errorKey(j), "geometry.water[0]");
+    j = minimal();
+    j["solver"]["surface_threshold"] = 1.5;
+    EXPECT_EQ(errorKey(j), "solver.surface_threshold");
+    j = minimal();
+    j["output"]["splash_ratio"] = 0.97;
+    EXPECT_EQ(errorKey(j), "output.splash_ratio");
+    j = minimal();
+    j.erase("geometry");
+    EXPECT_EQ(errorKey(j), "geometry");
+}
+
+TEST(Scene, TimeStepAboveTheCourantLimitIsRejected) {
+    // Expected speed 2 sqrt(g H) = 2 sqrt(9.81 x 0.2) = 2.80 m/s; l0 = 0.01 m; limit 0.5:
+    // dt may be at most 0.5 x 0.01 / 2.80 = 1.78 ms.
+    json j = minimal();
+    j["solver"]["dt"] = 0.0017;
+    EXPECT_EQ(errorKey(j), "<accepted>");
+    j["solver"]["dt"] = 0.0019;
+    EXPECT_EQ(errorKey(j), "solver.dt");
+    j["solver"]["expected_speed"] = 1.0; // the scene says it is slower
+    EXPECT_EQ(errorKey(j), "<accepted>");
+    j["solver"]["expected_speed"] = 0.0;
+    j["solver"]["adaptive_dt"] = true; // dt is then only the largest step
+    EXPECT_EQ(errorKey(j), "<accepted>");
+}
+
+TEST(Scene, ToJsonRoundTrips) {
+    json j = minimal();
+    j["solver"]["preconditioner"] = "incomplete_cholesky";
+    j["solver"]["gradient_correction"] = true;
+    j["geometry"]["solids"] = json::array({{{"x0", 0.3}, {"y0", 0.0}, {"x1", 0.35}, {"y1", 0.05}}});
+    const Scene a = parseScene(j);
+    const Scene b = parseScene(toJson(a));
+    EXPECT_EQ(toJson(a), toJson(b));
+    EXPECT_EQ(b.solver.preconditioner, Preconditioner::IncompleteCholesky);
+    EXPECT_TRUE(b.solver.gradientCorrection);
+    ASSERT_EQ(b.geometry.solids.size(), 1u);
+}
+
+TEST(Scene, OverridesSetNestedKeysWithJsonValues) {
+    json j = minimal();
+    applyOverride(j, "solver.dt=0.0005");
+    applyOverride(j, "solver.preconditioner=jacobi"); // not JSON: taken as a string
+    applyOverride(j, "output.frame_interval=0.1");    // creates the section
+    const Scene s = parseScene(j);
+    EXPECT_DOUBLE_EQ(s.solver.dt, 0.0005);
+    EXPECT_EQ(s.solver.preconditioner, Preconditioner::Jacobi);
+    EXPECT_DOUBLE_EQ(s.output.frameInterval, 0.1);
+    EXPECT_THROW(applyOverride(j, "solver.dt"), SceneError);
+    EXPECT_THROW(applyOverride(j, "solver.dt.x=1"), SceneError);
+}
+
+TEST(Scene, UnreadableFilesAreSceneErrors) {
+    EXPECT_THROW(loadScene(kScenes / "no_such_scene.json"), SceneError);
+    const auto tmp = std::filesystem::temp_directory_path() / "swell_bad_scene.json";
+    {
+        std::FILE* f = std::fopen(tmp.c_str(), "w");
+        std::fputs("{ \"geometry\": ", f);
+        std::fclose(f);
+    }
+    EXPECT_THROW(loadScene(tmp), SceneError);
+    std::filesystem::remove(tmp);
+}
