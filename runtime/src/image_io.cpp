@@ -29,11 +29,12 @@ void pngWarning(png_structp, png_const_charp) {}
 
 } // namespace
 
-void writePng(const std::filesystem::path& path, const Image& image, int compression) {
-    if (image.width <= 0 || image.height <= 0 ||
-        image.rgb.size() != static_cast<std::size_t>(image.width) * image.height * 3) {
-        throw std::logic_error("writePng: malformed image");
-    }
+void writePngRaw(const std::filesystem::path& path, int width, int height, PngLayout layout,
+                 const std::uint8_t* samples, int compression) {
+    if (width <= 0 || height <= 0 || samples == nullptr)
+        throw std::logic_error("writePngRaw: malformed image");
+    const bool rgb = layout == PngLayout::Rgb8;
+    const std::size_t rowBytes = static_cast<std::size_t>(width) * (rgb ? 3 : 2);
     std::unique_ptr<std::FILE, FileCloser> file(std::fopen(path.c_str(), "wb"));
     if (!file)
         throw RuntimeError(fmt::format("cannot write {}", path.string()));
@@ -49,17 +50,59 @@ void writePng(const std::filesystem::path& path, const Image& image, int compres
     }
     png_init_io(png, file.get());
     png_set_compression_level(png, std::clamp(compression, 0, 9));
-    png_set_IHDR(png, info, static_cast<png_uint_32>(image.width),
-                 static_cast<png_uint_32>(image.height), 8, PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
+    png_set_IHDR(png, info, static_cast<png_uint_32>(width), static_cast<png_uint_32>(height),
+                 rgb ? 8 : 16, rgb ? PNG_COLOR_TYPE_RGB : PNG_COLOR_TYPE_GRAY, PNG_INTERLACE_NONE,
                  PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
     png_write_info(png, info);
-    for (int y = 0; y < image.height; ++y) {
-        png_write_row(png, const_cast<png_bytep>(image.pixel(0, y)));
-    }
+    for (int y = 0; y < height; ++y)
+        png_write_row(png, const_cast<png_bytep>(samples + static_cast<std::size_t>(y) * rowBytes));
     png_write_end(png, nullptr);
     png_destroy_write_struct(&png, &info);
     if (std::fflush(file.get()) != 0)
         throw RuntimeError(fmt::format("cannot write {}", path.string()));
+}
+
+std::vector<std::uint8_t> readPngRaw(const std::filesystem::path& path, PngLayout layout,
+                                     int& width, int& height) {
+    std::unique_ptr<std::FILE, FileCloser> file(std::fopen(path.c_str(), "rb"));
+    if (!file)
+        throw RuntimeError(fmt::format("cannot open {}", path.string()));
+    png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, nullptr, pngError, pngWarning);
+    png_infop info = png ? png_create_info_struct(png) : nullptr;
+    if (png == nullptr || info == nullptr) {
+        png_destroy_read_struct(&png, &info, nullptr);
+        throw RuntimeError("libpng: out of memory");
+    }
+    std::vector<std::uint8_t> samples;
+    if (setjmp(png_jmpbuf(png))) {
+        png_destroy_read_struct(&png, &info, nullptr);
+        throw RuntimeError(fmt::format("{} is not a readable PNG", path.string()));
+    }
+    png_init_io(png, file.get());
+    png_read_info(png, info);
+    const bool rgb = layout == PngLayout::Rgb8;
+    if (png_get_bit_depth(png, info) != (rgb ? 8 : 16) ||
+        png_get_color_type(png, info) != (rgb ? PNG_COLOR_TYPE_RGB : PNG_COLOR_TYPE_GRAY)) {
+        png_destroy_read_struct(&png, &info, nullptr);
+        throw RuntimeError(fmt::format("{} is not a {} PNG", path.string(),
+                                       rgb ? "8-bit RGB" : "16-bit greyscale"));
+    }
+    width = static_cast<int>(png_get_image_width(png, info));
+    height = static_cast<int>(png_get_image_height(png, info));
+    const std::size_t rowBytes = static_cast<std::size_t>(width) * (rgb ? 3 : 2);
+    samples.resize(rowBytes * static_cast<std::size_t>(height));
+    for (int y = 0; y < height; ++y)
+        png_read_row(png, &samples[static_cast<std::size_t>(y) * rowBytes], nullptr);
+    png_destroy_read_struct(&png, &info, nullptr);
+    return samples;
+}
+
+void writePng(const std::filesystem::path& path, const Image& image, int compression) {
+    if (image.width <= 0 || image.height <= 0 ||
+        image.rgb.size() != static_cast<std::size_t>(image.width) * image.height * 3) {
+        throw std::logic_error("writePng: malformed image");
+    }
+    writePngRaw(path, image.width, image.height, PngLayout::Rgb8, image.rgb.data(), compression);
 }
 
 Image readPng(const std::filesystem::path& path) {

@@ -25,6 +25,20 @@ struct Image {
     }
 };
 
+/// Sample layouts of the raw PNG I/O below.
+enum class PngLayout {
+    Rgb8,   ///< 3 bytes per pixel
+    Gray16, ///< 2 bytes per pixel, big-endian (as PNG stores them)
+};
+/// Writes `height` rows of `width` pixels of raw samples in `layout`. Throws RuntimeError
+/// naming the file.
+void writePngRaw(const std::filesystem::path& path, int width, int height, PngLayout layout,
+                 const std::uint8_t* samples, int compression = 6);
+/// Reads a PNG that is exactly of `layout` (no conversion); sets width and height. Throws
+/// RuntimeError naming the file (missing, not a PNG, damaged, another layout).
+std::vector<std::uint8_t> readPngRaw(const std::filesystem::path& path, PngLayout layout,
+                                     int& width, int& height);
+
 /// Writes an 8-bit RGB PNG. `compression` is zlib's level 0..9 (1: fast, for sequences).
 /// Throws RuntimeError naming the file on I/O failure.
 void writePng(const std::filesystem::path& path, const Image& image, int compression = 6);
