@@ -1,6 +1,7 @@
 // End to end: swell-play on a small cache written with swell::cache::Writer.
 #include "swell/cache/writer.h"
 
+#include "app_runner.h"
 #include "synthetic_frames.h"
 
 #include <gtest/gtest.h>
@@ -21,18 +22,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct Result {
-    int code = -1;
-    std::string out;
-    std::string err;
-};
-
-std::string slurp(const fs::path& p) {
-    std::ifstream f(p, std::ios::binary);
-    std::stringstream s;
-    s << f.rdbuf();
-    return s.str();
-}
+using Result = test::AppResult;
+using test::slurp;
 
 class PlayApp : public ::testing::Test {
 protected:
@@ -48,15 +39,7 @@ protected:
 
     /// Runs swell-play with `args`, environment assignments `env` first.
     static Result run(const std::string& args, const std::string& env = "") {
-        const fs::path out = s_dir / "stdout.txt", err = s_dir / "stderr.txt";
-        const std::string cmd = env + " " + std::string(SWELL_PLAY_EXE) + " " + args + " >" +
-                                out.string() + " 2>" + err.string();
-        const int status = std::system(cmd.c_str());
-        Result r;
-        r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-        r.out = slurp(out);
-        r.err = slurp(err);
-        return r;
+        return test::runApp(SWELL_PLAY_EXE, args, env, s_dir);
     }
     static std::string cachePath() { return (s_dir / "wave.swell").string(); }
     static inline fs::path s_dir;
