@@ -119,7 +119,10 @@ Image readPng(const std::filesystem::path& path) {
         png_destroy_read_struct(&png, &info, nullptr);
         throw RuntimeError("libpng: out of memory");
     }
+    // Everything that owns memory lives before setjmp: a libpng error longjmps back here and
+    // the throw below then destroys it (objects made after setjmp would leak).
     Image image;
+    std::vector<png_bytep> rows;
     if (setjmp(png_jmpbuf(png))) {
         png_destroy_read_struct(&png, &info, nullptr);
         throw RuntimeError(fmt::format("cannot read PNG {} (damaged)", path.string()));
@@ -142,7 +145,7 @@ Image readPng(const std::filesystem::path& path) {
         throw RuntimeError(fmt::format("{}: unsupported PNG layout", path.string()));
     }
     image = Image(w, h);
-    std::vector<png_bytep> rows(static_cast<std::size_t>(h));
+    rows.resize(static_cast<std::size_t>(h));
     for (int y = 0; y < h; ++y)
         rows[static_cast<std::size_t>(y)] = image.pixel(0, y);
     png_read_image(png, rows.data());
