@@ -715,6 +715,7 @@ void MpsSolver::correctionPhase(double dt) {
     const double coefG = kDim / m_latN.n0;
     const double k = dt / m_phys.density;
     const bool gc = m_par.gradientCorrection;
+    const bool sym = m_par.symmetricGradient; // (p_i + p_j) pair term instead of (p_j - p_i^min)
     double maxSpeed2 = 0.0;
 #pragma omp parallel for schedule(static) reduction(max : maxSpeed2) if(n >= kParallelMin)
     for (std::size_t i = 0; i < n; ++i) {
@@ -726,7 +727,8 @@ void MpsSolver::correctionPhase(double dt) {
             const double dy = m_yStar[j] - m_yStar[i];
             const double r2 = dx * dx + dy * dy;
             if (r2 >= reN2 || r2 <= 0.0) continue;
-            const double f = (m_p.p[j] - m_pMin[i]) / r2 * mpsWeight(std::sqrt(r2), m_reN);
+            const double pij = sym ? m_p.p[j] + m_p.p[i] : m_p.p[j] - m_pMin[i];
+            const double f = pij / r2 * mpsWeight(std::sqrt(r2), m_reN);
             gx += f * dx;
             gy += f * dy;
         }

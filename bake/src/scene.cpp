@@ -195,6 +195,7 @@ Scene parseScene(const json& j) {
         p.restitution = s.number("restitution", p.restitution, 0.0, 1.0);
         p.sourceTerm = s.enumeration("source_term", p.sourceTerm, {SourceTerm::Relaxed, SourceTerm::Mixed});
         p.gradientCorrection = s.boolean("gradient_correction", p.gradientCorrection);
+        p.symmetricGradient = s.boolean("symmetric_gradient", p.symmetricGradient);
         p.preconditioner = s.enumeration("preconditioner", p.preconditioner,
                                          {Preconditioner::Jacobi, Preconditioner::SymmetricGaussSeidel,
                                           Preconditioner::IncompleteCholesky, Preconditioner::TwoLevel});
@@ -274,6 +275,7 @@ json toJson(const Scene& sc) {
                     {"collision_distance", s.collisionDistance}, {"restitution", s.restitution},
                     {"source_term", std::string(toString(s.sourceTerm))},
                     {"gradient_correction", s.gradientCorrection},
+                    {"symmetric_gradient", s.symmetricGradient},
                     {"preconditioner", std::string(toString(s.preconditioner))},
                     {"ppe_tolerance", s.ppeTolerance}, {"ppe_max_iterations", s.ppeMaxIterations},
                     {"neighbor_skin", s.neighborSkin}, {"max_neighbors", s.maxNeighbors}}},

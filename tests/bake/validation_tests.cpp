@@ -144,13 +144,32 @@ TEST(Validation, StillTankHydrostaticPressureWithGradientCorrection) {
     EXPECT_NEAR(r.pressureRatio, 1.0, 0.05);
 }
 
-// Issue 3 asks for max |u| < 1 % of sqrt(g H) after settling. NOT MET: both the textbook
-// scheme and its variants here keep the water churning at 20-50 % of sqrt(g H)
-// (docs/validation.md). Disabled so CI stays green while the gap stays visible; run with
-// --gtest_also_run_disabled_tests.
+// Issue 3 asks for max |u| < 1 % of sqrt(g H) after settling. The textbook (p_j - p_i^min)
+// gradient keeps the water churning at 20-50 % of sqrt(g H); the symmetric (p_i + p_j)
+// gradient with gamma = 0.05 settles to about 0.5 cm/s, but surface particles whose n sits
+// at beta n0 flicker between p = 0 and p > 0 and give spikes up to 1.6-1.8 % of sqrt(g H)
+// (docs/validation.md section 3). Each case: 20,000 steps, about 22 s.
+Scene settlingStillTank() {
+    Scene scene = loadScene(kScenes / "still_tank_small.json");
+    scene.solver.symmetricGradient = true;
+    scene.solver.relaxation = 0.05;
+    return scene;
+}
+
+TEST(Validation, StillTankWithSymmetricGradientSettlesBelowThreePercentOfWaveSpeed) {
+    const StillTankResult r = runStillTank(settlingStillTank(), 20000, 10.0);
+    EXPECT_EQ(r.steps, 20000);
+    EXPECT_EQ(r.escaped, 0u);
+    RecordProperty("bottom_pressure_ratio", fmt::format("{:.4f}", r.pressureRatio));
+    RecordProperty("max_speed_ratio", fmt::format("{:.4f}", r.maxSpeedRatio));
+    EXPECT_NEAR(r.pressureRatio, 1.0, 0.05);
+    EXPECT_LT(r.maxSpeedRatio, 0.03); // measured 0.018 (textbook gradient: 0.4-0.5)
+}
+
+// The issue's bound itself: NOT MET (0.018 with the best settings above). Disabled so CI
+// stays green while the gap stays visible; run with --gtest_also_run_disabled_tests.
 TEST(Validation, DISABLED_StillTankSettlesBelowOnePercentOfWaveSpeed) {
-    const Scene scene = loadScene(kScenes / "still_tank_small.json");
-    const StillTankResult r = runStillTank(scene, 20000, 2.0);
+    const StillTankResult r = runStillTank(settlingStillTank(), 20000, 10.0);
     EXPECT_LT(r.maxSpeedRatio, 0.01);
 }
 
