@@ -17,8 +17,8 @@ LatticeConstants latticeConstants(double spacing, double re) {
             if (i == 0 && j == 0) continue;
             const double r = spacing * std::hypot(static_cast<double>(i), static_cast<double>(j));
             const double w = mpsWeight(r, re);
-            sumW += w;              // K&O eq. (4): n0 on the initial lattice
-            sumR2W += r * r * w;    // K&O eq. (11): lambda = sum r^2 w / sum w
+            sumW += w;              // K&O 1996: n0 on the initial lattice
+            sumR2W += r * r * w;    // K&O 1996 Laplacian model: lambda = sum r^2 w / sum w
         }
     }
     return {sumW, sumW > 0.0 ? sumR2W / sumW : 0.0};

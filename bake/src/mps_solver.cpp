@@ -244,7 +244,7 @@ const StepStats& MpsSolver::step() {
 
 void MpsSolver::explicitPhase(double dt) {
     const std::size_t n = m_p.size();
-    const double coefL = 2.0 * kDim / (m_latL.n0 * m_latL.lambda); // K&O eq. (10) prefactor
+    const double coefL = 2.0 * kDim / (m_latL.n0 * m_latL.lambda); // K&O 1996 Laplacian model prefactor
     const double nu = m_phys.kinematicViscosity;
     const double g = m_phys.gravity;
     const double reL2 = m_reL * m_reL;
@@ -257,7 +257,7 @@ void MpsSolver::explicitPhase(double dt) {
             m_vStar[i] = 0.0;
             continue;
         }
-        // K&O eq. (10): Laplacian model nu 2d/(lambda n0) sum (u_j - u_i) w(r_ij), re = 3.1 l0.
+        // K&O 1996 Laplacian model: nu 2d/(lambda n0) sum (u_j - u_i) w(r_ij), re = 3.1 l0.
         double lx = 0.0, ly = 0.0;
         for (std::uint32_t j : m_grid.neighbors(i)) {
             const double dx = m_p.x[j] - m_p.x[i];
@@ -268,7 +268,7 @@ void MpsSolver::explicitPhase(double dt) {
             lx += (m_p.vx[j] - m_p.vx[i]) * w;
             ly += (m_p.vy[j] - m_p.vy[i]) * w;
         }
-        // Explicit step of eq. (2): u* = u + dt (nu lap u + f), r* = r + dt u*.
+        // Explicit part of paper eq. (2): u* = u + dt (nu lap u + f), r* = r + dt u*.
         m_uStar[i] = m_p.vx[i] + dt * (nu * coefL * lx);
         m_vStar[i] = m_p.vy[i] + dt * (nu * coefL * ly - g);
         m_xStar[i] = m_p.x[i] + dt * m_uStar[i];
@@ -330,7 +330,7 @@ void MpsSolver::densityPhase(double /*dt*/) {
             const double r2 = dx * dx + dy * dy;
             if (r2 >= reN2) continue;
             const double w = mpsWeight(std::sqrt(r2), m_reN);
-            s += w; // K&O eq. (4): particle number density at r*
+            s += w; // K&O 1996 particle number density, at r*
             if (mixed && m_p.kind[j] != ParticleKind::Dummy) {
                 // Divergence model: d/n0 sum (u_j - u_i).(r_j - r_i) / r^2 w
                 div += ((m_uStar[j] - m_uStar[i]) * dx + (m_vStar[j] - m_vStar[i]) * dy) / r2 * w;
@@ -341,7 +341,7 @@ void MpsSolver::densityPhase(double /*dt*/) {
         if (m_p.kind[i] == ParticleKind::Dummy) {
             m_surface[i] = 2; // not in the pressure solve
         } else {
-            // Paper eq. (3) / K&O eq. (20): free surface where n* < beta n0, p = 0 there.
+            // Paper eq. (3), the K&O 1996 free-surface condition: free surface where n* < beta n0, p = 0 there.
             m_surface[i] = s < threshold ? 1 : 0;
             surface += m_surface[i];
         }
@@ -381,7 +381,7 @@ void MpsSolver::assemblePpe(double dt) {
     m_rowPtr[0] = 0;
     for (int r = 0; r < rows; ++r) m_rowPtr[static_cast<std::size_t>(r) + 1] += m_rowPtr[static_cast<std::size_t>(r)];
 
-    // Second pass: K&O eq. (18) with the Laplacian model eq. (10):
+    // Second pass: K&O 1996 pressure Poisson equation with the Laplacian model:
     //   sum_j a w_ij (p_i - p_j) / rho + C p_i / dt^2 = RHS,  a = 2d / (lambda n0),
     // where surface neighbours (p_j = 0) only add to the diagonal, dummies are left out, and
     // the artificial compressibility C (textbook code) makes the system strictly diagonally
@@ -419,7 +419,7 @@ void MpsSolver::assemblePpe(double dt) {
         m_val[static_cast<std::size_t>(diag)] = diagValue;
         m_diagPos[static_cast<std::size_t>(r)] = diag;
         m_invDiag[static_cast<std::size_t>(r)] = 1.0 / diagValue;
-        // K&O eq. (18) source, relaxed (textbook): gamma / dt^2 (n* - n0) / n0. Mixed
+        // K&O 1996 PPE source, relaxed (textbook): gamma / dt^2 (n* - n0) / n0. Mixed
         // (Tanaka & Masunaga 2010): - div(u*) / dt + gamma / dt^2 (n* - n0) / n0.
         double rhs = gamma / (dt * dt) * (m_p.n[i] - n0) / n0;
         if (mixed) rhs -= m_divU[i] / dt;
@@ -689,14 +689,14 @@ void MpsSolver::solvePpe() {
 void MpsSolver::correctionPhase(double dt) {
     const std::size_t n = m_p.size();
     // Pressures: unknowns from the solve, negative ones cut to 0 (textbook code); surface
-    // and dummy particles at 0 (K&O eq. (20) Dirichlet condition).
+    // and dummy particles at 0 (K&O 1996 free-surface Dirichlet condition).
 #pragma omp parallel for schedule(static) if(n >= kParallelMin)
     for (std::size_t i = 0; i < n; ++i) {
         const int r = m_row[i];
         m_p.p[i] = r >= 0 ? std::max(0.0, m_x[static_cast<std::size_t>(r)]) : 0.0;
     }
     const double reN2 = m_reN * m_reN;
-    // Minimum pressure among neighbours within re (K&O eq. (13) uses p_i^min for stability).
+    // Minimum pressure among neighbours within re (the K&O 1996 gradient model uses p_i^min for stability).
 #pragma omp parallel for schedule(static) if(n >= kParallelMin)
     for (std::size_t i = 0; i < n; ++i) {
         double pm = m_p.p[i];
@@ -710,8 +710,8 @@ void MpsSolver::correctionPhase(double dt) {
         }
         m_pMin[i] = pm;
     }
-    // K&O eq. (13): grad p_i = d/n0 sum (p_j - p_i^min) (r_j - r_i) / r^2 w; then the
-    // correction u' = -dt/rho grad p, u = u* + u', r = r* + dt u' (K&O eq. (14)-(15)).
+    // K&O 1996 gradient model: grad p_i = d/n0 sum (p_j - p_i^min) (r_j - r_i) / r^2 w; then the
+    // correction u' = -dt/rho grad p, u = u* + u', r = r* + dt u' (K&O 1996 pressure correction).
     const double coefG = kDim / m_latN.n0;
     const double k = dt / m_phys.density;
     const bool gc = m_par.gradientCorrection;
@@ -731,7 +731,7 @@ void MpsSolver::correctionPhase(double dt) {
             gy += f * dy;
         }
         if (gc) {
-            // Khayyer & Gotoh (2011) eq. (14)-(15): C_i = (d/n0 sum w r_ij r_ij^T / r^2)^-1.
+            // Khayyer & Gotoh (2011) corrective matrix: C_i = (d/n0 sum w r_ij r_ij^T / r^2)^-1.
             double cxx = 0.0, cxy = 0.0, cyy = 0.0;
             for (std::uint32_t j : m_grid.neighbors(i)) {
                 if (m_p.kind[j] == ParticleKind::Dummy) continue;

@@ -18,7 +18,7 @@ TEST(Kernel, WeightIsReOverRMinusOneInsideAndZeroOutside) {
 
 // Closed forms: on a square lattice the neighbours of re = 2.1 l0 sit at distances
 // 1 (4 sites), sqrt 2 (4), 2 (4); re = 3.1 l0 adds sqrt 5 (8), sqrt 8 (4), 3 (4).
-// n0 = sum count * (re/r - 1); lambda = sum count * r^2 w / n0 (K&O 1996 eq. (11)).
+// n0 = sum count * (re/r - 1); lambda = sum count * r^2 w / n0 (K&O 1996 Laplacian model).
 TEST(Kernel, LatticeConstantsMatchClosedFormFor21) {
     const double l0 = 0.01;
     const double re = 2.1;

@@ -2,7 +2,7 @@
 
 namespace swell::bake {
 
-/// MPS weight function (Koshizuka & Oka 1996, eq. (3); paper Sec. 3.1):
+/// MPS weight function (Koshizuka & Oka 1996; paper Sec. 3.1):
 /// w(r) = re / r - 1 for 0 < r < re, 0 otherwise. r = 0 (coincident particles)
 /// has no direction and is given weight 0; the collision model separates them.
 inline double mpsWeight(double r, double re) {
@@ -12,7 +12,7 @@ inline double mpsWeight(double r, double re) {
 /// The standard constants of a kernel radius on a perfect square lattice.
 struct LatticeConstants {
     double n0 = 0.0;     ///< particle number density n0 = sum_j w(|r_j - r_i|) (dimensionless)
-    double lambda = 0.0; ///< Laplacian-model lambda = sum r^2 w / sum w (m^2), K&O eq. (11)
+    double lambda = 0.0; ///< Laplacian-model lambda = sum r^2 w / sum w (m^2), K&O 1996 Laplacian model
 };
 
 /// n0 and lambda for a particle of a full 2D square lattice of spacing `spacing` (m)

@@ -23,7 +23,7 @@ enum class Preconditioner {
 };
 /// Source term of the pressure Poisson equation.
 enum class SourceTerm {
-    /// K&O 1996 eq. (19) relaxed as in the textbook code: gamma/dt^2 (n* - n0)/n0.
+    /// K&O 1996 density-based source, relaxed as in the textbook code: gamma/dt^2 (n* - n0)/n0.
     Relaxed,
     /// Tanaka & Masunaga 2010 mixed source: rho/dt div(u*) + gamma rho/dt^2 (n* - n0)/n0 (sign per PPE).
     Mixed,
@@ -44,7 +44,7 @@ struct SolverParams {
     double expectedSpeed = 0.0;
     double reDensity = 2.1;         ///< re for number density and gradient (l0): textbook code
     double reLaplacian = 3.1;       ///< re for the Laplacian (viscosity, PPE) (l0): textbook code
-    double surfaceThreshold = 0.97; ///< beta: n* < beta n0 is free surface, p = 0 (K&O eq. 20)
+    double surfaceThreshold = 0.97; ///< beta: n* < beta n0 is free surface, p = 0 (paper eq. (3))
     double relaxation = 0.2;        ///< gamma: relaxation of the PPE source term (textbook code)
     double compressibility = 0.45e-9; ///< artificial compressibility (1/Pa): textbook code, keeps PPE SPD
     double collisionDistance = 0.5; ///< pairs closer than this (l0) collide (textbook code)

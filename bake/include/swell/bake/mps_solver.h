@@ -85,7 +85,7 @@ private:
     // work arrays (structure of arrays, sized once)
     std::vector<double> m_xs, m_ys;   // positions at the last neighbour build
     std::vector<double> m_xStar, m_yStar, m_uStar, m_vStar; // predicted state
-    std::vector<double> m_pMin;       // minimum neighbour pressure (K&O eq. 13 variant)
+    std::vector<double> m_pMin;       // minimum neighbour pressure (K&O 1996 gradient model)
     std::vector<double> m_divU;       // velocity divergence (mixed source term)
     std::vector<std::uint8_t> m_surface;
     std::vector<std::int32_t> m_row;  // PPE row of each particle, -1 if none
