@@ -28,6 +28,9 @@ struct Header {
     Encoding encoding = Encoding::Float32;
     /// Byte-shuffle filter before zstd (improves the ratio on smooth float data).
     bool shuffle = true;
+    /// Delta filter (each value minus the previous particle's) before the shuffle;
+    /// pays off when particles are stored in order along the surface.
+    bool delta = true;
     /// zstd compression level used by the writer (1..19); informational when read.
     int compressionLevel = 3;
     Domain domain;

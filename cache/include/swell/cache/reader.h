@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <vector>
 
 namespace swell::cache {
@@ -31,6 +32,8 @@ public:
     std::vector<Frame> readAll() const;
 
 private:
+    struct File; // open descriptor, shared by copies; frames are read with pread
+    std::shared_ptr<const File> m_file;
     std::filesystem::path m_path;
     Header m_header;
     std::uint32_t m_version = 0;

@@ -1,0 +1,192 @@
+// swell-cache: inspect, verify, dump and synthesize .swell caches.
+#include "swell/cache/error.h"
+#include "swell/cache/reader.h"
+#include "swell/cache/synthetic.h"
+#include "swell/cache/writer.h"
+
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <fmt/format.h>
+#include <iostream>
+#include <map>
+#include <nlohmann/json.hpp>
+
+namespace {
+using namespace swell::cache;
+using nlohmann::json;
+
+const char* encodingName(Encoding e) {
+    return e == Encoding::Float32 ? "float32" : "quantized16";
+}
+
+json infoJson(const Reader& r) {
+    const Header& h = r.header();
+    std::uint64_t surfSum = 0, splashSum = 0, rawSum = 0, compSum = 0;
+    std::uint32_t surfMax = 0, splashMax = 0;
+    for (std::size_t i = 0; i < r.frameCount(); ++i) {
+        const FrameInfo& e = r.frameInfo(i);
+        surfSum += e.surfaceCount;
+        splashSum += e.splashCount;
+        surfMax = std::max(surfMax, e.surfaceCount);
+        splashMax = std::max(splashMax, e.splashCount);
+        rawSum += e.rawSize;
+        compSum += e.compressedSize;
+    }
+    const double n = std::max<double>(1.0, static_cast<double>(r.frameCount()));
+    json meta = json::parse(h.metadataJson);
+    return {
+        {"file", r.path().string()},
+        {"version", r.version()},
+        {"encoding", encodingName(h.encoding)},
+        {"shuffle", h.shuffle},
+        {"delta", h.delta},
+        {"max_position_error_m", h.maxPositionError()},
+        {"domain", {h.domain.xMin, h.domain.yMin, h.domain.xMax, h.domain.yMax}},
+        {"dt", h.dt},
+        {"frame_interval", h.frameInterval},
+        {"frame_time", h.frameTime()},
+        {"seed", h.seed},
+        {"frames", r.frameCount()},
+        {"surface_mean", static_cast<double>(surfSum) / n},
+        {"surface_max", surfMax},
+        {"splash_mean", static_cast<double>(splashSum) / n},
+        {"splash_max", splashMax},
+        {"bytes_on_disk", r.fileSize()},
+        {"raw_bytes", rawSum},
+        {"compressed_frame_bytes", compSum},
+        {"compression_ratio", compSum ? static_cast<double>(rawSum) / compSum : 0.0},
+        {"metadata", meta},
+    };
+}
+
+void printInfo(const json& j) {
+    fmt::print("file               {}\n", j["file"].get<std::string>());
+    fmt::print("format version     {}\n", j["version"].get<int>());
+    fmt::print("encoding           {} (shuffle {}, delta {}), max position error {:.3g} m\n",
+               j["encoding"].get<std::string>(), j["shuffle"].get<bool>() ? "on" : "off",
+               j["delta"].get<bool>() ? "on" : "off",
+               j["max_position_error_m"].get<double>());
+    fmt::print("frames             {} every {} steps of {} s ({} s apart)\n",
+               j["frames"].get<std::size_t>(), j["frame_interval"].get<unsigned>(),
+               j["dt"].get<double>(), j["frame_time"].get<double>());
+    fmt::print("surface particles  mean {:.1f}, max {}\n", j["surface_mean"].get<double>(),
+               j["surface_max"].get<unsigned>());
+    fmt::print("splash particles   mean {:.1f}, max {}\n", j["splash_mean"].get<double>(),
+               j["splash_max"].get<unsigned>());
+    fmt::print("bytes on disk      {}\n", j["bytes_on_disk"].get<std::uint64_t>());
+    fmt::print("raw frame bytes    {} (compression ratio {:.2f})\n",
+               j["raw_bytes"].get<std::uint64_t>(), j["compression_ratio"].get<double>());
+    fmt::print("seed               {}\n", j["seed"].get<std::uint64_t>());
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{"swell-cache: inspect, verify, dump and synthesize .swell caches"};
+    app.require_subcommand(1);
+
+    std::string path;
+    bool asJson = false;
+    auto* info = app.add_subcommand("info", "Summarize a cache (header, counts, sizes)");
+    info->add_option("CACHE", path, "cache file")->required();
+    info->add_flag("--json", asJson, "print one JSON object");
+
+    auto* verify = app.add_subcommand("verify", "Decode every frame and check every checksum");
+    verify->add_option("CACHE", path, "cache file")->required();
+    verify->add_flag("--json", asJson, "print one JSON object");
+
+    std::size_t frameIndex = 0;
+    auto* dump = app.add_subcommand("dump", "Print one frame's particles as CSV");
+    dump->add_option("CACHE", path, "cache file")->required();
+    dump->add_option("--frame", frameIndex, "frame index")->required();
+
+    SyntheticWave wave;
+    std::size_t frames = 1200;
+    std::string encoding = "float32";
+    bool noShuffle = false;
+    bool noDelta = false;
+    int level = 3;
+    auto* synth = app.add_subcommand(
+        "synth", "Write a synthetic cache (travelling wave) for demos and benchmarks");
+    synth->add_option("OUT", path, "output cache file")->required();
+    synth->add_option("--frames", frames, "number of frames")->check(CLI::Range(1, 1000000));
+    synth->add_option("--surface", wave.surfaceCount, "surface particles per frame")
+        ->check(CLI::Range(0, 10000000));
+    synth->add_option("--splash", wave.splashCount, "splash particles per frame")
+        ->check(CLI::Range(0, 10000000));
+    synth->add_option("--seed", wave.seed, "seed of the jitter and splash placement");
+    synth->add_option("--encoding", encoding, "float32 or quantized16")
+        ->check(CLI::IsMember({"float32", "quantized16"}));
+    synth->add_flag("--no-shuffle", noShuffle, "disable the byte-shuffle filter");
+    synth->add_flag("--no-delta", noDelta, "disable the delta filter");
+    synth->add_option("--level", level, "zstd level")->check(CLI::Range(1, 19));
+
+    CLI11_PARSE(app, argc, argv);
+
+    try {
+        if (*info) {
+            const json j = infoJson(Reader(path));
+            if (asJson)
+                std::cout << j.dump() << "\n";
+            else
+                printInfo(j);
+        } else if (*verify) {
+            Reader r(path);
+            std::uint64_t particles = 0;
+            for (std::size_t i = 0; i < r.frameCount(); ++i) {
+                const Frame f = r.readFrame(i);
+                particles += f.surfaceCount() + f.splashCount();
+            }
+            if (asJson)
+                std::cout << json{{"file", path}, {"ok", true}, {"frames", r.frameCount()},
+                                  {"particles", particles}}
+                                 .dump()
+                          << "\n";
+            else
+                fmt::print("{}: OK, {} frames, {} particles, every checksum matches\n", path,
+                           r.frameCount(), particles);
+        } else if (*dump) {
+            Reader r(path);
+            if (frameIndex >= r.frameCount())
+                throw CacheError(fmt::format("{}: frame {} does not exist (the cache has {})",
+                                             path, frameIndex, r.frameCount()));
+            const Frame f = r.readFrame(frameIndex);
+            fmt::print("kind,x,y,vx,vy\n");
+            for (std::size_t i = 0; i < f.surfaceCount(); ++i)
+                fmt::print("surface,{:.9g},{:.9g},,\n", f.surface[2 * i], f.surface[2 * i + 1]);
+            for (std::size_t i = 0; i < f.splashCount(); ++i)
+                fmt::print("splash,{:.9g},{:.9g},{:.9g},{:.9g}\n", f.splash[4 * i],
+                           f.splash[4 * i + 1], f.splash[4 * i + 2], f.splash[4 * i + 3]);
+        } else if (*synth) {
+            Header h;
+            h.encoding = encoding == "float32" ? Encoding::Float32 : Encoding::Quantized16;
+            h.shuffle = !noShuffle;
+            h.delta = !noDelta;
+            h.compressionLevel = level;
+            h.domain = syntheticDomain(wave);
+            h.dt = 0.001;
+            h.frameInterval = static_cast<std::uint32_t>(std::lround(wave.frameTime / h.dt));
+            h.seed = wave.seed;
+            h.metadataJson = json{{"generator", "swell-cache synth"},
+                                  {"scene", "synthetic travelling wave"},
+                                  {"surface_count", wave.surfaceCount},
+                                  {"splash_count", wave.splashCount},
+                                  {"length_m", wave.length},
+                                  {"depth_m", wave.depth},
+                                  {"amplitude_m", wave.amplitude},
+                                  {"wavelength_m", wave.wavelength},
+                                  {"period_s", wave.period}}
+                                 .dump();
+            Writer w(path, h);
+            for (std::size_t i = 0; i < frames; ++i)
+                w.addFrame(syntheticFrame(wave, i));
+            w.finish();
+            fmt::print(stderr, "wrote {} ({} frames, {} bytes)\n", path, frames,
+                       w.bytesWritten());
+        }
+    } catch (const std::exception& e) {
+        fmt::print(stderr, "swell-cache: {}\n", e.what());
+        return 1;
+    }
+    return 0;
+}

@@ -1,0 +1,215 @@
+#include "swell/cache/writer.h"
+
+#include "format.h"
+#include "swell/cache/error.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <fcntl.h>
+#include <stdexcept>
+#include <string>
+#include <unistd.h>
+#include <zstd.h>
+
+namespace swell::cache {
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string describe(const fs::path& p, const std::string& what) {
+    return p.string() + ": " + what;
+}
+
+void validateHeader(const Header& h) {
+    const Domain& d = h.domain;
+    if (!(std::isfinite(d.xMin) && std::isfinite(d.xMax) && std::isfinite(d.yMin) &&
+          std::isfinite(d.yMax)) ||
+        !(d.xMax > d.xMin) || !(d.yMax > d.yMin))
+        throw std::invalid_argument("cache header: domain bounds must be finite with max > min");
+    if (!(h.dt > 0.0) || !std::isfinite(h.dt))
+        throw std::invalid_argument("cache header: dt must be positive and finite");
+    if (h.frameInterval == 0)
+        throw std::invalid_argument("cache header: frame_interval must be at least 1");
+    if (h.compressionLevel < 1 || h.compressionLevel > ZSTD_maxCLevel())
+        throw std::invalid_argument("cache header: compression level must be in 1.." +
+                                    std::to_string(ZSTD_maxCLevel()));
+    if (h.metadataJson.size() > format::kMaxMetadataBytes)
+        throw std::invalid_argument("cache header: metadata JSON larger than 16 MiB");
+}
+
+void validateFrame(const Header& h, const Frame& f, std::size_t index) {
+    const auto where = [&] { return "cache frame " + std::to_string(index) + ": "; };
+    if (f.surface.size() % 2 != 0)
+        throw std::invalid_argument(where() + "surface array length is not a multiple of 2");
+    if (f.splash.size() % 4 != 0)
+        throw std::invalid_argument(where() + "splash array length is not a multiple of 4");
+    if (f.surfaceCount() > UINT32_MAX / 2 || f.splashCount() > UINT32_MAX / 4 ||
+        format::rawRecordSize(h.encoding, f.surfaceCount(), f.splashCount()) >
+            format::kMaxRawFrameBytes)
+        throw std::invalid_argument(where() + "frame larger than 256 MiB");
+    const Domain& d = h.domain;
+    auto inside = [&](float x, float y) {
+        return x >= d.xMin && x <= d.xMax && y >= d.yMin && y <= d.yMax;
+    };
+    for (std::size_t i = 0; i < f.surfaceCount(); ++i)
+        if (!inside(f.surface[2 * i], f.surface[2 * i + 1]))
+            throw std::invalid_argument(where() + "surface particle " + std::to_string(i) +
+                                        " is outside the domain bounds or not finite");
+    for (std::size_t i = 0; i < f.splashCount(); ++i) {
+        if (!inside(f.splash[4 * i], f.splash[4 * i + 1]))
+            throw std::invalid_argument(where() + "splash particle " + std::to_string(i) +
+                                        " is outside the domain bounds or not finite");
+        if (!std::isfinite(f.splash[4 * i + 2]) || !std::isfinite(f.splash[4 * i + 3]))
+            throw std::invalid_argument(where() + "splash particle " + std::to_string(i) +
+                                        " has a non-finite velocity");
+    }
+}
+
+} // namespace
+
+Writer::Writer(fs::path path, Header header)
+    : m_path(std::move(path)), m_header(std::move(header)) {
+    validateHeader(m_header);
+    m_tmpPath = m_path;
+    m_tmpPath += ".tmp-" + std::to_string(::getpid());
+    m_file = std::fopen(m_tmpPath.c_str(), "w+b");
+    if (!m_file)
+        throw CacheError(describe(m_path, std::string("cannot create temporary file ") +
+                                              m_tmpPath.string() + ": " + std::strerror(errno)));
+    m_cctx = ZSTD_createCCtx();
+    if (!m_cctx)
+        throw CacheError(describe(m_path, "cannot create zstd context"));
+    ZSTD_CCtx_setParameter(static_cast<ZSTD_CCtx*>(m_cctx), ZSTD_c_compressionLevel,
+                           m_header.compressionLevel);
+    ZSTD_CCtx_setParameter(static_cast<ZSTD_CCtx*>(m_cctx), ZSTD_c_contentSizeFlag, 1);
+
+    // Fixed header with frame count, index offset and checksum still zero; patched by finish().
+    std::vector<std::uint8_t> head(format::kFixedHeaderSize, 0);
+    std::memcpy(head.data(), format::kMagic, sizeof format::kMagic);
+    using namespace format;
+    put<std::uint32_t>(&head[kOffVersion], kFormatVersion);
+    put<std::uint32_t>(&head[kOffHeaderSize],
+                       static_cast<std::uint32_t>(kFixedHeaderSize + m_header.metadataJson.size()));
+    put<std::uint32_t>(&head[kOffEncoding], static_cast<std::uint32_t>(m_header.encoding));
+    put<std::uint32_t>(&head[kOffFlags],
+                       (m_header.shuffle ? kFlagShuffle : 0u) | (m_header.delta ? kFlagDelta : 0u));
+    put<float>(&head[kOffDomain + 0], m_header.domain.xMin);
+    put<float>(&head[kOffDomain + 4], m_header.domain.yMin);
+    put<float>(&head[kOffDomain + 8], m_header.domain.xMax);
+    put<float>(&head[kOffDomain + 12], m_header.domain.yMax);
+    put<double>(&head[kOffDt], m_header.dt);
+    put<std::uint32_t>(&head[kOffFrameInterval], m_header.frameInterval);
+    put<std::uint32_t>(&head[kOffLevel], static_cast<std::uint32_t>(m_header.compressionLevel));
+    put<std::uint64_t>(&head[kOffSeed], m_header.seed);
+    put<float>(&head[kOffMaxError], m_header.maxPositionError());
+    put<std::uint32_t>(&head[kOffMetadataLength],
+                       static_cast<std::uint32_t>(m_header.metadataJson.size()));
+    writeBytes(head.data(), head.size());
+    writeBytes(m_header.metadataJson.data(), m_header.metadataJson.size());
+}
+
+Writer::~Writer() {
+    if (m_cctx)
+        ZSTD_freeCCtx(static_cast<ZSTD_CCtx*>(m_cctx));
+    if (m_file)
+        std::fclose(m_file);
+    if (!m_finished) {
+        std::error_code ec;
+        fs::remove(m_tmpPath, ec); // nothing at the final path was touched
+    }
+}
+
+void Writer::writeBytes(const void* data, std::size_t size) {
+    if (size && std::fwrite(data, 1, size, m_file) != size)
+        throw CacheError(describe(m_path, std::string("write failed: ") + std::strerror(errno)));
+    m_offset += size;
+}
+
+void Writer::addFrame(const Frame& frame) {
+    if (m_finished)
+        throw std::logic_error("swell::cache::Writer::addFrame after finish()");
+    validateFrame(m_header, frame, m_index.size());
+    const auto ns = static_cast<std::uint32_t>(frame.surfaceCount());
+    const auto nsp = static_cast<std::uint32_t>(frame.splashCount());
+
+    format::encodeRecord(m_header, frame, m_raw);
+    FrameInfo info;
+    info.offset = m_offset;
+    info.rawSize = m_raw.size();
+    info.surfaceCount = ns;
+    info.splashCount = nsp;
+    info.checksum = format::checksum(m_raw.data(), m_raw.size());
+
+    if (m_header.delta)
+        format::delta(m_header.encoding, ns, nsp, m_raw, false); // m_raw is scratch from here
+    const std::vector<std::uint8_t>* src = &m_raw;
+    if (m_header.shuffle) {
+        format::shuffle(m_header.encoding, ns, nsp, m_raw, m_shuffled, false);
+        src = &m_shuffled;
+    }
+    m_compressed.resize(ZSTD_compressBound(src->size()));
+    const std::size_t n = ZSTD_compress2(static_cast<ZSTD_CCtx*>(m_cctx), m_compressed.data(),
+                                         m_compressed.size(), src->data(), src->size());
+    if (ZSTD_isError(n))
+        throw CacheError(describe(m_path, std::string("zstd compression failed: ") +
+                                              ZSTD_getErrorName(n)));
+    info.compressedSize = n;
+    writeBytes(m_compressed.data(), n);
+    m_index.push_back(info);
+}
+
+void Writer::finish() {
+    if (m_finished)
+        return;
+    using namespace format;
+    const std::uint64_t indexOffset = m_offset;
+    std::vector<std::uint8_t> index(m_index.size() * kIndexEntrySize);
+    for (std::size_t i = 0; i < m_index.size(); ++i) {
+        std::uint8_t* p = &index[i * kIndexEntrySize];
+        const FrameInfo& e = m_index[i];
+        put<std::uint64_t>(p, e.offset);
+        put<std::uint64_t>(p + 8, e.compressedSize);
+        put<std::uint64_t>(p + 16, e.rawSize);
+        put<std::uint32_t>(p + 24, e.surfaceCount);
+        put<std::uint32_t>(p + 28, e.splashCount);
+        put<std::uint64_t>(p + 32, e.checksum);
+    }
+    writeBytes(index.data(), index.size());
+    const std::uint64_t indexSum = checksum(index.data(), index.size());
+    writeBytes(&indexSum, sizeof indexSum);
+
+    // Patch frame count and index offset, then checksum the header + metadata.
+    std::uint8_t patch[16];
+    put<std::uint64_t>(patch, m_index.size());
+    put<std::uint64_t>(patch + 8, indexOffset);
+    std::vector<std::uint8_t> head(kFixedHeaderSize + m_header.metadataJson.size());
+    auto fail = [&](const char* what) {
+        throw CacheError(describe(m_path, std::string(what) + ": " + std::strerror(errno)));
+    };
+    if (std::fflush(m_file) != 0 || std::fseek(m_file, kOffFrameCount, SEEK_SET) != 0 ||
+        std::fwrite(patch, 1, sizeof patch, m_file) != sizeof patch || std::fflush(m_file) != 0 ||
+        std::fseek(m_file, 0, SEEK_SET) != 0 ||
+        std::fread(head.data(), 1, head.size(), m_file) != head.size())
+        fail("cannot patch header");
+    const std::uint64_t headSum = headerChecksum(head);
+    if (std::fseek(m_file, kOffHeaderChecksum, SEEK_SET) != 0 ||
+        std::fwrite(&headSum, 1, sizeof headSum, m_file) != sizeof headSum ||
+        std::fflush(m_file) != 0 || ::fsync(::fileno(m_file)) != 0)
+        fail("cannot finish header");
+    std::fclose(m_file);
+    m_file = nullptr;
+
+    std::error_code ec;
+    fs::rename(m_tmpPath, m_path, ec); // atomic: readers see the old file or the whole new one
+    if (ec)
+        throw CacheError(describe(m_path, "cannot rename temporary file: " + ec.message()));
+    const fs::path dir = m_path.has_parent_path() ? m_path.parent_path() : fs::path(".");
+    if (int dfd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY); dfd >= 0) {
+        ::fsync(dfd);
+        ::close(dfd);
+    }
+    m_finished = true;
+}
+
+} // namespace swell::cache

@@ -1,0 +1,52 @@
+#pragma once
+// Slice sampling, eq. (5)-(6) (Sec. 4.1), with the inserted half slices of Sec. 4.2: which
+// cache frame each slice shows at animation time tau. The CPU side of slice_lookup.comp.
+
+#include "swell/runtime/fbm_noise.h"
+#include "swell/runtime/replay_params.h"
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <vector>
+
+namespace swell::runtime {
+
+class SliceSampler {
+public:
+    /// Builds the noise (none when F = 0). `frameCount` frames are in the cache, `A` cache
+    /// frames per animation time unit. Throws std::invalid_argument on bad parameters.
+    SliceSampler(const ReplayParams& params, std::size_t frameCount, double A);
+
+    /// Frame of slice j (0 .. 2K - 2) at animation time tau (eq. 5):
+    ///   s_j = floor((tau + F N(tau, j/2)) A + 1/2), then the out-of-range policy.
+    /// N is linear in tau between noise samples (period T); an inserted slice (odd j) takes
+    /// the mean of its neighbours' noise, i.e. N at k + 1/2. Throws std::invalid_argument
+    /// when |tau| is so large that (|tau| + 1) A leaves the 32-bit frame range.
+    std::uint32_t frame(double tau, int j) const;
+    /// frame(tau, j) for every slice.
+    std::vector<std::uint32_t> frames(double tau) const;
+    /// Every frame some slice shows at some tau of `taus`: sorted, unique. A replay needs
+    /// only these decoded.
+    std::vector<std::uint32_t> framesUsed(std::span<const double> taus) const;
+    /// N(tau, j/2) as used by frame() (0 when F = 0).
+    double noiseAt(double tau, int j) const;
+
+    int sliceCount() const { return 2 * m_K - 1; }
+    std::size_t frameCount() const { return m_frameCount; }
+    double A() const { return m_A; }
+    double fluctuation() const { return m_F; }
+    FramePolicy policy() const { return m_policy; }
+    /// The noise, or null when F = 0 (none is built).
+    const FbmNoise* noise() const { return m_noise ? &*m_noise : nullptr; }
+
+private:
+    int m_K;
+    std::size_t m_frameCount;
+    double m_A;
+    double m_F;
+    FramePolicy m_policy;
+    std::optional<FbmNoise> m_noise;
+};
+
+} // namespace swell::runtime

@@ -1,0 +1,170 @@
+#include "swell/runtime/replay_params.h"
+
+#include <cmath>
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+
+namespace swell::runtime {
+
+std::string toString(FramePolicy policy) {
+    return policy == FramePolicy::Clamp ? "clamp" : "loop";
+}
+
+FramePolicy framePolicyFromString(const std::string& name) {
+    if (name == "clamp")
+        return FramePolicy::Clamp;
+    if (name == "loop")
+        return FramePolicy::Loop;
+    throw std::invalid_argument(fmt::format("policy must be clamp or loop, got '{}'", name));
+}
+
+void ReplayParams::validate() const {
+    if (cellsX < 1 || cellsX > 8192 || cellsZ < 1 || cellsZ > 8192) {
+        throw std::invalid_argument(
+            fmt::format("resolution must be 1..8192 cells per axis, got {}x{}", cellsX, cellsZ));
+    }
+    if (slices < 2 || slices > 16384) {
+        throw std::invalid_argument(fmt::format("slices K must be in [2, 16384], got {}", slices));
+    }
+    // eq. (6): F |N| <= 1 with max |N| = 1 means F <= 1.
+    if (!std::isfinite(fluctuation) || fluctuation < 0.0 || fluctuation > 1.0) {
+        throw std::invalid_argument(fmt::format(
+            "fluctuation F = {} breaks eq. (6) F |N| <= 1 (max |N| = 1): need 0 <= F <= 1",
+            fluctuation));
+    }
+    if (!std::isfinite(timeUnitSeconds) || timeUnitSeconds <= 0.0) {
+        throw std::invalid_argument(
+            fmt::format("time_unit_seconds must be > 0, got {}", timeUnitSeconds));
+    }
+    if (!std::isfinite(sigma) || sigma <= 0.0) {
+        throw std::invalid_argument(fmt::format("sigma must be > 0 cells, got {}", sigma));
+    }
+    if (!std::isfinite(extentZ) || extentZ < 0.0) {
+        throw std::invalid_argument(fmt::format("extent_z must be >= 0 m, got {}", extentZ));
+    }
+    noise.validate();
+}
+
+namespace {
+
+std::string filterName(NoiseFilter f) {
+    return f == NoiseFilter::LowPass ? "low" : f == NoiseFilter::HighPass ? "high" : "none";
+}
+
+NoiseFilter filterFromName(const std::string& name) {
+    if (name == "low")
+        return NoiseFilter::LowPass;
+    if (name == "high")
+        return NoiseFilter::HighPass;
+    if (name == "none")
+        return NoiseFilter::None;
+    throw std::invalid_argument(
+        fmt::format("noise.filter must be low, high or none, got '{}'", name));
+}
+
+/// Reads j[key] into `out` if present; names `prefix + key` in every error.
+template <class T>
+void read(const nlohmann::json& j, const char* key, const std::string& prefix, T& out) {
+    if (!j.contains(key))
+        return;
+    try {
+        out = j.at(key).get<T>();
+    } catch (const nlohmann::json::exception& e) {
+        throw std::invalid_argument(fmt::format("{}{}: {}", prefix, key, e.what()));
+    }
+}
+
+void rejectUnknown(const nlohmann::json& j, std::initializer_list<const char*> known,
+                   const std::string& prefix) {
+    if (!j.is_object()) {
+        throw std::invalid_argument(fmt::format("{}: expected a JSON object",
+                                                prefix.empty() ? "replay parameters" : prefix));
+    }
+    for (const auto& item : j.items()) {
+        bool ok = false;
+        for (const char* k : known)
+            ok = ok || item.key() == k;
+        if (!ok)
+            throw std::invalid_argument(fmt::format("unknown key {}{}", prefix, item.key()));
+    }
+}
+
+} // namespace
+
+nlohmann::json toJson(const ReplayParams& p) {
+    return {{"cells_x", p.cellsX},
+            {"cells_z", p.cellsZ},
+            {"slices", p.slices},
+            {"fluctuation", p.fluctuation},
+            {"time_unit_seconds", p.timeUnitSeconds},
+            {"policy", toString(p.policy)},
+            {"sigma", p.sigma},
+            {"extent_z", p.extentZ},
+            {"seed", p.seed},
+            {"noise",
+             {{"time_samples", p.noise.timeSamples},
+              {"beta", p.noise.beta},
+              {"cutoff", p.noise.cutoff},
+              {"filter", filterName(p.noise.filter)}}}};
+}
+
+ReplayParams replayParamsFromJson(const nlohmann::json& j) {
+    rejectUnknown(j,
+                  {"cells_x", "cells_z", "slices", "fluctuation", "time_unit_seconds", "policy",
+                   "sigma", "extent_z", "seed", "noise"},
+                  "");
+    ReplayParams p;
+    read(j, "cells_x", "", p.cellsX);
+    read(j, "cells_z", "", p.cellsZ);
+    read(j, "slices", "", p.slices);
+    read(j, "fluctuation", "", p.fluctuation);
+    read(j, "time_unit_seconds", "", p.timeUnitSeconds);
+    read(j, "sigma", "", p.sigma);
+    read(j, "extent_z", "", p.extentZ);
+    read(j, "seed", "", p.seed);
+    std::string policy = toString(p.policy);
+    read(j, "policy", "", policy);
+    p.policy = framePolicyFromString(policy);
+    if (j.contains("noise")) {
+        const nlohmann::json& n = j.at("noise");
+        rejectUnknown(n, {"time_samples", "beta", "cutoff", "filter"}, "noise.");
+        read(n, "time_samples", "noise.", p.noise.timeSamples);
+        read(n, "beta", "noise.", p.noise.beta);
+        read(n, "cutoff", "noise.", p.noise.cutoff);
+        std::string filter = filterName(p.noise.filter);
+        read(n, "filter", "noise.", filter);
+        p.noise.filter = filterFromName(filter);
+    }
+    p.validate();
+    return p;
+}
+
+Grid makeGrid(const cache::Header& header, const ReplayParams& params) {
+    const double width = static_cast<double>(header.domain.xMax) - header.domain.xMin;
+    if (!(width > 0.0)) {
+        throw std::invalid_argument(fmt::format("cache domain has no width (xMin {}, xMax {})",
+                                                header.domain.xMin, header.domain.xMax));
+    }
+    Grid g;
+    g.cellsX = params.cellsX;
+    g.cellsZ = params.cellsZ;
+    g.slices = params.slices;
+    g.x0 = header.domain.xMin;
+    g.dx = width / params.cellsX;
+    g.extentZ = params.extentZ > 0.0 ? params.extentZ : g.dx * params.cellsZ;
+    g.dz = g.extentZ / params.cellsZ;
+    return g;
+}
+
+double framesPerTimeUnit(const cache::Header& header, const ReplayParams& params) {
+    const double frameTime = header.dt * header.frameInterval;
+    if (!(frameTime > 0.0) || !std::isfinite(frameTime)) {
+        throw std::invalid_argument(
+            fmt::format("cache frame time dt * frame_interval = {} * {} is not positive", header.dt,
+                        header.frameInterval));
+    }
+    return params.timeUnitSeconds / frameTime;
+}
+
+} // namespace swell::runtime

@@ -1,0 +1,57 @@
+#version 450 core
+// Slice lookup, eq. (5)-(6) of the paper: slice j (j = 2k is slice k, j = 2k + 1 the slice
+// inserted between k and k + 1, Sec. 4.2) shows simulation frame
+//     s_j = floor((tau + F * N(tau, j / 2)) * A + 0.5)
+// with N the fBm noise on the T x K grid, linear in time (period T) and, for an inserted
+// slice, the mean of its two neighbours. Computed in double precision with `precise` so the
+// operations match the CPU reference (runtime/src/slice_sampler.cpp) bit for bit.
+layout(local_size_x = 256) in;
+
+layout(std430, binding = 0) readonly buffer Noise { double noise[]; };       // N[i * K + k]
+layout(std430, binding = 1) readonly buffer Resident { uint slotOf[]; };     // cache frame -> slot
+layout(std430, binding = 2) writeonly buffer Slices { ivec2 slices[]; };     // (frame, slot) per j
+
+uniform double u_tau;        // animation time (noise time units)
+uniform double u_F;          // fluctuation F, 0 <= F <= 1 (eq. 6 with max |N| = 1)
+uniform double u_A;          // cache frames per animation time unit
+uniform int u_T;             // noise samples in time
+uniform int u_K;             // real slices
+uniform int u_sliceCount;    // 2K - 1 (real + inserted)
+uniform int u_frameCount;    // frames in the cache
+uniform int u_loop;          // 1: out-of-range frames wrap around; 0: clamped to the ends
+
+double noiseAt(int i0, int i1, double a, int k) {
+    precise double v = (1.0LF - a) * noise[i0 * u_K + k] + a * noise[i1 * u_K + k];
+    return v;
+}
+
+void main() {
+    int j = int(gl_GlobalInvocationID.x);
+    if (j >= u_sliceCount) return;
+
+    precise double x = u_tau;
+    if (u_F != 0.0LF) {
+        precise double T = double(u_T);
+        precise double tw = u_tau - T * floor(u_tau / T);   // tau wrapped into [0, T)
+        int i0 = int(floor(tw));
+        if (i0 >= u_T) i0 -= u_T;                            // rounding at the period end
+        precise double a = tw - double(i0);
+        int i1 = (i0 + 1) % u_T;
+        int k0 = j / 2;
+        precise double n = noiseAt(i0, i1, a, k0);
+        if ((j & 1) == 1) {                                  // inserted slice: noise at k + 1/2
+            precise double n1 = noiseAt(i0, i1, a, k0 + 1);
+            n = 0.5LF * (n + n1);
+        }
+        x = u_tau + u_F * n;
+    }
+    precise double scaled = x * u_A;
+    int s = int(floor(scaled + 0.5LF));                      // eq. (5): nearest integer
+    if (u_loop == 1) {
+        // GLSL leaves % undefined for negative operands: keep both non-negative.
+        s = s >= 0 ? s % u_frameCount : u_frameCount - 1 - (-(s + 1)) % u_frameCount;
+    } else {
+        s = clamp(s, 0, u_frameCount - 1);
+    }
+    slices[j] = ivec2(s, int(slotOf[s]));
+}

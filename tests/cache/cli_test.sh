@@ -1,0 +1,35 @@
+#!/usr/bin/env bash
+# swell-cache end to end: synth -> info/verify/dump succeed; damage, a missing file and
+# bad arguments give one clear stderr line and a non-zero exit.
+set -euo pipefail
+bin=$1
+dir=$(mktemp -d)
+trap 'rm -rf "$dir"' EXIT
+fail() { echo "FAIL: $*"; exit 1; }
+
+"$bin/swell-cache" synth "$dir/a.swell" --frames 20 --surface 50 --splash 2 2>/dev/null
+"$bin/swell-cache" verify "$dir/a.swell" | grep -q "OK, 20 frames" || fail "verify output"
+"$bin/swell-cache" info "$dir/a.swell" --json > "$dir/info.json"
+grep -q '"frames":20' "$dir/info.json" || fail "info --json frames"
+grep -q '"surface_mean":50' "$dir/info.json" || fail "info --json surface_mean"
+[[ $("$bin/swell-cache" dump "$dir/a.swell" --frame 19 | wc -l) -eq 53 ]] || fail "dump rows"
+
+# Damage in the middle of the frame data: verify must fail and name file and frame.
+cp "$dir/a.swell" "$dir/bad.swell"
+size=$(stat -c %s "$dir/bad.swell")
+printf '\x00\x00\x00\x00' | dd of="$dir/bad.swell" bs=1 seek=$((size / 2)) conv=notrunc 2>/dev/null
+if "$bin/swell-cache" verify "$dir/bad.swell" 2> "$dir/err"; then fail "verify passed a damaged file"; fi
+[[ $(wc -l < "$dir/err") -eq 1 ]] || fail "error is not one line: $(cat "$dir/err")"
+grep -q "bad.swell: frame [0-9]*:" "$dir/err" || fail "error does not name file and frame: $(cat "$dir/err")"
+
+# Truncated: refused at open.
+head -c $((size - 1)) "$dir/a.swell" > "$dir/trunc.swell"
+if "$bin/swell-cache" info "$dir/trunc.swell" 2> "$dir/err"; then fail "info passed a truncated file"; fi
+grep -q "trunc.swell: truncated" "$dir/err" || fail "truncation message: $(cat "$dir/err")"
+
+if "$bin/swell-cache" verify "$dir/missing.swell" 2> "$dir/err"; then fail "missing file accepted"; fi
+grep -q "missing.swell: cannot open" "$dir/err" || fail "missing-file message"
+if "$bin/swell-cache" dump "$dir/a.swell" --frame 20 2> "$dir/err"; then fail "frame 20 accepted"; fi
+if "$bin/swell-cache" synth "$dir/x.swell" --frames 0 2>/dev/null; then fail "--frames 0 accepted"; fi
+[[ ! -e "$dir/x.swell" ]] || fail "a refused synth left a file"
+echo "swell-cache CLI OK"
