@@ -30,6 +30,10 @@ void require(bool ok, const char* field, const char* what) {
 
 } // namespace
 
+std::string_view toString(PistonKind kind) {
+    return kind == PistonKind::Sinusoidal ? "sinusoidal" : "random";
+}
+
 PistonMotion::PistonMotion(const PistonParams& p, double endTime) : m_params(p) {
     require(std::isfinite(p.rampTime) && p.rampTime >= 0.0, "ramp_time", "must be >= 0");
     if (p.kind == PistonKind::Sinusoidal) {

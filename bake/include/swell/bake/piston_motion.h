@@ -5,6 +5,7 @@
 // the driver for the displacement; no state, so a resumed bake gets the same motion.
 
 #include <cstdint>
+#include <string_view>
 #include <vector>
 
 namespace swell::bake {
@@ -14,6 +15,8 @@ enum class PistonKind {
     Sinusoidal, ///< X(t) = S/2 sin(2 pi t / T): regular waves (validation)
     Random,     ///< back-and-forth cycles of seeded random period and stroke (surging wave)
 };
+/// Scene-file name of a kind: "sinusoidal", "random".
+std::string_view toString(PistonKind kind);
 
 struct PistonParams {
     PistonKind kind = PistonKind::Random;

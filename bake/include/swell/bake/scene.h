@@ -1,12 +1,16 @@
 #pragma once
+#include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json_fwd.hpp>
 
 #include "swell/bake/geometry.h"
 #include "swell/bake/mps_params.h"
 #include "swell/bake/mps_solver.h"
+#include "swell/bake/piston_motion.h"
 
 namespace swell::bake {
 
@@ -15,7 +19,13 @@ struct OutputParams {
     double frameInterval = 0.02; ///< simulated time between stored frames (s): 50 frames per second
     double splashRatio = 0.49;   ///< d1: water with n < d1 n0 is splash (paper eq. (4), Table 1)
     double surfaceRatio = 0.96;  ///< d2: water with d1 n0 <= n <= d2 n0 is surface (paper eq. (4), Table 1)
+    /// Wave gauges: x positions (m) where probes report the free-surface elevation.
+    std::vector<double> gauges;
+    /// Still-water level (m) that gauge elevations are measured from; unset: the top of the
+    /// highest water rectangle (the initial surface).
+    std::optional<double> stillWaterLevel;
 };
+
 
 /// A scene file: separate physics, geometry, solver and output sections (docs/scenes.md).
 struct Scene {
@@ -25,6 +35,9 @@ struct Scene {
     GeometryParams geometry;
     SolverParams solver;
     OutputParams output;
+    std::uint64_t seed = 1; ///< seed of everything random in the scene (the piston's cycles)
+    /// Piston wavemaker: when set, the tank's back wall moves with this motion (Sec. 3.3.1).
+    std::optional<PistonParams> piston;
 };
 
 /// Parses and validates a scene. Every key is optional (defaults in docs/scenes.md) except
@@ -50,7 +63,12 @@ double expectedSpeed(const Scene& scene);
 /// string. Throws SceneError for a malformed assignment.
 void applyOverride(nlohmann::json& json, const std::string& assignment);
 
-/// Generates the scene's particles and builds a solver for them.
+/// Generates the scene's particles and builds a solver for them; with a piston, the tank's
+/// back wall becomes a MovingWall driven by PistonMotion (seeded by scene.seed).
 MpsSolver makeSolver(const Scene& scene);
+
+/// Still-water level (m) of a scene: output.still_water_level or the top of the highest
+/// water rectangle.
+double stillWaterLevel(const Scene& scene);
 
 } // namespace swell::bake
