@@ -117,6 +117,8 @@ int main(int argc, char** argv) {
     ProgressReporter progress(quiet);
     try {
         const Scene scene = loadWithOverrides(scenePath, sets);
+        (void)frameIntervalSteps(scene); // bake-specific scene errors before any warning
+        (void)totalSteps(scene);
         for (const std::string& w : sceneWarnings(scene)) std::fprintf(stderr, "swell-bake: warning: %s\n", w.c_str());
         BakeOptions opt;
         opt.output = output;
