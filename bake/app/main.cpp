@@ -134,11 +134,14 @@ int main(int argc, char** argv) {
             std::fprintf(stderr,
                          "swell-bake: %s: %zu water + %zu fixed particles, %ld steps, %zu frames; kept per frame "
                          "%.1f surface + %.1f splash (%.1fx fewer than water); cache %s, %llu bytes (%.2fx); "
-                         "%.1f s wall, %.2f ms/step\n",
+                         "%.1f s wall, %.2f ms/step%s\n",
                          scene.name.c_str(), s.particlesWater, s.particlesWall, s.steps, s.frames, s.surfaceMean,
                          s.splashMean, s.reduction, output.c_str(), static_cast<unsigned long long>(s.cacheBytes),
                          s.cacheBytes ? static_cast<double>(s.rawBytes) / s.cacheBytes : 0.0, s.wallSeconds,
-                         s.msPerStep);
+                         s.msPerStep,
+                         scene.recycling ? fmt::format("; {} particles recycled outflow -> inflow (count conserved)",
+                                                       s.recycled).c_str()
+                                         : "");
         }
         if (asJson) std::printf("%s\n", toJson(s).dump().c_str());
         return 0;

@@ -54,6 +54,46 @@ private:
     std::ofstream m_out;
 };
 
+/// Paper Sec. 3.3.2, particle recycling (Algorithm 1 step 8, "Delete particles", and step 3,
+/// "Add particles"): water past the outflow re-enters at the inflow, at the lowest free
+/// lattice slot of the column next to the back wall (up to the still-water level), with the
+/// inflow velocity. A slot is free when no water particle lies within 0.9 l0 of it. Water
+/// that finds no free slot waits beyond the outflow (the basin in front of the front wall)
+/// and is tried again next step, so the particle count is always conserved.
+std::size_t recycle(MpsSolver& solver, const Scene& scene) {
+    const RecyclingParams& r = *scene.recycling;
+    const Particles& P = solver.particles();
+    const double l0 = scene.geometry.particleSpacing;
+    const Box& tank = *scene.geometry.tank;
+    const double slotX = tank.x0 + 0.5 * l0;
+    std::vector<std::size_t> leaving;
+    std::vector<double> nearY; // heights of water near the slot column
+    for (std::size_t i = 0; i < P.size(); ++i) {
+        if (P.kind[i] != ParticleKind::Water) continue;
+        if (P.x[i] > r.outflowX) {
+            leaving.push_back(i);
+        } else if (std::abs(P.x[i] - slotX) < 0.9 * l0) {
+            nearY.push_back(P.y[i]);
+        }
+    }
+    if (leaving.empty()) return 0;
+    const long rows = std::lround((stillWaterLevel(scene) - tank.y0) / l0);
+    std::size_t moved = 0;
+    for (long j = 0; j < rows && moved < leaving.size(); ++j) {
+        const double y = tank.y0 + (static_cast<double>(j) + 0.5) * l0;
+        bool free = true;
+        for (std::size_t k = 0; k < nearY.size() && free; ++k) {
+            // distance in x is below 0.9 l0 for every particle of nearY; check the full distance
+            free = std::abs(nearY[k] - y) >= 0.9 * l0;
+        }
+        if (!free) continue;
+        const std::size_t i = leaving[moved++];
+        solver.relocateWater(i, slotX, y, r.velocity, 0.0);
+        nearY.push_back(y);
+    }
+    return moved;
+}
+
 } // namespace
 
 long frameIntervalSteps(const Scene& scene) {
@@ -108,7 +148,7 @@ json toJson(const BakeSummary& s) {
                 {"kept_mean", s.surfaceMean + s.splashMean}, {"kept_max", s.keptMax},
                 {"reduction", s.reduction}, {"wall_seconds", s.wallSeconds}, {"ms_per_step", s.msPerStep},
                 {"ppe_iterations_mean", s.ppeIterationsMean}, {"max_courant", s.maxCourant},
-                {"cache_bytes", s.cacheBytes}, {"raw_bytes", s.rawBytes},
+                {"recycled", s.recycled}, {"cache_bytes", s.cacheBytes}, {"raw_bytes", s.rawBytes},
                 {"compression_ratio", s.cacheBytes ? static_cast<double>(s.rawBytes) / s.cacheBytes : 0.0},
                 {"warnings", s.warnings}};
 }
@@ -172,6 +212,7 @@ BakeSummary runBake(const Scene& scene, const BakeOptions& opt) {
     const auto solveStart = Clock::now();
     for (long k = 1; k <= steps; ++k) {
         const StepStats& st = solver.step();
+        if (scene.recycling) sum.recycled += recycle(solver, scene);
         solverSeconds += st.seconds();
         ppeIterations += st.ppeIterations;
         sum.maxCourant = std::max(sum.maxCourant, st.courant);

@@ -161,6 +161,13 @@ void MpsSolver::setMovingWall(MovingWall wall) {
     m_wall = std::move(wall);
 }
 
+void MpsSolver::setInflow(const Box& zone, double velocity) {
+    if (!std::isfinite(velocity)) throw std::invalid_argument("MpsSolver::setInflow: velocity must be finite");
+    m_hasInflow = true;
+    m_inflowZone = zone;
+    m_inflowVelocity = velocity;
+}
+
 void MpsSolver::relocateWater(std::size_t i, double x, double y, double vx, double vy) {
     if (i >= m_p.size() || m_p.kind[i] != ParticleKind::Water) {
         throw std::invalid_argument(fmt::format("MpsSolver::relocateWater: particle {} is not water", i));
@@ -304,6 +311,7 @@ void MpsSolver::explicitPhase(double dt) {
         }
         // Explicit part of paper eq. (2): u* = u + dt (nu lap u + f), r* = r + dt u*.
         m_uStar[i] = m_p.vx[i] + dt * (nu * coefL * lx);
+        if (m_hasInflow && m_inflowZone.contains(m_p.x[i], m_p.y[i])) m_uStar[i] = m_inflowVelocity; // Sec. 3.3.2 inflow
         m_vStar[i] = m_p.vy[i] + dt * (nu * coefL * ly - g);
         m_xStar[i] = m_p.x[i] + dt * m_uStar[i];
         m_yStar[i] = m_p.y[i] + dt * m_vStar[i];

@@ -268,6 +268,28 @@ Scene parseScene(const json& j) {
         scene.geometry.bedExtensionBack = sinus ? 0.5 * p.stroke : 0.0;
         scene.piston = p;
     }
+    if (const json* rj = top.get("recycling")) {
+        Section s(*rj, "recycling");
+        RecyclingParams r;
+        r.inflowX1 = s.number("inflow_x1", r.inflowX1, -kInf, kInf, false, " (m)");
+        r.velocity = s.number("velocity", r.velocity, -kInf, kInf, false, " (m/s)");
+        r.outflowX = s.number("outflow_x", r.outflowX, -kInf, kInf, false, " (m)");
+        s.finish();
+        if (!scene.geometry.tank) throw SceneError("recycling", "needs geometry.tank (the channel)");
+        const Box& t = *scene.geometry.tank;
+        const double l0 = scene.geometry.particleSpacing;
+        if (!(r.inflowX1 >= t.x0 + 2.0 * l0)) {
+            throw SceneError("recycling.inflow_x1", fmt::format("{} m must be at least two spacings past the tank's "
+                                                                "back wall x0 = {} m", r.inflowX1, t.x0));
+        }
+        if (!(r.outflowX > r.inflowX1 && r.outflowX <= t.x1 - l0)) {
+            throw SceneError("recycling.outflow_x", fmt::format("{} m must lie between inflow_x1 = {} m and the "
+                                                                "front wall x1 - l0 = {} m", r.outflowX, r.inflowX1,
+                                                                t.x1 - l0));
+        }
+        if (scene.piston) throw SceneError("recycling", "a scene has either a piston or recycling, not both");
+        scene.recycling = r;
+    }
     for (std::size_t i = 0; i < scene.output.gauges.size(); ++i) {
         const double x = scene.output.gauges[i];
         if (scene.geometry.tank && (x < scene.geometry.tank->x0 || x > scene.geometry.tank->x1)) {
@@ -349,6 +371,10 @@ json toJson(const Scene& sc) {
                              {"stroke_min", p.strokeMin}, {"stroke_max", p.strokeMax},
                              {"ramp_time", p.rampTime}};
     }
+    if (sc.recycling) {
+        const RecyclingParams& r = *sc.recycling;
+        out["recycling"] = json{{"inflow_x1", r.inflowX1}, {"velocity", r.velocity}, {"outflow_x", r.outflowX}};
+    }
     return out;
 }
 
@@ -398,6 +424,12 @@ MpsSolver makeSolver(const Scene& scene) {
         PistonMotion motion(*scene.piston, scene.solver.endTime);
         solver.setMovingWall(MovingWall{std::move(geo.backWall),
                                         [motion](double t) { return motion.at(t); }});
+    }
+    if (scene.recycling) {
+        // Paper Sec. 3.3.2: inflow zone at the channel's upstream end (the driver recycles).
+        const Box& t = *scene.geometry.tank;
+        const Box& d = solver.domain();
+        solver.setInflow(Box{t.x0, d.y0, scene.recycling->inflowX1, d.y1}, scene.recycling->velocity);
     }
     return solver;
 }

@@ -284,3 +284,29 @@ TEST(Scene, PistonAndGaugeErrorsNameTheKey) {
     EXPECT_EQ(errorKey(j), "output.still_water_level");
     EXPECT_EQ(errorKey(withPiston()), "<accepted>");
 }
+
+TEST(Scene, RippleScenesLoadAndRecyclingErrorsNameTheKey) {
+    for (const char* name : {"ripple.json", "ripple_small.json"}) {
+        SCOPED_TRACE(name);
+        const Scene s = loadScene(kScenes / name);
+        ASSERT_TRUE(s.recycling.has_value());
+        EXPECT_EQ(toJson(parseScene(toJson(s))), toJson(s));
+    }
+    json j = withPiston();
+    j.erase("piston");
+    j["recycling"] = json::parse(R"({"inflow_x1": 0.2, "velocity": 0.2, "outflow_x": 0.8})");
+    EXPECT_EQ(errorKey(j), "<accepted>");
+    j["recycling"]["outflow_x"] = 1.0; // at the front wall: no room for the outflow
+    EXPECT_EQ(errorKey(j), "recycling.outflow_x");
+    j["recycling"]["outflow_x"] = 0.1; // upstream of the inflow zone's end
+    EXPECT_EQ(errorKey(j), "recycling.outflow_x");
+    j["recycling"]["outflow_x"] = 0.8;
+    j["recycling"]["inflow_x1"] = 0.0;
+    EXPECT_EQ(errorKey(j), "recycling.inflow_x1");
+    j["recycling"]["inflow_x1"] = 0.2;
+    j["recycling"]["speed"] = 1.0;
+    EXPECT_EQ(errorKey(j), "recycling.speed");
+    j["recycling"].erase("speed");
+    j["piston"] = json::object();
+    EXPECT_EQ(errorKey(j), "recycling");
+}

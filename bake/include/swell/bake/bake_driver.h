@@ -59,6 +59,7 @@ struct BakeSummary {
     double msPerStep = 0.0;         ///< solver wall time per step (ms)
     double ppeIterationsMean = 0.0;
     double maxCourant = 0.0;
+    std::uint64_t recycled = 0;     ///< water particles moved from the outflow to the inflow (Sec. 3.3.2)
     std::uint64_t cacheBytes = 0;   ///< size of the cache file
     std::uint64_t rawBytes = 0;     ///< float32 bytes of the stored particles before compression
     std::vector<std::string> warnings; ///< e.g. a piston wave steeper than the breaking limit

@@ -47,6 +47,10 @@ public:
     /// std::invalid_argument for a water particle or an index out of range.
     void setMovingWall(MovingWall wall);
 
+    /// Inflow (paper Sec. 3.3.2, inflow-outflow scheme): water inside `zone` gets the
+    /// horizontal velocity `velocity` (m/s) in the explicit phase of every step.
+    void setInflow(const Box& zone, double velocity);
+
     /// Moves water particle i to (x, y) with velocity (vx, vy) between steps (inflow-outflow
     /// recycling, paper Sec. 3.3.2). Throws std::invalid_argument for a fixed particle or a
     /// position outside the domain.
@@ -117,6 +121,9 @@ private:
     MovingWall m_wall;                 // prescribed-motion wall (piston), may be empty
     std::vector<std::uint8_t> m_moving; // 1 for particles of m_wall
     std::vector<double> m_restX;        // rest x of moving-wall particles
+    bool m_hasInflow = false;
+    Box m_inflowZone;
+    double m_inflowVelocity = 0.0;
 
     // PPE in compressed sparse rows (rows in neighbour-grid order), viewed by Eigen as a
     // SparseMatrix map. Our own PCG runs on it so a step allocates nothing.

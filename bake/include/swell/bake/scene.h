@@ -27,6 +27,16 @@ struct OutputParams {
 };
 
 
+/// Inflow-outflow channel with particle recycling (paper Sec. 3.3.2; Algorithm 1 steps 3
+/// "Add particles" and 8 "Delete particles"): water in the inflow zone [tank x0, inflowX1]
+/// is driven at `velocity`; water that passes `outflowX` is moved back by outflowX - tank x0
+/// (same height) with the inflow velocity, so the particle count is conserved.
+struct RecyclingParams {
+    double inflowX1 = 0.2;  ///< downstream end of the inflow zone (m)
+    double velocity = 0.2;  ///< horizontal speed imposed in the inflow zone (m/s)
+    double outflowX = 1.0;  ///< water beyond this x (m) leaves and re-enters at the inflow
+};
+
 /// A scene file: separate physics, geometry, solver and output sections (docs/scenes.md).
 struct Scene {
     std::string name;        ///< short identifier
@@ -38,6 +48,8 @@ struct Scene {
     std::uint64_t seed = 1; ///< seed of everything random in the scene (the piston's cycles)
     /// Piston wavemaker: when set, the tank's back wall moves with this motion (Sec. 3.3.1).
     std::optional<PistonParams> piston;
+    /// Inflow-outflow recycling (Sec. 3.3.2), when set.
+    std::optional<RecyclingParams> recycling;
 };
 
 /// Parses and validates a scene. Every key is optional (defaults in docs/scenes.md) except
