@@ -24,7 +24,9 @@ private:
 class DivergenceError : public std::runtime_error {
 public:
     DivergenceError(long step, double time, std::size_t particle, const std::string& reason);
+    /// Index of the failing step (1 = first step of the run).
     long step() const { return m_step; }
+    /// Simulated time (s) the failing step was advancing to.
     double time() const { return m_time; }
     /// Index of the offending particle in the solver's particle arrays.
     std::size_t particle() const { return m_particle; }
