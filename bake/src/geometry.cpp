@@ -73,6 +73,7 @@ GeneratedGeometry generateGeometry(const GeometryParams& g) {
 
     GeneratedGeometry out;
     Particles& P = out.particles;
+    std::vector<std::uint8_t> backWall; // 1 for the tank's back-wall particles (piston)
 
     // Water: lattice sites (x0 + (i + 1/2) l0, y0 + (j + 1/2) l0).
     for (std::size_t w = 0; w < g.water.size(); ++w) {
@@ -113,17 +114,21 @@ GeneratedGeometry generateGeometry(const GeometryParams& g) {
         const Box& t = *g.tank;
         const long nIn = std::lround(t.width() / l0);
         const long nUp = std::lround(t.height() / l0);
+        // Bed extension behind the back wall (piston travel), in whole spacings.
+        const long back = static_cast<long>(std::ceil(std::max(0.0, g.bedExtensionBack) / l0 - 1e-6));
         for (long k = 0; k < layers; ++k) { // bed rows, corners included
             const double y = t.y0 - (static_cast<double>(k) + 0.5) * l0;
-            for (long i = -layers; i < nIn + layers; ++i) {
+            for (long i = -layers - back; i < nIn + layers; ++i) {
                 const double x = t.x0 + (static_cast<double>(i) + 0.5) * l0;
-                const long side = i < 0 ? -i - 1 : (i >= nIn ? i - nIn : 0);
+                const long side = i < -back ? -i - 1 - back : (i >= nIn ? i - nIn : 0);
                 P.add(x, y, layerKind(std::max(k, side), g.wallLayers));
             }
         }
         for (long j = 0; j < nUp; ++j) { // side walls
             const double y = t.y0 + (static_cast<double>(j) + 0.5) * l0;
             for (long k = 0; k < layers; ++k) {
+                backWall.resize(P.size(), 0);
+                backWall.push_back(1);
                 P.add(t.x0 - (static_cast<double>(k) + 0.5) * l0, y, layerKind(k, g.wallLayers));
                 P.add(t.x1 + (static_cast<double>(k) + 0.5) * l0, y, layerKind(k, g.wallLayers));
             }
@@ -144,11 +149,15 @@ GeneratedGeometry generateGeometry(const GeometryParams& g) {
     }
 
     // Stable order: water, wall, dummy (keeps indices meaningful for users and tests).
+    backWall.resize(P.size(), 0);
+    const auto isBackWall = [&](std::size_t i) { return backWall[i] != 0; };
     Particles sorted;
     sorted.reserve(P.size());
     for (ParticleKind k : {ParticleKind::Water, ParticleKind::Wall, ParticleKind::Dummy}) {
         for (std::size_t i = 0; i < P.size(); ++i) {
-            if (P.kind[i] == k) sorted.add(P.x[i], P.y[i], k);
+            if (P.kind[i] != k) continue;
+            if (k != ParticleKind::Water && isBackWall(i)) out.backWall.push_back(static_cast<std::uint32_t>(sorted.size()));
+            sorted.add(P.x[i], P.y[i], k);
         }
     }
     out.particles = std::move(sorted);

@@ -145,6 +145,43 @@ MpsSolver::MpsSolver(const PhysicsParams& physics, const SolverParams& solver, P
     }
 }
 
+void MpsSolver::setMovingWall(MovingWall wall) {
+    const std::size_t n = m_p.size();
+    if (!wall.motion) throw std::invalid_argument("MpsSolver::setMovingWall: no motion function");
+    m_moving.assign(n, 0);
+    m_restX.assign(n, 0.0);
+    const double X = wall.motion(m_time).displacement;
+    for (std::uint32_t i : wall.particles) {
+        if (i >= n || !isFixed(m_p.kind[i])) {
+            throw std::invalid_argument(fmt::format("MpsSolver::setMovingWall: particle {} is not a wall particle", i));
+        }
+        m_moving[i] = 1;
+        m_restX[i] = m_p.x[i] - X;
+    }
+    m_wall = std::move(wall);
+}
+
+void MpsSolver::setInflow(const Box& zone, double velocity) {
+    if (!std::isfinite(velocity)) throw std::invalid_argument("MpsSolver::setInflow: velocity must be finite");
+    m_hasInflow = true;
+    m_inflowZone = zone;
+    m_inflowVelocity = velocity;
+}
+
+void MpsSolver::relocateWater(std::size_t i, double x, double y, double vx, double vy) {
+    if (i >= m_p.size() || m_p.kind[i] != ParticleKind::Water) {
+        throw std::invalid_argument(fmt::format("MpsSolver::relocateWater: particle {} is not water", i));
+    }
+    if (!m_domain.contains(x, y)) {
+        throw std::invalid_argument(fmt::format("MpsSolver::relocateWater: ({}, {}) is outside the domain", x, y));
+    }
+    m_p.x[i] = x;
+    m_p.y[i] = y;
+    m_p.vx[i] = vx;
+    m_p.vy[i] = vy;
+    m_xs[i] = std::numeric_limits<double>::quiet_NaN(); // forces a neighbour rebuild next step
+}
+
 std::vector<std::uint32_t> MpsSolver::ppeRowParticles() const {
     return {m_rowParticle.begin(), m_rowParticle.begin() + static_cast<std::ptrdiff_t>(m_rows)};
 }
@@ -248,12 +285,16 @@ void MpsSolver::explicitPhase(double dt) {
     const double nu = m_phys.kinematicViscosity;
     const double g = m_phys.gravity;
     const double reL2 = m_reL * m_reL;
+    // Algorithm 1, step 3: move the pushing wall to its prescribed place at the end of the step.
+    const PistonState wall = m_wall.motion ? m_wall.motion(m_time + dt) : PistonState{};
+    const bool anyMoving = !m_moving.empty();
 #pragma omp parallel for schedule(static) if(n >= kParallelMin)
     for (std::size_t i = 0; i < n; ++i) {
         if (isFixed(m_p.kind[i])) {
-            m_xStar[i] = m_p.x[i];
+            const bool moving = anyMoving && m_moving[i];
+            m_xStar[i] = moving ? m_restX[i] + wall.displacement : m_p.x[i];
             m_yStar[i] = m_p.y[i];
-            m_uStar[i] = 0.0;
+            m_uStar[i] = moving ? wall.velocity : 0.0;
             m_vStar[i] = 0.0;
             continue;
         }
@@ -270,6 +311,7 @@ void MpsSolver::explicitPhase(double dt) {
         }
         // Explicit part of paper eq. (2): u* = u + dt (nu lap u + f), r* = r + dt u*.
         m_uStar[i] = m_p.vx[i] + dt * (nu * coefL * lx);
+        if (m_hasInflow && m_inflowZone.contains(m_p.x[i], m_p.y[i])) m_uStar[i] = m_inflowVelocity; // Sec. 3.3.2 inflow
         m_vStar[i] = m_p.vy[i] + dt * (nu * coefL * ly - g);
         m_xStar[i] = m_p.x[i] + dt * m_uStar[i];
         m_yStar[i] = m_p.y[i] + dt * m_vStar[i];
@@ -719,7 +761,11 @@ void MpsSolver::correctionPhase(double dt) {
     double maxSpeed2 = 0.0;
 #pragma omp parallel for schedule(static) reduction(max : maxSpeed2) if(n >= kParallelMin)
     for (std::size_t i = 0; i < n; ++i) {
-        if (isFixed(m_p.kind[i])) continue;
+        if (isFixed(m_p.kind[i])) {
+            m_p.x[i] = m_xStar[i]; // a moving wall's prescribed place (others unchanged)
+            m_p.vx[i] = m_uStar[i];
+            continue;
+        }
         double gx = 0.0, gy = 0.0;
         for (std::uint32_t j : m_grid.neighbors(i)) {
             if (m_p.kind[j] == ParticleKind::Dummy) continue;

@@ -149,6 +149,12 @@ Scene parseScene(const json& j) {
     Section top(j, "");
     scene.name = top.string("name", "");
     scene.description = top.string("description", "");
+    if (const json* sd = top.get("seed")) {
+        if (!sd->is_number_unsigned() && !(sd->is_number_integer() && sd->get<long long>() >= 0)) {
+            throw SceneError("seed", fmt::format("must be a non-negative integer, got {}", sd->dump()));
+        }
+        scene.seed = sd->get<std::uint64_t>();
+    }
 
     static const json kEmpty = json::object();
     const json* phys = top.get("physics");
@@ -212,10 +218,85 @@ Scene parseScene(const json& j) {
         o.frameInterval = s.number("frame_interval", o.frameInterval, 0.0, kInf, true, " (s)");
         o.splashRatio = s.number("splash_ratio", o.splashRatio, 0.0, 1.0, true);
         o.surfaceRatio = s.number("surface_ratio", o.surfaceRatio, 0.0, 1.0, true);
+        if (const json* g = s.get("gauges")) {
+            if (!g->is_array()) throw SceneError("output.gauges", "must be an array of x positions (m)");
+            for (std::size_t i = 0; i < g->size(); ++i) {
+                const json& v = (*g)[i];
+                if (!v.is_number() || !std::isfinite(v.get<double>())) {
+                    throw SceneError(fmt::format("output.gauges[{}]", i), fmt::format("must be a number (m), got {}", v.dump()));
+                }
+                o.gauges.push_back(v.get<double>());
+            }
+        }
+        if (s.has("still_water_level")) {
+            o.stillWaterLevel = s.number("still_water_level", 0.0, -kInf, kInf, false, " (m)");
+        }
         s.finish();
         if (!(o.splashRatio < o.surfaceRatio)) {
             throw SceneError("output.splash_ratio", fmt::format("d1 = {} must be below output.surface_ratio d2 = {}",
                                                                 o.splashRatio, o.surfaceRatio));
+        }
+    }
+    if (const json* pj = top.get("piston")) {
+        Section s(*pj, "piston");
+        PistonParams p;
+        p.kind = s.enumeration("kind", p.kind, {PistonKind::Sinusoidal, PistonKind::Random});
+        p.period = s.number("period", p.period, 0.0, kInf, true, " (s)");
+        p.stroke = s.number("stroke", p.stroke, 0.0, kInf, false, " (m)");
+        p.periodMin = s.number("period_min", p.periodMin, 0.0, kInf, true, " (s)");
+        p.periodMax = s.number("period_max", p.periodMax, 0.0, kInf, true, " (s)");
+        p.strokeMin = s.number("stroke_min", p.strokeMin, 0.0, kInf, false, " (m)");
+        p.strokeMax = s.number("stroke_max", p.strokeMax, 0.0, kInf, false, " (m)");
+        p.rampTime = s.number("ramp_time", p.rampTime, 0.0, kInf, false, " (s)");
+        s.finish();
+        p.seed = scene.seed;
+        if (!scene.geometry.tank) throw SceneError("piston", "needs geometry.tank: the piston is the tank's back wall");
+        try {
+            (void)PistonMotion(p, scene.solver.endTime);
+        } catch (const std::invalid_argument& e) {
+            const std::string what = e.what(); // "piston.<field>: problem"
+            const auto colon = what.find(':');
+            throw SceneError(what.substr(0, colon), colon == std::string::npos ? what : what.substr(colon + 2));
+        }
+        const bool sinus = p.kind == PistonKind::Sinusoidal;
+        const double forward = sinus ? 0.5 * p.stroke : p.strokeMax;
+        if (forward >= 0.5 * scene.geometry.tank->width()) {
+            throw SceneError(sinus ? "piston.stroke" : "piston.stroke_max",
+                             fmt::format("the piston would travel {} m, at least half the tank width {} m", forward,
+                                         scene.geometry.tank->width()));
+        }
+        // Room behind the back wall for a piston that moves back (sinusoidal: S/2).
+        scene.geometry.bedExtensionBack = sinus ? 0.5 * p.stroke : 0.0;
+        scene.piston = p;
+    }
+    if (const json* rj = top.get("recycling")) {
+        Section s(*rj, "recycling");
+        RecyclingParams r;
+        r.inflowX1 = s.number("inflow_x1", r.inflowX1, -kInf, kInf, false, " (m)");
+        r.velocity = s.number("velocity", r.velocity, -kInf, kInf, false, " (m/s)");
+        r.outflowX = s.number("outflow_x", r.outflowX, -kInf, kInf, false, " (m)");
+        s.finish();
+        if (!scene.geometry.tank) throw SceneError("recycling", "needs geometry.tank (the channel)");
+        const Box& t = *scene.geometry.tank;
+        const double l0 = scene.geometry.particleSpacing;
+        if (!(r.inflowX1 >= t.x0 + 2.0 * l0)) {
+            throw SceneError("recycling.inflow_x1", fmt::format("{} m must be at least two spacings past the tank's "
+                                                                "back wall x0 = {} m", r.inflowX1, t.x0));
+        }
+        if (!(r.outflowX > r.inflowX1 && r.outflowX <= t.x1 - l0)) {
+            throw SceneError("recycling.outflow_x", fmt::format("{} m must lie between inflow_x1 = {} m and the "
+                                                                "front wall x1 - l0 = {} m", r.outflowX, r.inflowX1,
+                                                                t.x1 - l0));
+        }
+        if (scene.piston) throw SceneError("recycling", "a scene has either a piston or recycling, not both");
+        scene.recycling = r;
+    }
+    for (std::size_t i = 0; i < scene.output.gauges.size(); ++i) {
+        const double x = scene.output.gauges[i];
+        if (scene.geometry.tank && (x < scene.geometry.tank->x0 || x > scene.geometry.tank->x1)) {
+            throw SceneError(fmt::format("output.gauges[{}]", i),
+                             fmt::format("x = {} m lies outside the tank [{}, {}] m", x, scene.geometry.tank->x0,
+                                         scene.geometry.tank->x1));
         }
     }
     top.finish();
@@ -261,7 +342,10 @@ json toJson(const Scene& sc) {
     if (g.tank) geo["tank"] = boxJson(*g.tank);
     if (g.domain) geo["domain"] = boxJson(*g.domain);
     const SolverParams& s = sc.solver;
-    return json{
+    json output{{"frame_interval", sc.output.frameInterval}, {"splash_ratio", sc.output.splashRatio},
+                {"surface_ratio", sc.output.surfaceRatio}, {"gauges", sc.output.gauges}};
+    if (sc.output.stillWaterLevel) output["still_water_level"] = *sc.output.stillWaterLevel;
+    json out{
         {"name", sc.name},
         {"description", sc.description},
         {"physics", {{"density", sc.physics.density}, {"kinematic_viscosity", sc.physics.kinematicViscosity},
@@ -279,9 +363,28 @@ json toJson(const Scene& sc) {
                     {"preconditioner", std::string(toString(s.preconditioner))},
                     {"ppe_tolerance", s.ppeTolerance}, {"ppe_max_iterations", s.ppeMaxIterations},
                     {"neighbor_skin", s.neighborSkin}, {"max_neighbors", s.maxNeighbors}}},
-        {"output", {{"frame_interval", sc.output.frameInterval}, {"splash_ratio", sc.output.splashRatio},
-                    {"surface_ratio", sc.output.surfaceRatio}}},
+        {"output", output},
+        {"seed", sc.seed},
     };
+    if (sc.piston) {
+        const PistonParams& p = *sc.piston;
+        out["piston"] = json{{"kind", std::string(toString(p.kind))}, {"period", p.period}, {"stroke", p.stroke},
+                             {"period_min", p.periodMin}, {"period_max", p.periodMax},
+                             {"stroke_min", p.strokeMin}, {"stroke_max", p.strokeMax},
+                             {"ramp_time", p.rampTime}};
+    }
+    if (sc.recycling) {
+        const RecyclingParams& r = *sc.recycling;
+        out["recycling"] = json{{"inflow_x1", r.inflowX1}, {"velocity", r.velocity}, {"outflow_x", r.outflowX}};
+    }
+    return out;
+}
+
+double stillWaterLevel(const Scene& scene) {
+    if (scene.output.stillWaterLevel) return *scene.output.stillWaterLevel;
+    double top = -kInf;
+    for (const Box& b : scene.geometry.water) top = std::max(top, b.y1);
+    return top;
 }
 
 void applyOverride(json& j, const std::string& assignment) {
@@ -316,8 +419,21 @@ void applyOverride(json& j, const std::string& assignment) {
 
 MpsSolver makeSolver(const Scene& scene) {
     GeneratedGeometry geo = generateGeometry(scene.geometry);
-    return MpsSolver(scene.physics, scene.solver, std::move(geo.particles), scene.geometry.particleSpacing,
+    MpsSolver solver(scene.physics, scene.solver, std::move(geo.particles), scene.geometry.particleSpacing,
                      geo.domain);
+    if (scene.piston) {
+        // Paper Sec. 3.3.1: the pushing wall (the tank's back wall) moves back and forth.
+        PistonMotion motion(*scene.piston, scene.solver.endTime);
+        solver.setMovingWall(MovingWall{std::move(geo.backWall),
+                                        [motion](double t) { return motion.at(t); }});
+    }
+    if (scene.recycling) {
+        // Paper Sec. 3.3.2: inflow zone at the channel's upstream end (the driver recycles).
+        const Box& t = *scene.geometry.tank;
+        const Box& d = solver.domain();
+        solver.setInflow(Box{t.x0, d.y0, scene.recycling->inflowX1, d.y1}, scene.recycling->velocity);
+    }
+    return solver;
 }
 
 } // namespace swell::bake

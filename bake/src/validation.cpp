@@ -59,4 +59,38 @@ FrontError compareFront(std::span<const FrontPoint> sim, std::span<const FrontPo
     return e;
 }
 
+HarmonicFit fitHarmonic(std::span<const double> t, std::span<const double> v, double omega) {
+    if (t.size() != v.size() || t.size() < 3) throw std::invalid_argument("fitHarmonic: need >= 3 samples of t and v");
+    // Normal equations M x = r for x = (a, b, c).
+    double M[3][4] = {};
+    for (std::size_t i = 0; i < t.size(); ++i) {
+        const double basis[3] = {std::cos(omega * t[i]), std::sin(omega * t[i]), 1.0};
+        for (int r = 0; r < 3; ++r) {
+            for (int c = 0; c < 3; ++c) M[r][c] += basis[r] * basis[c];
+            M[r][3] += basis[r] * v[i];
+        }
+    }
+    for (int c = 0; c < 3; ++c) { // Gaussian elimination with partial pivoting
+        int p = c;
+        for (int r = c + 1; r < 3; ++r) {
+            if (std::abs(M[r][c]) > std::abs(M[p][c])) p = r;
+        }
+        if (!(std::abs(M[p][c]) > 1e-12 * static_cast<double>(t.size()))) {
+            throw std::invalid_argument("fitHarmonic: singular fit (samples do not resolve the frequency)");
+        }
+        for (int k = 0; k < 4; ++k) std::swap(M[c][k], M[p][k]);
+        for (int r = c + 1; r < 3; ++r) {
+            const double f = M[r][c] / M[c][c];
+            for (int k = c; k < 4; ++k) M[r][k] -= f * M[c][k];
+        }
+    }
+    double x[3];
+    for (int r = 2; r >= 0; --r) {
+        double s = M[r][3];
+        for (int k = r + 1; k < 3; ++k) s -= M[r][k] * x[k];
+        x[r] = s / M[r][r];
+    }
+    return HarmonicFit{std::hypot(x[0], x[1]), std::atan2(x[1], x[0]), x[2]};
+}
+
 } // namespace swell::bake

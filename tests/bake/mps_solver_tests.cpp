@@ -4,6 +4,7 @@
 #include <limits>
 #include <new>
 #include <string>
+#include <vector>
 
 #include <Eigen/SparseCholesky>
 #include <fmt/format.h>
@@ -240,4 +241,53 @@ TEST(MpsSolver, TwoSolversInOneProcessAreIndependent) {
         ASSERT_NEAR(a.particles().x[i], b.particles().x[i], 1e-8);
         ASSERT_NEAR(c.particles().y[i], b.particles().y[i], 1e-8);
     }
+}
+
+// Paper Sec. 3.3.1: the piston (the tank's back wall) follows its prescribed motion exactly,
+// rigidly, and pushes the water; the bed does not move.
+TEST(MpsSolver, PistonBackWallFollowsItsMotionAndPushesWater) {
+    Scene scene;
+    scene.geometry.particleSpacing = 0.02;
+    scene.geometry.tank = Box{0.0, 0.0, 0.8, 0.3};
+    scene.geometry.water = {Box{0.0, 0.0, 0.8, 0.12}};
+    scene.solver.dt = 0.002;
+    scene.solver.endTime = 0.25;
+    PistonParams piston;
+    piston.kind = PistonKind::Sinusoidal;
+    piston.period = 1.0;
+    piston.stroke = 0.06;
+    piston.rampTime = 0.0;
+    scene.piston = piston;
+    scene.geometry.bedExtensionBack = 0.03; // parseScene's S/2
+    MpsSolver solver = makeSolver(scene);
+    const GeneratedGeometry geo = generateGeometry(scene.geometry);
+    ASSERT_EQ(geo.backWall.size(), 4u * 15u); // 2 wall + 2 dummy layers, 0.3 m / 0.02 m rows
+    const PistonMotion motion(*scene.piston, scene.solver.endTime);
+    const Particles& P = solver.particles();
+    double meanU = 0.0;
+    for (int k = 0; k < 125; ++k) solver.step(); // a quarter period: the piston moves forward
+    const PistonState s = motion.at(solver.time());
+    ASSERT_GT(s.displacement, 0.02);
+    std::vector<std::uint8_t> isBack(P.size(), 0);
+    for (std::uint32_t i : geo.backWall) {
+        isBack[i] = 1;
+        EXPECT_NEAR(P.x[i], geo.particles.x[i] + s.displacement, 1e-12);
+        EXPECT_DOUBLE_EQ(P.y[i], geo.particles.y[i]);
+        EXPECT_NEAR(P.vx[i], s.velocity, 1e-12);
+    }
+    std::size_t nearPiston = 0;
+    for (std::size_t i = 0; i < P.size(); ++i) {
+        if (P.kind[i] != ParticleKind::Water) {
+            if (!isBack[i]) {
+                EXPECT_EQ(P.x[i], geo.particles.x[i]) << "fixed particle " << i << " moved";
+            }
+            continue;
+        }
+        EXPECT_GT(P.x[i], s.displacement) << "water particle " << i << " behind the piston face";
+        if (geo.particles.x[i] < 0.1) {
+            meanU += P.x[i] - geo.particles.x[i];
+            ++nearPiston;
+        }
+    }
+    EXPECT_GT(meanU / static_cast<double>(nearPiston), 0.5 * s.displacement); // pushed along
 }

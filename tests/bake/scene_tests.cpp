@@ -192,3 +192,121 @@ TEST(Scene, UnreadableFilesAreSceneErrors) {
     EXPECT_THROW(loadScene(tmp), SceneError);
     std::filesystem::remove(tmp);
 }
+
+namespace {
+
+json withPiston() {
+    json j = minimal();
+    j["geometry"]["tank"] = json::parse(R"({"x0": 0, "y0": 0, "x1": 1.0, "y1": 0.3})");
+    j["geometry"]["water"] = json::parse(R"([{"x0": 0, "y0": 0, "x1": 1.0, "y1": 0.1}])");
+    j["piston"] = json::parse(R"({"kind": "sinusoidal", "period": 1.0, "stroke": 0.04})");
+    j["output"] = json::parse(R"({"gauges": [0.3, 0.6]})");
+    return j;
+}
+
+} // namespace
+
+TEST(Scene, WaveScenesLoad) {
+    for (const char* name : {"surging.json", "surging_small.json"}) {
+        SCOPED_TRACE(name);
+        const Scene s = loadScene(kScenes / name);
+        ASSERT_TRUE(s.piston.has_value());
+        EXPECT_EQ(s.piston->kind, PistonKind::Random);
+        EXPECT_EQ(s.piston->seed, s.seed);
+        EXPECT_FALSE(s.output.gauges.empty());
+    }
+    // The paper's scale (Table 2: 8,376 water + 1,662 fixed particles, 12K steps of 1 ms).
+    const Scene s = loadScene(kScenes / "surging.json");
+    const GeneratedGeometry g = generateGeometry(s.geometry);
+    const std::size_t water = g.particles.count(ParticleKind::Water);
+    EXPECT_NEAR(static_cast<double>(water), 8376.0, 0.05 * 8376.0);
+    EXPECT_NEAR(static_cast<double>(g.particles.size() - water), 1662.0, 0.05 * 1662.0);
+    EXPECT_NEAR(s.solver.endTime / s.solver.dt, 12000.0, 0.5);
+}
+
+TEST(Scene, PistonSeedGaugesRoundTrip) {
+    json j = withPiston();
+    j["seed"] = 42;
+    j["output"]["still_water_level"] = 0.1;
+    const Scene a = parseScene(j);
+    EXPECT_EQ(a.seed, 42u);
+    EXPECT_EQ(a.piston->seed, 42u);
+    EXPECT_DOUBLE_EQ(a.geometry.bedExtensionBack, 0.02); // room for the sinusoid's S/2 backwards
+    const Scene b = parseScene(toJson(a));
+    EXPECT_EQ(toJson(a), toJson(b));
+    EXPECT_EQ(b.output.gauges, (std::vector<double>{0.3, 0.6}));
+    EXPECT_DOUBLE_EQ(stillWaterLevel(b), 0.1);
+    EXPECT_EQ(toJson(b)["piston"]["kind"], "sinusoidal");
+}
+
+TEST(Scene, PistonAndGaugeErrorsNameTheKey) {
+    json j = withPiston();
+    j["piston"]["kind"] = "wobbly";
+    EXPECT_EQ(errorKey(j), "piston.kind");
+    j = withPiston();
+    j["piston"]["strok"] = 0.1;
+    EXPECT_EQ(errorKey(j), "piston.strok");
+    j = withPiston();
+    j["piston"]["period"] = 0;
+    EXPECT_EQ(errorKey(j), "piston.period");
+    j = withPiston();
+    j["piston"] = json::parse(R"({"kind": "random", "period_min": 2.0, "period_max": 1.0})");
+    EXPECT_EQ(errorKey(j), "piston.period_max");
+    j = withPiston();
+    j["piston"] = json::parse(R"({"kind": "random", "stroke_min": 0.2, "stroke_max": 0.1})");
+    EXPECT_EQ(errorKey(j), "piston.stroke_max");
+    j = withPiston();
+    j["piston"]["stroke"] = 1.2; // travels 0.6 m in a 1 m tank
+    EXPECT_EQ(errorKey(j), "piston.stroke");
+    j = withPiston();
+    j["piston"] = "yes";
+    EXPECT_EQ(errorKey(j), "piston");
+    j = withPiston();
+    j["geometry"].erase("tank");
+    EXPECT_EQ(errorKey(j), "piston");
+    j = withPiston();
+    j["output"]["gauges"] = json::parse("[0.3, 1.5]");
+    EXPECT_EQ(errorKey(j), "output.gauges[1]");
+    j = withPiston();
+    j["output"]["gauges"] = json::parse(R"([0.3, "middle"])");
+    EXPECT_EQ(errorKey(j), "output.gauges[1]");
+    j = withPiston();
+    j["output"]["gauges"] = 0.3;
+    EXPECT_EQ(errorKey(j), "output.gauges");
+    j = withPiston();
+    j["seed"] = -1;
+    EXPECT_EQ(errorKey(j), "seed");
+    j = withPiston();
+    j["seed"] = "one";
+    EXPECT_EQ(errorKey(j), "seed");
+    j = withPiston();
+    j["output"]["still_water_level"] = "top";
+    EXPECT_EQ(errorKey(j), "output.still_water_level");
+    EXPECT_EQ(errorKey(withPiston()), "<accepted>");
+}
+
+TEST(Scene, RippleScenesLoadAndRecyclingErrorsNameTheKey) {
+    for (const char* name : {"ripple.json", "ripple_small.json"}) {
+        SCOPED_TRACE(name);
+        const Scene s = loadScene(kScenes / name);
+        ASSERT_TRUE(s.recycling.has_value());
+        EXPECT_EQ(toJson(parseScene(toJson(s))), toJson(s));
+    }
+    json j = withPiston();
+    j.erase("piston");
+    j["recycling"] = json::parse(R"({"inflow_x1": 0.2, "velocity": 0.2, "outflow_x": 0.8})");
+    EXPECT_EQ(errorKey(j), "<accepted>");
+    j["recycling"]["outflow_x"] = 1.0; // at the front wall: no room for the outflow
+    EXPECT_EQ(errorKey(j), "recycling.outflow_x");
+    j["recycling"]["outflow_x"] = 0.1; // upstream of the inflow zone's end
+    EXPECT_EQ(errorKey(j), "recycling.outflow_x");
+    j["recycling"]["outflow_x"] = 0.8;
+    j["recycling"]["inflow_x1"] = 0.0;
+    EXPECT_EQ(errorKey(j), "recycling.inflow_x1");
+    j["recycling"]["inflow_x1"] = 0.2;
+    j["recycling"]["speed"] = 1.0;
+    EXPECT_EQ(errorKey(j), "recycling.speed");
+    j["recycling"].erase("speed");
+    j["piston"] = json::object();
+    EXPECT_EQ(errorKey(j), "recycling");
+}

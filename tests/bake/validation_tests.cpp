@@ -1,15 +1,21 @@
 // Validation at CI resolution (docs/validation.md has the finer runs and the commands).
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
+
+#include <unistd.h>
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include "swell/bake/bake_driver.h"
 #include "swell/bake/error.h"
 #include "swell/bake/scene.h"
 #include "swell/bake/validation.h"
+#include "swell/bake/wave_theory.h"
 
 using namespace swell::bake;
 
@@ -202,4 +208,57 @@ TEST(Validation, StressSweepEitherStaysStableOrStopsWithAClearMessage) {
         }
     }
     EXPECT_GE(stopped, 1) << "dt x 8 is far past the Courant limit and must be stopped";
+}
+
+TEST(Validation, HarmonicFitRecoversAmplitudePhaseAndMean) {
+    const double omega = 2.0 * std::acos(-1.0) / 0.8;
+    std::vector<double> t, v;
+    for (int i = 0; i < 300; ++i) {
+        t.push_back(0.01 * i);
+        v.push_back(0.015 * std::cos(omega * t.back() - 1.1) + 0.002 + ((i % 2) ? 1e-4 : -1e-4));
+    }
+    const HarmonicFit f = fitHarmonic(t, v, omega);
+    EXPECT_NEAR(f.amplitude, 0.015, 2e-5);
+    EXPECT_NEAR(f.phase, 1.1, 2e-3);
+    EXPECT_NEAR(f.mean, 0.002, 2e-5);
+    EXPECT_THROW(fitHarmonic(std::vector<double>{0.0, 1.0}, std::vector<double>{0.0, 1.0}, omega),
+                 std::invalid_argument);
+}
+
+// Issue 4: regular waves from a sinusoidal piston against linear wavemaker theory at a
+// gauge 2.5 depths from the paddle: height within 15 % of Biesel's H/S, wavelength (from the
+// phase lag between gauges 0.3 m apart) within 10 % of the dispersion relation.
+// DISABLED: NOT met at CI resolution (l0 = h/10): the measured height is about 46 % low and
+// the record is dominated by the solver's free-surface noise (docs/validation.md, section 5).
+TEST(Validation, DISABLED_RegularWaveMatchesLinearWavemakerTheoryAtCiResolution) {
+    const Scene scene = loadScene(std::filesystem::path(SWELL_SCENES_DIR) / "regular_wave_small.json");
+    const std::filesystem::path dir =
+        std::filesystem::temp_directory_path() / ("swell_regular_wave_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    BakeOptions opt;
+    opt.output = dir / "w.swell";
+    opt.probes = dir / "w.csv";
+    runBake(scene, opt);
+    std::ifstream csv(opt.probes);
+    std::string line;
+    std::getline(csv, line);
+    std::vector<double> t, g0, g1;
+    while (std::getline(csv, line)) {
+        double a = 0, b = 0, c = 0, d = 0;
+        ASSERT_EQ(std::sscanf(line.c_str(), "%lf,%lf,%lf,%lf", &a, &b, &c, &d), 4) << line;
+        if (a < 3.0) continue; // after the ramp and the first arrivals, before reflections
+        t.push_back(a);
+        g0.push_back(c);
+        g1.push_back(d);
+    }
+    std::filesystem::remove_all(dir);
+    const double h = stillWaterLevel(scene) - scene.geometry.tank->y0;
+    const double omega = 2.0 * std::acos(-1.0) / scene.piston->period;
+    const LinearPistonWave theory = linearPistonWave(scene.piston->stroke, scene.piston->period, h, 9.81);
+    const HarmonicFit f0 = fitHarmonic(t, g0, omega);
+    const HarmonicFit f1 = fitHarmonic(t, g1, omega);
+    EXPECT_NEAR(2.0 * f0.amplitude, theory.height, 0.15 * theory.height);
+    const double dx = scene.output.gauges[1] - scene.output.gauges[0];
+    const double lag = std::fmod(f1.phase - f0.phase + 4.0 * std::acos(-1.0), 2.0 * std::acos(-1.0));
+    EXPECT_NEAR(2.0 * std::acos(-1.0) * dx / lag, theory.wavelength, 0.10 * theory.wavelength);
 }

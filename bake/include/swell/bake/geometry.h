@@ -1,4 +1,5 @@
 #pragma once
+#include <cstdint>
 #include <optional>
 #include <vector>
 
@@ -22,12 +23,18 @@ struct GeometryParams {
     /// of all particles (plus one spacing) grown by B's width/2 left and right, B's height/4
     /// down and B's height up.
     std::optional<Box> domain;
+    /// Extra bed (m) behind the tank's back wall, room for a piston back wall moving back
+    /// (set by the scene from the piston's motion, not a scene key). Rounded up to l0.
+    double bedExtensionBack = 0.0;
 };
 
 /// The particles and domain a geometry describes.
 struct GeneratedGeometry {
     Particles particles;
     Box domain;
+    /// Indices of the tank's back-wall particles (wall and dummy layers above the bed, bed
+    /// corners excluded): the particles a piston wavemaker moves (paper Sec. 3.3.1).
+    std::vector<std::uint32_t> backWall;
 };
 
 /// Generates water, wall and dummy particles (water first, then walls, then dummies).

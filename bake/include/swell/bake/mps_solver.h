@@ -1,6 +1,7 @@
 #pragma once
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include <Eigen/Sparse>
@@ -10,6 +11,7 @@
 #include "swell/bake/mps_params.h"
 #include "swell/bake/neighbor_grid.h"
 #include "swell/bake/particles.h"
+#include "swell/bake/piston_motion.h"
 #include "swell/bake/step_stats.h"
 
 namespace swell::bake {
@@ -17,6 +19,15 @@ namespace swell::bake {
 /// Semi-implicit 2D MPS solver (Koshizuka & Oka 1996; the paper's Sec. 3.1).
 /// Advances plain particle arrays; no I/O. All buffers are sized at construction,
 /// so step() allocates nothing. Loops over particles run in OpenMP threads.
+/// A rigid set of fixed (wall and dummy) particles moved along x with a prescribed motion:
+/// a piston wavemaker (paper Sec. 3.3.1; Algorithm 1, step 3 "Move pushing wall").
+struct MovingWall {
+    std::vector<std::uint32_t> particles; ///< indices of Wall/Dummy particles moved together
+    /// Displacement (m, along +x from the rest position) and velocity (m/s) at time t (s);
+    /// must be a pure function of t (a resumed run gets the same motion).
+    std::function<PistonState(double)> motion;
+};
+
 class MpsSolver {
 public:
     /// Takes the particles (water, wall, dummy) of a scene. `spacing` is l0 (m); the
@@ -29,6 +40,21 @@ public:
     /// when the new state contains NaN/Inf, the PPE did not converge, the Courant number
     /// exceeds the limit, a particle left the domain, or a neighbour list overflowed.
     const StepStats& step();
+
+    /// Makes `wall.particles` move rigidly: each step they are placed at rest + X(t + dt) with
+    /// velocity V(t + dt) (which viscosity and collisions see), taking part in the pressure
+    /// solve as walls. The rest positions are the current ones minus X(time()). Throws
+    /// std::invalid_argument for a water particle or an index out of range.
+    void setMovingWall(MovingWall wall);
+
+    /// Inflow (paper Sec. 3.3.2, inflow-outflow scheme): water inside `zone` gets the
+    /// horizontal velocity `velocity` (m/s) in the explicit phase of every step.
+    void setInflow(const Box& zone, double velocity);
+
+    /// Moves water particle i to (x, y) with velocity (vx, vy) between steps (inflow-outflow
+    /// recycling, paper Sec. 3.3.2). Throws std::invalid_argument for a fixed particle or a
+    /// position outside the domain.
+    void relocateWater(std::size_t i, double x, double y, double vx, double vy);
 
     const Particles& particles() const { return m_p; }
     double time() const { return m_time; }
@@ -92,6 +118,12 @@ private:
     std::vector<std::uint32_t> m_rowParticle;
 
     std::vector<double> m_uC, m_vC;   // velocities after collisions
+    MovingWall m_wall;                 // prescribed-motion wall (piston), may be empty
+    std::vector<std::uint8_t> m_moving; // 1 for particles of m_wall
+    std::vector<double> m_restX;        // rest x of moving-wall particles
+    bool m_hasInflow = false;
+    Box m_inflowZone;
+    double m_inflowVelocity = 0.0;
 
     // PPE in compressed sparse rows (rows in neighbour-grid order), viewed by Eigen as a
     // SparseMatrix map. Our own PCG runs on it so a step allocates nothing.

@@ -1,12 +1,16 @@
 #pragma once
+#include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json_fwd.hpp>
 
 #include "swell/bake/geometry.h"
 #include "swell/bake/mps_params.h"
 #include "swell/bake/mps_solver.h"
+#include "swell/bake/piston_motion.h"
 
 namespace swell::bake {
 
@@ -15,6 +19,22 @@ struct OutputParams {
     double frameInterval = 0.02; ///< simulated time between stored frames (s): 50 frames per second
     double splashRatio = 0.49;   ///< d1: water with n < d1 n0 is splash (paper eq. (4), Table 1)
     double surfaceRatio = 0.96;  ///< d2: water with d1 n0 <= n <= d2 n0 is surface (paper eq. (4), Table 1)
+    /// Wave gauges: x positions (m) where probes report the free-surface elevation.
+    std::vector<double> gauges;
+    /// Still-water level (m) that gauge elevations are measured from; unset: the top of the
+    /// highest water rectangle (the initial surface).
+    std::optional<double> stillWaterLevel;
+};
+
+
+/// Inflow-outflow channel with particle recycling (paper Sec. 3.3.2; Algorithm 1 steps 3
+/// "Add particles" and 8 "Delete particles"): water in the inflow zone [tank x0, inflowX1]
+/// is driven at `velocity`; water that passes `outflowX` is moved back by outflowX - tank x0
+/// (same height) with the inflow velocity, so the particle count is conserved.
+struct RecyclingParams {
+    double inflowX1 = 0.2;  ///< downstream end of the inflow zone (m)
+    double velocity = 0.2;  ///< horizontal speed imposed in the inflow zone (m/s)
+    double outflowX = 1.0;  ///< water beyond this x (m) leaves and re-enters at the inflow
 };
 
 /// A scene file: separate physics, geometry, solver and output sections (docs/scenes.md).
@@ -25,6 +45,11 @@ struct Scene {
     GeometryParams geometry;
     SolverParams solver;
     OutputParams output;
+    std::uint64_t seed = 1; ///< seed of everything random in the scene (the piston's cycles)
+    /// Piston wavemaker: when set, the tank's back wall moves with this motion (Sec. 3.3.1).
+    std::optional<PistonParams> piston;
+    /// Inflow-outflow recycling (Sec. 3.3.2), when set.
+    std::optional<RecyclingParams> recycling;
 };
 
 /// Parses and validates a scene. Every key is optional (defaults in docs/scenes.md) except
@@ -50,7 +75,12 @@ double expectedSpeed(const Scene& scene);
 /// string. Throws SceneError for a malformed assignment.
 void applyOverride(nlohmann::json& json, const std::string& assignment);
 
-/// Generates the scene's particles and builds a solver for them.
+/// Generates the scene's particles and builds a solver for them; with a piston, the tank's
+/// back wall becomes a MovingWall driven by PistonMotion (seeded by scene.seed).
 MpsSolver makeSolver(const Scene& scene);
+
+/// Still-water level (m) of a scene: output.still_water_level or the top of the highest
+/// water rectangle.
+double stillWaterLevel(const Scene& scene);
 
 } // namespace swell::bake

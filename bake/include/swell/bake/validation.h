@@ -35,4 +35,15 @@ struct FrontError {
 FrontError compareFront(std::span<const FrontPoint> simulated, std::span<const FrontPoint> experiment,
                         double tLo, double tHi);
 
+/// Least-squares fit v(t) ~ a cos(omega t) + b sin(omega t) + c of a gauge record at a
+/// known angular frequency (regular-wave validation): amplitude sqrt(a^2 + b^2) and phase
+/// atan2(b, a), so v ~ amplitude cos(omega t - phase) + mean. Throws std::invalid_argument
+/// for fewer than 3 samples, different lengths or a singular fit.
+struct HarmonicFit {
+    double amplitude = 0.0; ///< (units of v)
+    double phase = 0.0;     ///< (rad), in (-pi, pi]
+    double mean = 0.0;      ///< (units of v)
+};
+HarmonicFit fitHarmonic(std::span<const double> t, std::span<const double> v, double omega);
+
 } // namespace swell::bake

@@ -1,0 +1,168 @@
+// swell-bake: runs a scene's 2D MPS simulation and writes the surface/splash cache
+// (DESIGN.md, Programs). Thin: scene loading, the bake loop and the cache are library code;
+// this file parses the command line, reports progress and maps errors to exit codes.
+#include <atomic>
+#include <csignal>
+#include <cstdio>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+#include <omp.h>
+
+#include "swell/bake/bake_driver.h"
+#include "swell/bake/error.h"
+#include "swell/bake/scene.h"
+#include "swell/cache/error.h"
+
+using namespace swell::bake;
+using nlohmann::json;
+
+namespace {
+
+// Set by SIGINT/SIGTERM; the bake polls it after every step and stops cleanly (the cache
+// writer then removes its temporary file). A signal handler can only reach a static.
+volatile std::sig_atomic_t g_stop = 0;
+extern "C" void onSignal(int) { g_stop = 1; }
+
+Scene loadWithOverrides(const std::string& path, const std::vector<std::string>& sets) {
+    std::ifstream in(path);
+    if (!in) throw SceneError("", "cannot open scene file " + path);
+    json j;
+    try {
+        j = json::parse(in);
+    } catch (const json::parse_error& e) {
+        throw SceneError("", path + " is not valid JSON: " + e.what());
+    }
+    for (const auto& s : sets) applyOverride(j, s);
+    return parseScene(j);
+}
+
+std::string clock(double s) {
+    if (!(s >= 0.0) || s > 1e7) return "--:--";
+    const long t = static_cast<long>(s + 0.5);
+    return t >= 3600 ? fmt::format("{}:{:02}:{:02}", t / 3600, t / 60 % 60, t % 60)
+                     : fmt::format("{}:{:02}", t / 60, t % 60);
+}
+
+/// Progress on stderr: one updating line on a terminal, a line per 10 % otherwise.
+class ProgressReporter {
+public:
+    explicit ProgressReporter(bool quiet) : m_quiet(quiet), m_tty(isatty(STDERR_FILENO) != 0) {}
+    void operator()(const BakeProgress& p) {
+        if (m_quiet) return;
+        const bool last = p.step == p.totalSteps;
+        if (m_tty) {
+            if (!last && p.wallSeconds - m_lastPrint < 0.25) return;
+        } else {
+            const long tenth = std::max(1L, p.totalSteps / 10);
+            if (!last && p.step % tenth != 0) return;
+        }
+        m_lastPrint = p.wallSeconds;
+        const double rate = p.wallSeconds > 0.0 ? p.step / p.wallSeconds : 0.0;
+        const double eta = rate > 0.0 ? (p.totalSteps - p.step) / rate : -1.0;
+        const std::string line = fmt::format("step {}/{} ({:.0f}%)  t = {:.3f} s  {:.1f} steps/s  frames {}  "
+                                             "elapsed {}  ETA {}", p.step, p.totalSteps,
+                                             100.0 * p.step / p.totalSteps, p.time, rate, p.frames,
+                                             clock(p.wallSeconds), clock(eta));
+        if (m_tty) {
+            std::fprintf(stderr, "\r%s\033[K%s", line.c_str(), last ? "\n" : "");
+        } else {
+            std::fprintf(stderr, "%s\n", line.c_str());
+        }
+        std::fflush(stderr);
+    }
+    void endLine() {
+        if (m_tty && !m_quiet && m_lastPrint >= 0.0) std::fprintf(stderr, "\n");
+    }
+
+private:
+    bool m_quiet;
+    bool m_tty;
+    double m_lastPrint = -1.0;
+};
+
+} // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{"swell-bake: run a scene's 2D MPS simulation and write the surface/splash cache"};
+    std::string scenePath, output, probes;
+    std::vector<std::string> sets;
+    int threads = 0;
+    bool asJson = false, quiet = false;
+    app.add_option("SCENE", scenePath, "scene file (JSON, docs/scenes.md)")->required();
+    app.add_option("-o,--output", output, "cache file to write (.swell); appears only when the bake completes")
+        ->required();
+    app.add_option("--set", sets, "override a scene key before validation: section.key=value (repeatable)");
+    app.add_option("--threads", threads, "OpenMP threads (default: OpenMP's choice)")->check(CLI::Range(1, 1024));
+    app.add_option("--probes", probes, "write a CSV time,front_x,gauge_<x>... per stored frame");
+    app.add_flag("--json", asJson, "print the summary as one JSON object on stdout");
+    app.add_flag("-q,--quiet", quiet, "no progress lines");
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        if (e.get_exit_code() == 0) return app.exit(e);
+        std::fprintf(stderr, "swell-bake: %s (see --help)\n", e.what());
+        return 2;
+    }
+    if (threads > 0) omp_set_num_threads(threads);
+    std::signal(SIGINT, onSignal);
+    std::signal(SIGTERM, onSignal);
+
+    ProgressReporter progress(quiet);
+    try {
+        const Scene scene = loadWithOverrides(scenePath, sets);
+        (void)frameIntervalSteps(scene); // bake-specific scene errors before any warning
+        (void)totalSteps(scene);
+        for (const std::string& w : sceneWarnings(scene)) std::fprintf(stderr, "swell-bake: warning: %s\n", w.c_str());
+        BakeOptions opt;
+        opt.output = output;
+        opt.probes = probes;
+        opt.sceneFile = scenePath;
+        opt.overrides = sets;
+        opt.threads = threads > 0 ? threads : omp_get_max_threads();
+        opt.programVersion = SWELL_VERSION;
+        opt.onProgress = [&](const BakeProgress& p) { progress(p); };
+        opt.cancelled = [] { return g_stop != 0; };
+        const BakeSummary s = runBake(scene, opt);
+        if (!quiet) {
+            std::fprintf(stderr,
+                         "swell-bake: %s: %zu water + %zu fixed particles, %ld steps, %zu frames; kept per frame "
+                         "%.1f surface + %.1f splash (%.1fx fewer than water); cache %s, %llu bytes (%.2fx); "
+                         "%.1f s wall, %.2f ms/step%s\n",
+                         scene.name.c_str(), s.particlesWater, s.particlesWall, s.steps, s.frames, s.surfaceMean,
+                         s.splashMean, s.reduction, output.c_str(), static_cast<unsigned long long>(s.cacheBytes),
+                         s.cacheBytes ? static_cast<double>(s.rawBytes) / s.cacheBytes : 0.0, s.wallSeconds,
+                         s.msPerStep,
+                         scene.recycling ? fmt::format("; {} particles recycled outflow -> inflow (count conserved)",
+                                                       s.recycled).c_str()
+                                         : "");
+        }
+        if (asJson) std::printf("%s\n", toJson(s).dump().c_str());
+        return 0;
+    } catch (const BakeCancelled& e) {
+        progress.endLine();
+        std::fprintf(stderr, "swell-bake: %s\n", e.what());
+        return 130;
+    } catch (const DivergenceError& e) {
+        progress.endLine();
+        std::fprintf(stderr, "swell-bake: %s; no cache written\n", e.what());
+        return 3;
+    } catch (const SceneError& e) {
+        std::fprintf(stderr, "swell-bake: %s: %s\n", scenePath.c_str(), e.what());
+        return 2;
+    } catch (const swell::cache::CacheError& e) {
+        progress.endLine();
+        std::fprintf(stderr, "swell-bake: %s\n", e.what());
+        return 4;
+    } catch (const std::exception& e) {
+        progress.endLine();
+        std::fprintf(stderr, "swell-bake: %s\n", e.what());
+        return 1;
+    }
+}

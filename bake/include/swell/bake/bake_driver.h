@@ -1,0 +1,85 @@
+#pragma once
+// The bake driver (DESIGN.md "Bake", "Programs" -> swell-bake): runs a scene's MPS
+// simulation, classifies water by eq. (4) on every stored frame and streams the surface and
+// splash particles into a cache. The I/O lives here, not in the solver.
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json_fwd.hpp>
+
+#include "swell/bake/scene.h"
+
+namespace swell::bake {
+
+/// A bake stopped on request (Ctrl-C, SIGTERM): no cache was written.
+class BakeCancelled : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+/// Where a running bake is; passed to BakeOptions::onProgress after every step.
+struct BakeProgress {
+    long step = 0;           ///< steps done
+    long totalSteps = 0;     ///< steps the bake will take
+    double time = 0.0;       ///< simulated time (s)
+    double wallSeconds = 0.0; ///< wall time since the first step (s)
+    std::size_t frames = 0;  ///< frames stored so far
+};
+
+/// What to do besides the scene.
+struct BakeOptions {
+    std::filesystem::path output;  ///< cache path; the file appears there only when complete
+    std::filesystem::path probes;  ///< probes CSV path, empty: no probes
+    std::string sceneFile;         ///< scene file name, recorded in the cache metadata
+    std::vector<std::string> overrides; ///< "--set" assignments, recorded in the metadata
+    int threads = 1;               ///< OpenMP threads (recorded; the caller sets them)
+    std::string programVersion;    ///< recorded in the metadata
+    /// Called after every step (cheap callers only: the app throttles its own output).
+    std::function<void(const BakeProgress&)> onProgress;
+    /// Polled after every step; true stops the bake with BakeCancelled.
+    std::function<bool()> cancelled;
+};
+
+/// Per-run figures (the --json summary of swell-bake).
+struct BakeSummary {
+    std::size_t particlesWater = 0;
+    std::size_t particlesWall = 0;  ///< fixed particles: wall and dummy layers (piston included)
+    long steps = 0;
+    long frameIntervalSteps = 0;    ///< steps between stored frames
+    std::size_t frames = 0;         ///< stored frames (the initial state is frame 0)
+    double surfaceMean = 0.0;       ///< surface particles per stored frame
+    double splashMean = 0.0;        ///< splash particles per stored frame
+    std::size_t keptMax = 0;        ///< most surface + splash particles in one frame
+    double reduction = 0.0;         ///< water particles / mean kept per frame (paper Table 3)
+    double wallSeconds = 0.0;       ///< whole bake, cache writing included (s)
+    double msPerStep = 0.0;         ///< solver wall time per step (ms)
+    double ppeIterationsMean = 0.0;
+    double maxCourant = 0.0;
+    std::uint64_t recycled = 0;     ///< water particles moved from the outflow to the inflow (Sec. 3.3.2)
+    std::uint64_t cacheBytes = 0;   ///< size of the cache file
+    std::uint64_t rawBytes = 0;     ///< float32 bytes of the stored particles before compression
+    std::vector<std::string> warnings; ///< e.g. a piston wave steeper than the breaking limit
+};
+
+nlohmann::json toJson(const BakeSummary& summary);
+
+/// Steps (of dt) between stored frames: output.frame_interval / dt, which must be a whole
+/// number. Throws SceneError (output.frame_interval, solver.adaptive_dt, solver.end_time).
+long frameIntervalSteps(const Scene& scene);
+/// Total steps: solver.end_time / dt, rounded to the nearest whole step.
+long totalSteps(const Scene& scene);
+
+/// Warnings about a scene that a bake should print, e.g. a piston whose linear-theory wave
+/// (Biesel transfer, dispersion) is steeper than the Miche breaking limit.
+std::vector<std::string> sceneWarnings(const Scene& scene);
+
+/// Runs the bake. Throws SceneError (scene unusable for a bake), DivergenceError (the
+/// simulation diverged), BakeCancelled, cache::CacheError or std::runtime_error (I/O). On
+/// any throw nothing is left at options.output (the cache writer renames only when done).
+BakeSummary runBake(const Scene& scene, const BakeOptions& options);
+
+} // namespace swell::bake

@@ -1,0 +1,242 @@
+#include "swell/bake/bake_driver.h"
+
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <limits>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "swell/bake/classification.h"
+#include "swell/bake/error.h"
+#include "swell/bake/probes.h"
+#include "swell/bake/wave_theory.h"
+#include "swell/cache/writer.h"
+
+namespace swell::bake {
+namespace {
+
+using nlohmann::json;
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+/// Probes CSV written to a temporary name and renamed when the bake completes.
+class ProbeFile {
+public:
+    ProbeFile(const std::filesystem::path& path, std::span<const double> gauges) : m_path(path) {
+        if (path.empty()) return;
+        m_tmp = path;
+        m_tmp += ".tmp";
+        m_out.open(m_tmp);
+        if (!m_out) throw std::runtime_error(fmt::format("cannot write probes file {}", m_tmp.string()));
+        m_out << probeCsvHeader(gauges) << '\n';
+    }
+    ~ProbeFile() {
+        if (m_out.is_open()) {
+            m_out.close();
+            std::error_code ec;
+            std::filesystem::remove(m_tmp, ec);
+        }
+    }
+    bool enabled() const { return !m_path.empty(); }
+    void add(const ProbeSample& s) { m_out << probeCsvRow(s) << '\n'; }
+    void finish() {
+        if (!enabled()) return;
+        m_out.close();
+        if (m_out.fail()) throw std::runtime_error(fmt::format("error writing probes file {}", m_tmp.string()));
+        std::filesystem::rename(m_tmp, m_path);
+    }
+
+private:
+    std::filesystem::path m_path, m_tmp;
+    std::ofstream m_out;
+};
+
+/// Paper Sec. 3.3.2, particle recycling (Algorithm 1 step 8, "Delete particles", and step 3,
+/// "Add particles"): water past the outflow re-enters at the inflow, at the lowest free
+/// lattice slot of the column next to the back wall (up to the still-water level), with the
+/// inflow velocity. A slot is free when no water particle lies within 0.9 l0 of it. Water
+/// that finds no free slot waits beyond the outflow (the basin in front of the front wall)
+/// and is tried again next step, so the particle count is always conserved.
+std::size_t recycle(MpsSolver& solver, const Scene& scene) {
+    const RecyclingParams& r = *scene.recycling;
+    const Particles& P = solver.particles();
+    const double l0 = scene.geometry.particleSpacing;
+    const Box& tank = *scene.geometry.tank;
+    const double slotX = tank.x0 + 0.5 * l0;
+    std::vector<std::size_t> leaving;
+    std::vector<double> nearY; // heights of water near the slot column
+    for (std::size_t i = 0; i < P.size(); ++i) {
+        if (P.kind[i] != ParticleKind::Water) continue;
+        if (P.x[i] > r.outflowX) {
+            leaving.push_back(i);
+        } else if (std::abs(P.x[i] - slotX) < 0.9 * l0) {
+            nearY.push_back(P.y[i]);
+        }
+    }
+    if (leaving.empty()) return 0;
+    const long rows = std::lround((stillWaterLevel(scene) - tank.y0) / l0);
+    std::size_t moved = 0;
+    for (long j = 0; j < rows && moved < leaving.size(); ++j) {
+        const double y = tank.y0 + (static_cast<double>(j) + 0.5) * l0;
+        bool free = true;
+        for (std::size_t k = 0; k < nearY.size() && free; ++k) {
+            // distance in x is below 0.9 l0 for every particle of nearY; check the full distance
+            free = std::abs(nearY[k] - y) >= 0.9 * l0;
+        }
+        if (!free) continue;
+        const std::size_t i = leaving[moved++];
+        solver.relocateWater(i, slotX, y, r.velocity, 0.0);
+        nearY.push_back(y);
+    }
+    return moved;
+}
+
+} // namespace
+
+long frameIntervalSteps(const Scene& scene) {
+    if (scene.solver.adaptiveDt) {
+        throw SceneError("solver.adaptive_dt", "swell-bake needs a fixed time step (stored frames are evenly spaced in "
+                                               "steps); set it to false");
+    }
+    const double ratio = scene.output.frameInterval / scene.solver.dt;
+    const double k = std::round(ratio);
+    if (k < 1.0 || std::abs(ratio - k) > 1e-6 * k) {
+        throw SceneError("output.frame_interval", fmt::format("{} s is not a whole number of time steps dt = {} s",
+                                                              scene.output.frameInterval, scene.solver.dt));
+    }
+    return static_cast<long>(k);
+}
+
+long totalSteps(const Scene& scene) {
+    const double k = std::round(scene.solver.endTime / scene.solver.dt);
+    if (k < 1.0 || k > 1e9) {
+        throw SceneError("solver.end_time", fmt::format("{} s is {} steps of dt = {} s: must be 1 to 1e9",
+                                                        scene.solver.endTime, k, scene.solver.dt));
+    }
+    return static_cast<long>(k);
+}
+
+std::vector<std::string> sceneWarnings(const Scene& scene) {
+    std::vector<std::string> out;
+    if (!scene.piston || !scene.geometry.tank) return out;
+    const PistonParams& p = *scene.piston;
+    const double depth = stillWaterLevel(scene) - scene.geometry.tank->y0;
+    if (!(depth > 0.0)) return out;
+    // Linear theory: Biesel transfer H/S and dispersion give H/L; Miche limits it.
+    // Random motion: the steepest combination is the largest stroke at the shortest period.
+    const bool sinus = p.kind == PistonKind::Sinusoidal;
+    const double stroke = sinus ? p.stroke : p.strokeMax;
+    const double period = sinus ? p.period : p.periodMin;
+    if (!(stroke > 0.0)) return out;
+    const LinearPistonWave w = linearPistonWave(stroke, period, depth, scene.physics.gravity);
+    if (w.breaks()) {
+        out.push_back(fmt::format("piston wave breaks: linear theory gives H = {:.3g} m, L = {:.3g} m, H/L = {:.3f} "
+                                  "above the Miche limit {:.3f} (kh = {:.2f}, stroke {} m, period {} s{})",
+                                  w.height, w.wavelength, w.steepness, w.breakingSteepness, w.kh, stroke, period,
+                                  sinus ? "" : ", steepest random cycle"));
+    }
+    return out;
+}
+
+json toJson(const BakeSummary& s) {
+    return json{{"particles_water", s.particlesWater}, {"particles_wall", s.particlesWall},
+                {"steps", s.steps}, {"frame_interval_steps", s.frameIntervalSteps},
+                {"frames", s.frames}, {"surface_mean", s.surfaceMean}, {"splash_mean", s.splashMean},
+                {"kept_mean", s.surfaceMean + s.splashMean}, {"kept_max", s.keptMax},
+                {"reduction", s.reduction}, {"wall_seconds", s.wallSeconds}, {"ms_per_step", s.msPerStep},
+                {"ppe_iterations_mean", s.ppeIterationsMean}, {"max_courant", s.maxCourant},
+                {"recycled", s.recycled}, {"cache_bytes", s.cacheBytes}, {"raw_bytes", s.rawBytes},
+                {"compression_ratio", s.cacheBytes ? static_cast<double>(s.rawBytes) / s.cacheBytes : 0.0},
+                {"warnings", s.warnings}};
+}
+
+BakeSummary runBake(const Scene& scene, const BakeOptions& opt) {
+    const auto start = Clock::now();
+    const long interval = frameIntervalSteps(scene);
+    const long steps = totalSteps(scene);
+    BakeSummary sum;
+    sum.steps = steps;
+    sum.frameIntervalSteps = interval;
+    sum.warnings = sceneWarnings(scene);
+
+    MpsSolver solver = makeSolver(scene);
+    const Particles& P = solver.particles();
+    sum.particlesWater = P.count(ParticleKind::Water);
+    sum.particlesWall = P.size() - sum.particlesWater;
+    const double n0 = solver.densityConstants().n0;
+    const double d1 = scene.output.splashRatio, d2 = scene.output.surfaceRatio;
+
+    // Header: everything needed to reproduce the bake (issue 4, "Classification and caches").
+    cache::Header header;
+    const Box& dom = solver.domain();
+    header.domain = cache::Domain{static_cast<float>(dom.x0), static_cast<float>(dom.y0), static_cast<float>(dom.x1),
+                                  static_cast<float>(dom.y1)};
+    header.dt = scene.solver.dt;
+    header.frameInterval = static_cast<std::uint32_t>(interval);
+    header.seed = scene.seed;
+    const json meta{{"program", "swell-bake"},
+                    {"version", opt.programVersion},
+                    {"scene_file", opt.sceneFile},
+                    {"overrides", opt.overrides},
+                    {"scene", toJson(scene)},
+                    {"seed", scene.seed},
+                    {"threads", opt.threads},
+                    {"dt", scene.solver.dt},
+                    {"steps", steps},
+                    {"frame_interval_steps", interval},
+                    {"n0", n0},
+                    {"still_water_level", stillWaterLevel(scene)},
+                    {"particles_water", sum.particlesWater},
+                    {"particles_wall", sum.particlesWall}};
+    header.metadataJson = meta.dump();
+    cache::Writer writer(opt.output, header);
+    ProbeFile probes(opt.probes, scene.output.gauges);
+    const ProbeParams probeParams{n0, d1, scene.geometry.particleSpacing, stillWaterLevel(scene),
+                                  scene.output.gauges};
+
+    double surfaceTotal = 0.0, splashTotal = 0.0, solverSeconds = 0.0, ppeIterations = 0.0;
+    // Stored frame: eq. (4) classification, only surface and splash particles kept (Sec. 3.2).
+    const auto store = [&] {
+        const ClassifiedFrame c = classifyParticles(P, n0, d1, d2);
+        writer.addFrame(c.frame);
+        surfaceTotal += static_cast<double>(c.surface());
+        splashTotal += static_cast<double>(c.splash());
+        sum.keptMax = std::max(sum.keptMax, c.surface() + c.splash());
+        sum.rawBytes += (c.frame.surface.size() + c.frame.splash.size()) * sizeof(float);
+        if (probes.enabled()) probes.add(sampleProbes(P, solver.time(), probeParams));
+    };
+    store(); // frame 0: the initial state
+    const auto solveStart = Clock::now();
+    for (long k = 1; k <= steps; ++k) {
+        const StepStats& st = solver.step();
+        if (scene.recycling) sum.recycled += recycle(solver, scene);
+        solverSeconds += st.seconds();
+        ppeIterations += st.ppeIterations;
+        sum.maxCourant = std::max(sum.maxCourant, st.courant);
+        if (k % interval == 0) store();
+        if (opt.onProgress) {
+            opt.onProgress(BakeProgress{k, steps, solver.time(), secondsSince(solveStart), writer.frameCount()});
+        }
+        if (opt.cancelled && opt.cancelled()) {
+            throw BakeCancelled(fmt::format("bake cancelled at step {} (t = {:.4f} s); no cache written", k,
+                                            solver.time()));
+        }
+    }
+    sum.frames = writer.frameCount();
+    writer.finish();
+    probes.finish();
+    sum.cacheBytes = std::filesystem::file_size(opt.output);
+    sum.surfaceMean = surfaceTotal / static_cast<double>(sum.frames);
+    sum.splashMean = splashTotal / static_cast<double>(sum.frames);
+    const double kept = sum.surfaceMean + sum.splashMean;
+    sum.reduction = kept > 0.0 ? static_cast<double>(sum.particlesWater) / kept : 0.0;
+    sum.msPerStep = 1e3 * solverSeconds / static_cast<double>(steps);
+    sum.ppeIterationsMean = ppeIterations / static_cast<double>(steps);
+    sum.wallSeconds = secondsSince(start);
+    return sum;
+}
+
+} // namespace swell::bake

@@ -1,0 +1,219 @@
+// The bake driver on the small surging scene: cache contents and metadata, determinism,
+// cancellation and divergence leave nothing at the output path, scene errors of a bake.
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <unistd.h>
+
+#include "swell/bake/bake_driver.h"
+#include "swell/bake/classification.h"
+#include "swell/bake/error.h"
+#include "swell/cache/reader.h"
+
+using namespace swell::bake;
+using nlohmann::json;
+namespace fs = std::filesystem;
+
+namespace {
+
+const fs::path kScenes = SWELL_SCENES_DIR;
+
+class BakeDriver : public ::testing::Test {
+protected:
+    void SetUp() override {
+        m_dir = fs::temp_directory_path() /
+                ("swell_bake_driver_" + std::to_string(::getpid()) + "_" +
+                 ::testing::UnitTest::GetInstance()->current_test_info()->name());
+        fs::remove_all(m_dir);
+        fs::create_directories(m_dir);
+    }
+    void TearDown() override { fs::remove_all(m_dir); }
+
+    /// surging_small, shortened to `endTime` seconds.
+    static Scene smallSurging(double endTime) {
+        std::ifstream in(kScenes / "surging_small.json");
+        json j = json::parse(in);
+        j["solver"]["end_time"] = endTime;
+        return parseScene(j);
+    }
+    static std::string bytes(const fs::path& p) {
+        std::ifstream in(p, std::ios::binary);
+        return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    }
+    /// Files in the test directory (a cancelled bake must leave no temporary behind).
+    std::size_t filesInDir() const {
+        return static_cast<std::size_t>(std::distance(fs::directory_iterator(m_dir), fs::directory_iterator()));
+    }
+    fs::path m_dir;
+};
+
+} // namespace
+
+TEST_F(BakeDriver, SmallSurgingBakeWritesAVerifiableCacheThatDescribesItself) {
+    const Scene scene = smallSurging(1.0);
+    BakeOptions opt;
+    opt.output = m_dir / "s.swell";
+    opt.probes = m_dir / "s.csv";
+    opt.sceneFile = "surging_small.json";
+    opt.overrides = {"solver.end_time=1.0"};
+    opt.programVersion = "test";
+    long lastStep = 0;
+    opt.onProgress = [&](const BakeProgress& p) {
+        EXPECT_EQ(p.step, lastStep + 1);
+        lastStep = p.step;
+    };
+    const BakeSummary s = runBake(scene, opt);
+    EXPECT_EQ(lastStep, 500);
+    EXPECT_EQ(s.steps, 500);
+    EXPECT_EQ(s.frameIntervalSteps, 10);
+    EXPECT_EQ(s.frames, 51u); // frame 0 (initial state) + one per 10 steps
+    EXPECT_EQ(s.particlesWater, 800u);
+    EXPECT_GT(s.surfaceMean, 50.0);
+    EXPECT_LT(s.surfaceMean + s.splashMean, 0.5 * 800.0); // deep particles are not stored
+    EXPECT_NEAR(s.reduction, 800.0 / (s.surfaceMean + s.splashMean), 1e-9);
+    EXPECT_EQ(s.cacheBytes, fs::file_size(opt.output));
+
+    const swell::cache::Reader r(opt.output); // validates header and index
+    EXPECT_EQ(r.frameCount(), 51u);
+    EXPECT_EQ(r.header().seed, 7u);
+    EXPECT_EQ(r.header().frameInterval, 10u);
+    EXPECT_DOUBLE_EQ(r.header().dt, 0.002);
+    EXPECT_LE(r.header().domain.xMin, -0.04f); // covers the tank and its walls
+    EXPECT_GE(r.header().domain.xMax, 2.04f);
+    const json meta = json::parse(r.header().metadataJson);
+    EXPECT_EQ(meta["program"], "swell-bake");
+    EXPECT_EQ(meta["scene_file"], "surging_small.json");
+    EXPECT_EQ(meta["overrides"][0], "solver.end_time=1.0");
+    EXPECT_EQ(meta["seed"], 7);
+    EXPECT_EQ(meta["frame_interval_steps"], 10);
+    // Every resolved parameter: the stored scene parses back to the same scene.
+    EXPECT_EQ(toJson(parseScene(meta["scene"])), toJson(scene));
+    EXPECT_EQ(meta["scene"]["solver"]["ppe_tolerance"], scene.solver.ppeTolerance);
+
+    std::size_t surface = 0;
+    for (std::size_t f = 0; f < r.frameCount(); ++f) {
+        const swell::cache::Frame fr = r.readFrame(f);
+        surface += fr.surfaceCount();
+        for (std::size_t k = 2; k < fr.surface.size(); k += 2) ASSERT_LE(fr.surface[k - 2], fr.surface[k]); // by x
+    }
+    EXPECT_NEAR(static_cast<double>(surface) / 51.0, s.surfaceMean, 1e-9);
+
+    std::ifstream csv(opt.probes);
+    std::string line;
+    std::getline(csv, line);
+    EXPECT_EQ(line, "time,front_x,gauge_0.5,gauge_1,gauge_1.5");
+    int rows = 0;
+    while (std::getline(csv, line)) ++rows;
+    EXPECT_EQ(rows, 51); // one per stored frame
+    EXPECT_EQ(filesInDir(), 2u);
+}
+
+TEST_F(BakeDriver, SameSceneSeedAndThreadsGiveAByteIdenticalCache) {
+    const Scene scene = smallSurging(0.4);
+    BakeOptions a;
+    a.output = m_dir / "a.swell";
+    runBake(scene, a);
+    BakeOptions b = a;
+    b.output = m_dir / "b.swell";
+    runBake(scene, b);
+    EXPECT_EQ(bytes(a.output), bytes(b.output));
+    // A different seed gives other piston cycles, hence another cache.
+    json j = toJson(scene);
+    j["seed"] = 8;
+    BakeOptions c = a;
+    c.output = m_dir / "c.swell";
+    runBake(parseScene(j), c);
+    EXPECT_NE(bytes(a.output), bytes(c.output));
+}
+
+TEST_F(BakeDriver, CancelledBakeLeavesNothing) {
+    const Scene scene = smallSurging(1.0);
+    BakeOptions opt;
+    opt.output = m_dir / "s.swell";
+    opt.probes = m_dir / "s.csv";
+    long steps = 0;
+    opt.onProgress = [&](const BakeProgress& p) { steps = p.step; };
+    opt.cancelled = [&] { return steps >= 37; };
+    EXPECT_THROW(runBake(scene, opt), BakeCancelled);
+    EXPECT_EQ(steps, 37);
+    EXPECT_EQ(filesInDir(), 0u) << "no cache, no probes, no temporary file";
+}
+
+TEST_F(BakeDriver, DivergingBakeNamesStepTimeParticleAndLeavesNoCache) {
+    json j = toJson(smallSurging(1.0));
+    j["solver"]["ppe_max_iterations"] = 1; // the pressure solve cannot converge
+    BakeOptions opt;
+    opt.output = m_dir / "s.swell";
+    try {
+        runBake(parseScene(j), opt);
+        FAIL() << "expected DivergenceError";
+    } catch (const DivergenceError& e) {
+        EXPECT_EQ(e.step(), 1);
+        EXPECT_NE(std::string(e.what()).find("did not converge"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("particle"), std::string::npos);
+    }
+    EXPECT_EQ(filesInDir(), 0u);
+}
+
+TEST_F(BakeDriver, SceneErrorsOfABake) {
+    json j = toJson(smallSurging(1.0));
+    j["output"]["frame_interval"] = 0.003; // 1.5 steps of 2 ms
+    try {
+        frameIntervalSteps(parseScene(j));
+        FAIL();
+    } catch (const SceneError& e) {
+        EXPECT_EQ(e.key(), "output.frame_interval");
+    }
+    j = toJson(smallSurging(1.0));
+    j["solver"]["adaptive_dt"] = true;
+    try {
+        frameIntervalSteps(parseScene(j));
+        FAIL();
+    } catch (const SceneError& e) {
+        EXPECT_EQ(e.key(), "solver.adaptive_dt");
+    }
+    BakeOptions opt;
+    opt.output = m_dir / "s.swell";
+    EXPECT_THROW(runBake(parseScene(j), opt), SceneError);
+    EXPECT_EQ(filesInDir(), 0u);
+}
+
+TEST(BakeWarnings, SteepPistonWaveIsReported) {
+    json j = json::parse(R"({
+        "geometry": {"particle_spacing": 0.02, "tank": {"x0": 0, "y0": 0, "x1": 2.0, "y1": 0.4},
+                     "water": [{"x0": 0, "y0": 0, "x1": 2.0, "y1": 0.2}]},
+        "piston": {"kind": "sinusoidal", "period": 1.0, "stroke": 0.02},
+        "solver": {"dt": 0.002}
+    })");
+    EXPECT_TRUE(sceneWarnings(parseScene(j)).empty()); // H/L about 0.015
+    j["piston"]["stroke"] = 0.3;                        // H/L about 0.2: beyond Miche's 0.12
+    const auto w = sceneWarnings(parseScene(j));
+    ASSERT_EQ(w.size(), 1u);
+    EXPECT_NE(w[0].find("Miche"), std::string::npos);
+}
+
+// Paper Sec. 3.3.2: the ripple channel recycles water from the outflow to the inflow and
+// keeps the particle count.
+TEST_F(BakeDriver, RippleChannelRecyclesWaterAndConservesTheCount) {
+    std::ifstream in(kScenes / "ripple_small.json");
+    json j = json::parse(in);
+    j["solver"]["end_time"] = 1.0;
+    const Scene scene = parseScene(j);
+    BakeOptions opt;
+    opt.output = m_dir / "r.swell";
+    const BakeSummary s = runBake(scene, opt);
+    EXPECT_GT(s.recycled, 20u);
+    const swell::cache::Reader r(opt.output);
+    EXPECT_EQ(r.frameCount(), 51u);
+    MpsSolver initial = makeSolver(scene);
+    EXPECT_EQ(s.particlesWater, initial.particles().count(ParticleKind::Water));
+    // Stored particles never exceed the water count, and the last frame still has a surface.
+    const swell::cache::Frame last = r.readFrame(50);
+    EXPECT_GT(last.surfaceCount(), 30u);
+    EXPECT_LE(last.surfaceCount() + last.splashCount(), s.particlesWater);
+}

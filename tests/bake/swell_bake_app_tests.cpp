@@ -1,0 +1,184 @@
+// swell-bake end to end: help, bad input (one line, non-zero exit), a small bake verified by
+// swell-cache, --json keys, and kill safety (SIGKILL / SIGINT / SIGTERM leave no cache).
+#include <chrono>
+#include <csignal>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <thread>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+const fs::path kScenes = SWELL_SCENES_DIR;
+
+struct Result {
+    int code = -1;
+    std::string out;
+    std::string err;
+};
+
+std::string slurp(const fs::path& p) {
+    std::ifstream f(p, std::ios::binary);
+    std::stringstream s;
+    s << f.rdbuf();
+    return s.str();
+}
+
+int lines(const std::string& s) {
+    int n = 0;
+    for (char c : s) n += c == '\n';
+    return n;
+}
+
+/// Lines that are not warnings (a scene's breaking-wave warning comes before the bake starts).
+int errorLines(const std::string& s) {
+    std::istringstream in(s);
+    int n = 0;
+    for (std::string line; std::getline(in, line);) n += line.rfind("swell-bake: warning:", 0) != 0;
+    return n;
+}
+
+class SwellBakeApp : public ::testing::Test {
+protected:
+    void SetUp() override {
+        m_dir = fs::temp_directory_path() /
+                ("swell_bake_app_" + std::to_string(::getpid()) + "_" +
+                 ::testing::UnitTest::GetInstance()->current_test_info()->name());
+        fs::remove_all(m_dir);
+        fs::create_directories(m_dir);
+    }
+    void TearDown() override { fs::remove_all(m_dir); }
+
+    Result run(const std::string& exe, const std::string& args) const {
+        const fs::path out = m_dir / "stdout.txt", err = m_dir / "stderr.txt";
+        const std::string cmd = exe + " " + args + " >" + out.string() + " 2>" + err.string();
+        const int status = std::system(cmd.c_str());
+        Result r;
+        r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+        r.out = slurp(out);
+        r.err = slurp(err);
+        fs::remove(out);
+        fs::remove(err);
+        return r;
+    }
+    Result bake(const std::string& args) const { return run(SWELL_BAKE_EXE, args); }
+
+    /// Starts a long bake in the background and waits until its temporary cache exists.
+    pid_t startLongBake(const fs::path& output) const {
+        const pid_t pid = ::fork();
+        if (pid == 0) {
+            const std::string scene = (kScenes / "surging_small.json").string();
+            const std::string err = (m_dir / "bake.err").string();
+            std::freopen(err.c_str(), "w", stderr);
+            ::execl(SWELL_BAKE_EXE, SWELL_BAKE_EXE, scene.c_str(), "-o", output.c_str(), "--set",
+                    "solver.end_time=100", "--threads", "1", static_cast<char*>(nullptr));
+            ::_exit(127);
+        }
+        const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+        while (std::chrono::steady_clock::now() < deadline) {
+            for (const auto& e : fs::directory_iterator(m_dir)) {
+                if (e.path().filename().string().rfind(output.filename().string() + ".tmp", 0) == 0) return pid;
+            }
+            std::this_thread::sleep_for(std::chrono::milliseconds(20));
+        }
+        ADD_FAILURE() << "the bake never opened its temporary cache";
+        return pid;
+    }
+    std::size_t cacheFiles() const {
+        std::size_t n = 0;
+        for (const auto& e : fs::directory_iterator(m_dir)) n += e.path().filename().string().rfind("k.swell", 0) == 0;
+        return n;
+    }
+    fs::path m_dir;
+};
+
+} // namespace
+
+TEST_F(SwellBakeApp, HelpListsTheOptions) {
+    const Result r = bake("--help");
+    EXPECT_EQ(r.code, 0);
+    for (const char* o : {"--output", "--set", "--threads", "--probes", "--json"}) {
+        EXPECT_NE(r.out.find(o), std::string::npos) << o;
+    }
+}
+
+TEST_F(SwellBakeApp, BadInputGivesOneLineAndNonZeroExit) {
+    const std::string out = (m_dir / "x.swell").string();
+    const std::string small = (kScenes / "surging_small.json").string();
+    struct Case {
+        std::string args, expect;
+    };
+    const Case cases[] = {
+        {"/no/such/scene.json -o " + out, "cannot open scene file"},
+        {small, "--output"},                                              // missing -o
+        {small + " -o " + out + " --set solver.dtt=1", "solver.dtt"},    // unknown key
+        {small + " -o " + out + " --set piston.kind=wobbly", "piston.kind"},
+        {small + " -o " + out + " --set output.frame_interval=0.003", "output.frame_interval"},
+        {small + " -o " + out + " --set nonsense", "section.key=value"},
+        {small + " -o " + out + " --threads 0", "--threads"},
+        {small + " -o /no/such/dir/x.swell", "/no/such/dir"},
+    };
+    for (const Case& c : cases) {
+        SCOPED_TRACE(c.args);
+        const Result r = bake(c.args);
+        EXPECT_NE(r.code, 0);
+        EXPECT_EQ(errorLines(r.err), 1) << r.err;
+        EXPECT_NE(r.err.find(c.expect), std::string::npos) << r.err;
+        EXPECT_TRUE(r.out.empty());
+    }
+    EXPECT_FALSE(fs::exists(out));
+}
+
+TEST_F(SwellBakeApp, SmallSurgingBakeVerifiesAndPrintsTheJsonSummary) {
+    const fs::path out = m_dir / "s.swell";
+    const fs::path csv = m_dir / "s.csv";
+    const Result r = bake((kScenes / "surging_small.json").string() + " -o " + out.string() + " --probes " +
+                          csv.string() + " --set solver.end_time=0.5 --threads 1 --json");
+    ASSERT_EQ(r.code, 0) << r.err;
+    const nlohmann::json j = nlohmann::json::parse(r.out);
+    for (const char* k : {"particles_water", "particles_wall", "steps", "frames", "surface_mean", "splash_mean",
+                          "reduction", "wall_seconds", "ms_per_step"}) {
+        EXPECT_TRUE(j.contains(k)) << k;
+    }
+    EXPECT_EQ(j["steps"], 250);
+    EXPECT_EQ(j["frames"], 26);
+    EXPECT_NE(r.err.find("step 250/250"), std::string::npos) << r.err; // progress, then the summary
+    EXPECT_NE(r.err.find("fewer than water"), std::string::npos) << r.err;
+    const Result v = run(SWELL_CACHE_EXE, "verify " + out.string());
+    EXPECT_EQ(v.code, 0) << v.out << v.err;
+    EXPECT_EQ(lines(slurp(csv)), 27);
+}
+
+TEST_F(SwellBakeApp, KilledBakeLeavesNoCacheAtTheOutputPath) {
+    const fs::path out = m_dir / "k.swell";
+    const pid_t pid = startLongBake(out);
+    ::kill(pid, SIGKILL);
+    int status = 0;
+    ::waitpid(pid, &status, 0);
+    EXPECT_TRUE(WIFSIGNALED(status));
+    EXPECT_FALSE(fs::exists(out)); // (an orphaned temporary may stay; it never looks like the cache)
+}
+
+TEST_F(SwellBakeApp, InterruptedBakeStopsCleanlyAndLeavesNothing) {
+    for (int sig : {SIGINT, SIGTERM}) {
+        SCOPED_TRACE(sig);
+        const fs::path out = m_dir / "k.swell";
+        const pid_t pid = startLongBake(out);
+        ::kill(pid, sig);
+        int status = 0;
+        ::waitpid(pid, &status, 0);
+        ASSERT_TRUE(WIFEXITED(status));
+        EXPECT_EQ(WEXITSTATUS(status), 130);
+        EXPECT_EQ(cacheFiles(), 0u) << "neither the cache nor its temporary file";
+        EXPECT_NE(slurp(m_dir / "bake.err").find("cancelled"), std::string::npos);
+    }
+}
