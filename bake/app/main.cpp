@@ -30,19 +30,6 @@ namespace {
 volatile std::sig_atomic_t g_stop = 0;
 extern "C" void onSignal(int) { g_stop = 1; }
 
-Scene loadWithOverrides(const std::string& path, const std::vector<std::string>& sets) {
-    std::ifstream in(path);
-    if (!in) throw SceneError("", "cannot open scene file " + path);
-    json j;
-    try {
-        j = json::parse(in);
-    } catch (const json::parse_error& e) {
-        throw SceneError("", path + " is not valid JSON: " + e.what());
-    }
-    for (const auto& s : sets) applyOverride(j, s);
-    return parseScene(j);
-}
-
 std::string clock(double s) {
     if (!(s >= 0.0) || s > 1e7) return "--:--";
     const long t = static_cast<long>(s + 0.5);
@@ -116,7 +103,7 @@ int main(int argc, char** argv) {
 
     ProgressReporter progress(quiet);
     try {
-        const Scene scene = loadWithOverrides(scenePath, sets);
+        const Scene scene = loadScene(scenePath, sets);
         (void)frameIntervalSteps(scene); // bake-specific scene errors before any warning
         (void)totalSteps(scene);
         for (const std::string& w : sceneWarnings(scene)) std::fprintf(stderr, "swell-bake: warning: %s\n", w.c_str());

@@ -21,19 +21,6 @@ using nlohmann::json;
 
 namespace {
 
-Scene sceneWithOverrides(const std::string& path, const std::vector<std::string>& sets) {
-    std::ifstream in(path);
-    if (!in) throw SceneError("", "cannot open scene file " + path);
-    json j;
-    try {
-        j = json::parse(in);
-    } catch (const json::parse_error& e) {
-        throw SceneError("", path + " is not valid JSON: " + e.what());
-    }
-    for (const auto& s : sets) applyOverride(j, s);
-    return parseScene(j);
-}
-
 struct RunTotals {
     long steps = 0;
     double ppeIterations = 0.0;
@@ -212,9 +199,9 @@ int main(int argc, char** argv) {
         json out;
         const auto start = std::chrono::steady_clock::now();
         if (*dam) {
-            out = damBreak(sceneWithOverrides(damScene, sets), tEnd, csv);
+            out = damBreak(loadScene(damScene, sets), tEnd, csv);
         } else {
-            const Scene scene = sceneWithOverrides(stillScene, sets);
+            const Scene scene = loadScene(stillScene, sets);
             if (steps < 0) steps = std::lround(scene.solver.endTime / scene.solver.dt);
             out = stillTank(scene, settle, steps, trace);
         }

@@ -317,7 +317,7 @@ Scene parseScene(const json& j) {
     return scene;
 }
 
-Scene loadScene(const std::filesystem::path& path) {
+Scene loadScene(const std::filesystem::path& path, const std::vector<std::string>& overrides) {
     std::ifstream in(path);
     if (!in) throw SceneError("", fmt::format("cannot open scene file {}", path.string()));
     std::stringstream buffer;
@@ -328,6 +328,8 @@ Scene loadScene(const std::filesystem::path& path) {
     } catch (const json::parse_error& e) {
         throw SceneError("", fmt::format("{} is not valid JSON: {}", path.string(), e.what()));
     }
+    for (const std::string& o : overrides)
+        applyOverride(j, o);
     return parseScene(j);
 }
 

@@ -58,9 +58,9 @@ struct Scene {
 /// the Courant limit for the scene's expected speed (unless solver.adaptive_dt).
 Scene parseScene(const nlohmann::json& json);
 
-/// Reads and parses a scene file; unreadable files and JSON syntax errors also throw
-/// SceneError (key "") with the file name.
-Scene loadScene(const std::filesystem::path& path);
+/// Reads a scene file, applies the "--set" overrides in order (applyOverride) and parses it;
+/// unreadable files and JSON syntax errors also throw SceneError (key "") with the file name.
+Scene loadScene(const std::filesystem::path& path, const std::vector<std::string>& overrides = {});
 
 /// The fully resolved scene (every key, defaults filled in) as JSON; parseScene of it
 /// gives the same scene.
