@@ -7,6 +7,7 @@
 #include <GL/glcorearb.h>
 
 #include <fmt/format.h>
+#include <stdexcept>
 #include <string>
 
 namespace swell::runtime {
@@ -77,6 +78,26 @@ void checkGl(std::string_view what) {
     if (error != GL_NO_ERROR) {
         throw RuntimeError(fmt::format("OpenGL error 0x{:x} while {}", error, what));
     }
+}
+
+int uniformLocation(const GlProgram& program, const char* name) {
+    const GLint loc = glGetUniformLocation(program.get(), name);
+    if (loc < 0)
+        throw std::logic_error(fmt::format("shader uniform {} not found", name));
+    return loc;
+}
+
+GlQuery makeTimestampQuery() {
+    GLuint q = 0;
+    glCreateQueries(GL_TIMESTAMP, 1, &q);
+    return GlQuery(q);
+}
+
+double elapsedMs(const GlQuery& from, const GlQuery& to) {
+    GLuint64 a = 0, b = 0;
+    glGetQueryObjectui64v(from.get(), GL_QUERY_RESULT, &a);
+    glGetQueryObjectui64v(to.get(), GL_QUERY_RESULT, &b);
+    return static_cast<double>(b - a) * 1e-6;
 }
 
 } // namespace swell::runtime

@@ -23,31 +23,6 @@ GLuint groups(long long count, GLuint size) {
     return static_cast<GLuint>((count + size - 1) / size);
 }
 
-GLint location(const GlProgram& program, const char* name) {
-    const GLint loc = glGetUniformLocation(program.get(), name);
-    if (loc < 0)
-        throw std::logic_error(fmt::format("shader uniform {} not found", name));
-    return loc;
-}
-
-// GL_TIMESTAMP queries: llvmpipe reports GL_TIME_ELAPSED as 0 for compute dispatches, while
-// timestamps around each pass work on llvmpipe and on GPU drivers alike.
-GlQuery makeQuery() {
-    GLuint q = 0;
-    glCreateQueries(GL_TIMESTAMP, 1, &q);
-    return GlQuery(q);
-}
-
-std::uint64_t queryNs(const GlQuery& q) {
-    GLuint64 ns = 0;
-    glGetQueryObjectui64v(q.get(), GL_QUERY_RESULT, &ns);
-    return ns;
-}
-
-double spanMs(const GlQuery& from, const GlQuery& to) {
-    return static_cast<double>(queryNs(to) - queryNs(from)) * 1e-6;
-}
-
 } // namespace
 
 GpuReplay::GpuReplay(const FrameSet& frames, const ReplayParams& params,
@@ -153,23 +128,25 @@ GpuReplay::GpuReplay(const FrameSet& frames, const ReplayParams& params,
     m_columns = makeStorageBuffer(zeros.size() * sizeof(float), zeros.data());
 
     // ---- column pass: x half of eq. (7) per held frame and column, once
-    glProgramUniform1i(column.get(), location(column, "u_N"), N);
-    glProgramUniform1i(column.get(), location(column, "u_Nq"), Nq);
-    glProgramUniform1i(column.get(), location(column, "u_slots"), static_cast<GLint>(m_heldFrames));
-    glProgramUniform1f(column.get(), location(column, "u_sigma"), static_cast<float>(params.sigma));
-    glProgramUniform1f(column.get(), location(column, "u_emptyHeight"), m_missing);
+    glProgramUniform1i(column.get(), uniformLocation(column, "u_N"), N);
+    glProgramUniform1i(column.get(), uniformLocation(column, "u_Nq"), Nq);
+    glProgramUniform1i(column.get(), uniformLocation(column, "u_slots"),
+                       static_cast<GLint>(m_heldFrames));
+    glProgramUniform1f(column.get(), uniformLocation(column, "u_sigma"),
+                       static_cast<float>(params.sigma));
+    glProgramUniform1f(column.get(), uniformLocation(column, "u_emptyHeight"), m_missing);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, particleBuffer.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, binBuffer.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, m_columns.get());
     for (GlQuery& q : m_queries)
-        q = makeQuery();
+        q = makeTimestampQuery();
     if (m_heldFrames > 0) {
         glUseProgram(column.get());
         glQueryCounter(m_queries[0].get(), GL_TIMESTAMP);
         glDispatchCompute(groups(N, kGroup1D), static_cast<GLuint>(m_heldFrames), 1);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
         glQueryCounter(m_queries[1].get(), GL_TIMESTAMP);
-        m_columnPassMs = spanMs(m_queries[0], m_queries[1]);
+        m_columnPassMs = elapsedMs(m_queries[0], m_queries[1]);
     }
     checkGl("running the column pass");
 
@@ -183,14 +160,15 @@ GpuReplay::GpuReplay(const FrameSet& frames, const ReplayParams& params,
     m_slotOf = makeStorageBuffer(slotOf.size() * sizeof(GLuint), slotOf.data());
     m_slices = makeStorageBuffer(static_cast<std::size_t>(J) * 2 * sizeof(GLint), nullptr);
     const GLuint lp = m_lookup.get();
-    m_lookupTau = location(m_lookup, "u_tau");
-    glProgramUniform1d(lp, location(m_lookup, "u_F"), m_F);
-    glProgramUniform1d(lp, location(m_lookup, "u_A"), m_A);
-    glProgramUniform1i(lp, location(m_lookup, "u_T"), noise ? noise->timeSamples() : 1);
-    glProgramUniform1i(lp, location(m_lookup, "u_K"), K);
-    glProgramUniform1i(lp, location(m_lookup, "u_sliceCount"), J);
-    glProgramUniform1i(lp, location(m_lookup, "u_frameCount"), static_cast<GLint>(m_frameCount));
-    glProgramUniform1i(lp, location(m_lookup, "u_loop"), m_loop ? 1 : 0);
+    m_lookupTau = uniformLocation(m_lookup, "u_tau");
+    glProgramUniform1d(lp, uniformLocation(m_lookup, "u_F"), m_F);
+    glProgramUniform1d(lp, uniformLocation(m_lookup, "u_A"), m_A);
+    glProgramUniform1i(lp, uniformLocation(m_lookup, "u_T"), noise ? noise->timeSamples() : 1);
+    glProgramUniform1i(lp, uniformLocation(m_lookup, "u_K"), K);
+    glProgramUniform1i(lp, uniformLocation(m_lookup, "u_sliceCount"), J);
+    glProgramUniform1i(lp, uniformLocation(m_lookup, "u_frameCount"),
+                       static_cast<GLint>(m_frameCount));
+    glProgramUniform1i(lp, uniformLocation(m_lookup, "u_loop"), m_loop ? 1 : 0);
 
     // ---- z windows: first slice, count and G_z per row (definitions: cpu_reconstruction.h)
     std::vector<GLint> rows(2 * static_cast<std::size_t>(M));
@@ -239,12 +217,12 @@ GpuReplay::GpuReplay(const FrameSet& frames, const ReplayParams& params,
     m_rows = makeStorageBuffer(rows.size() * sizeof(GLint), rows.data());
     m_weights = makeStorageBuffer(weights.size() * sizeof(float), weights.data());
     const GLuint rp = m_reconstruct.get();
-    glProgramUniform1i(rp, location(m_reconstruct, "u_N"), N);
-    glProgramUniform1i(rp, location(m_reconstruct, "u_Nq"), Nq);
-    glProgramUniform1i(rp, location(m_reconstruct, "u_M"), M);
-    glProgramUniform1i(rp, location(m_reconstruct, "u_rowStride"), m_rowStride);
-    glProgramUniform1f(rp, location(m_reconstruct, "u_reference"), m_reference);
-    glProgramUniform1f(rp, location(m_reconstruct, "u_missing"), m_missing);
+    glProgramUniform1i(rp, uniformLocation(m_reconstruct, "u_N"), N);
+    glProgramUniform1i(rp, uniformLocation(m_reconstruct, "u_Nq"), Nq);
+    glProgramUniform1i(rp, uniformLocation(m_reconstruct, "u_M"), M);
+    glProgramUniform1i(rp, uniformLocation(m_reconstruct, "u_rowStride"), m_rowStride);
+    glProgramUniform1f(rp, uniformLocation(m_reconstruct, "u_reference"), m_reference);
+    glProgramUniform1f(rp, uniformLocation(m_reconstruct, "u_missing"), m_missing);
 
     m_heights = makeStorageBuffer(
         static_cast<std::size_t>(N) * static_cast<std::size_t>(M) * sizeof(float), nullptr);
@@ -310,7 +288,7 @@ void GpuReplay::reconstructHeights() {
 StageTimes GpuReplay::stageTimes() const {
     if (!m_timedUpdate)
         throw std::logic_error("GpuReplay::stageTimes: no timed update yet");
-    return StageTimes{spanMs(m_queries[0], m_queries[1]), spanMs(m_queries[1], m_queries[2])};
+    return StageTimes{elapsedMs(m_queries[0], m_queries[1]), elapsedMs(m_queries[1], m_queries[2])};
 }
 
 void GpuReplay::finish() const {

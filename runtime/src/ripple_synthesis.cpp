@@ -36,20 +36,6 @@ void periodicTap(double c, int cells, int& i0, int& i1, double& f) {
     f = fc - i0;
 }
 
-GLint location(const GlProgram& program, const char* name) {
-    const GLint loc = glGetUniformLocation(program.get(), name);
-    if (loc < 0)
-        throw std::logic_error(fmt::format("shader uniform {} not found", name));
-    return loc;
-}
-
-double spanMs(const GlQuery& from, const GlQuery& to) {
-    GLuint64 a = 0, b = 0;
-    glGetQueryObjectui64v(from.get(), GL_QUERY_RESULT, &a);
-    glGetQueryObjectui64v(to.get(), GL_QUERY_RESULT, &b);
-    return static_cast<double>(b - a) * 1e-6;
-}
-
 void checkSamplers(const ModeParams& mode, std::span<const SliceSampler> samplers) {
     if (samplers.size() != static_cast<std::size_t>(mode.sliceSets()))
         throw std::logic_error("ripple: one slice sampler per direction is needed");
@@ -183,17 +169,14 @@ GpuRipple::GpuRipple(const FrameSet& frames, const ReplayParams& params, const R
     m_out = std::make_unique<HeightOutput>(N, M);
     m_synthesis = makeEmbeddedProgram("ripple_synthesis.comp");
     const GLuint sp = m_synthesis.get();
-    glProgramUniform1i(sp, location(m_synthesis, "u_N"), N);
-    glProgramUniform1i(sp, location(m_synthesis, "u_M"), M);
-    glProgramUniform1i(sp, location(m_synthesis, "u_D"), D);
-    glProgramUniform1f(sp, location(m_synthesis, "u_cx"), static_cast<float>(0.5 * N));
-    glProgramUniform1f(sp, location(m_synthesis, "u_cz"), static_cast<float>(0.5 * M));
-    glProgramUniform1f(sp, location(m_synthesis, "u_dzdx"), static_cast<float>(g.dz / g.dx));
-    for (GlQuery& q : m_queries) {
-        GLuint name = 0;
-        glCreateQueries(GL_TIMESTAMP, 1, &name);
-        q = GlQuery(name);
-    }
+    glProgramUniform1i(sp, uniformLocation(m_synthesis, "u_N"), N);
+    glProgramUniform1i(sp, uniformLocation(m_synthesis, "u_M"), M);
+    glProgramUniform1i(sp, uniformLocation(m_synthesis, "u_D"), D);
+    glProgramUniform1f(sp, uniformLocation(m_synthesis, "u_cx"), static_cast<float>(0.5 * N));
+    glProgramUniform1f(sp, uniformLocation(m_synthesis, "u_cz"), static_cast<float>(0.5 * M));
+    glProgramUniform1f(sp, uniformLocation(m_synthesis, "u_dzdx"), static_cast<float>(g.dz / g.dx));
+    for (GlQuery& q : m_queries)
+        q = makeTimestampQuery();
     checkGl("setting up the ripple synthesis");
 }
 
@@ -243,7 +226,7 @@ RippleStageTimes GpuRipple::stageTimes() const {
         t.reconstructMs += s.reconstructMs;
     }
     if (!m_identity)
-        t.synthesisMs = spanMs(m_queries[0], m_queries[1]);
+        t.synthesisMs = elapsedMs(m_queries[0], m_queries[1]);
     return t;
 }
 

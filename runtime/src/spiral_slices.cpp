@@ -17,20 +17,6 @@ namespace {
 constexpr GLuint kGroup = 64; // local_size_x of spiral_mapping.comp
 constexpr double kTwoPi = 2.0 * std::numbers::pi;
 
-GLint location(const GlProgram& program, const char* name) {
-    const GLint loc = glGetUniformLocation(program.get(), name);
-    if (loc < 0)
-        throw std::logic_error(fmt::format("shader uniform {} not found", name));
-    return loc;
-}
-
-double spanMs(const GlQuery& from, const GlQuery& to) {
-    GLuint64 a = 0, b = 0;
-    glGetQueryObjectui64v(from.get(), GL_QUERY_RESULT, &a);
-    glGetQueryObjectui64v(to.get(), GL_QUERY_RESULT, &b);
-    return static_cast<double>(b - a) * 1e-6;
-}
-
 /// x in [0, period): the floor-based remainder, with the rounding case x -> period folded to 0.
 double wrap(double x, double period) {
     double w = x - period * std::floor(x / period);
@@ -198,17 +184,14 @@ GpuWhirlpool::GpuWhirlpool(const FrameSet& frames, const ReplayParams& params,
         m_replay.uploadedBytes() + cells.size() * sizeof(GpuCell) + pairs.size() * sizeof(float);
     m_mapping = makeEmbeddedProgram("spiral_mapping.comp");
     const GLuint mp = m_mapping.get();
-    glProgramUniform1i(mp, location(m_mapping, "u_cells"), N * M);
-    glProgramUniform1i(mp, location(m_mapping, "u_N"), N);
-    glProgramUniform1i(mp, location(m_mapping, "u_J"), g.sliceCount());
-    glProgramUniform1f(mp, location(m_mapping, "u_reference"), m_replay.referenceHeight());
-    glProgramUniform1f(mp, location(m_mapping, "u_missing"), m_replay.missingHeight());
-    m_spinLocation = location(m_mapping, "u_spin");
-    for (GlQuery& q : m_queries) {
-        GLuint name = 0;
-        glCreateQueries(GL_TIMESTAMP, 1, &name);
-        q = GlQuery(name);
-    }
+    glProgramUniform1i(mp, uniformLocation(m_mapping, "u_cells"), N * M);
+    glProgramUniform1i(mp, uniformLocation(m_mapping, "u_N"), N);
+    glProgramUniform1i(mp, uniformLocation(m_mapping, "u_J"), g.sliceCount());
+    glProgramUniform1f(mp, uniformLocation(m_mapping, "u_reference"), m_replay.referenceHeight());
+    glProgramUniform1f(mp, uniformLocation(m_mapping, "u_missing"), m_replay.missingHeight());
+    m_spinLocation = uniformLocation(m_mapping, "u_spin");
+    for (GlQuery& q : m_queries)
+        q = makeTimestampQuery();
     checkGl("setting up the whirlpool");
 }
 
@@ -240,7 +223,7 @@ void GpuWhirlpool::update(double tau) {
 WhirlpoolStageTimes GpuWhirlpool::stageTimes() const {
     if (!m_timed)
         throw std::logic_error("GpuWhirlpool::stageTimes: no timed update yet");
-    return {spanMs(m_queries[0], m_queries[1]), spanMs(m_queries[1], m_queries[2])};
+    return {elapsedMs(m_queries[0], m_queries[1]), elapsedMs(m_queries[1], m_queries[2])};
 }
 
 } // namespace swell::runtime

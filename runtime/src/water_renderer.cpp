@@ -32,19 +32,6 @@ bool finiteColour(const Vec3& v) {
     return std::all_of(v.begin(), v.end(), [](double c) { return std::isfinite(c) && c >= 0.0; });
 }
 
-GlQuery makeTimestamp() {
-    GLuint q = 0;
-    glCreateQueries(GL_TIMESTAMP, 1, &q);
-    return GlQuery(q);
-}
-
-double spanMs(const GlQuery& a, const GlQuery& b) {
-    GLuint64 ta = 0, tb = 0;
-    glGetQueryObjectui64v(a.get(), GL_QUERY_RESULT, &ta);
-    glGetQueryObjectui64v(b.get(), GL_QUERY_RESULT, &tb);
-    return static_cast<double>(tb - ta) * 1e-6;
-}
-
 } // namespace
 
 void ShadingParams::validate() const {
@@ -161,7 +148,7 @@ WaterRenderer::WaterRenderer(const Grid& grid, const cache::Domain& domain,
         }
     }
     for (GlQuery& q : m_queries)
-        q = makeTimestamp();
+        q = makeTimestampQuery();
 
     // Uniforms that do not change between frames.
     const float eta = static_cast<float>(1.0 / shading.refractiveIndex);
@@ -365,10 +352,10 @@ RenderStageTimes WaterRenderer::stageTimes() const {
     if (!m_timed)
         throw std::logic_error("stageTimes() without a timed draw()");
     RenderStageTimes t;
-    t.skyMs = spanMs(m_queries[0], m_queries[1]);
-    t.waterMs = spanMs(m_queries[1], m_queries[2]);
-    t.splashMs = m_splashTimed ? spanMs(m_queries[2], m_queries[3]) : 0.0;
-    t.resolveMs = spanMs(m_queries[3], m_queries[4]);
+    t.skyMs = elapsedMs(m_queries[0], m_queries[1]);
+    t.waterMs = elapsedMs(m_queries[1], m_queries[2]);
+    t.splashMs = m_splashTimed ? elapsedMs(m_queries[2], m_queries[3]) : 0.0;
+    t.resolveMs = elapsedMs(m_queries[3], m_queries[4]);
     return t;
 }
 

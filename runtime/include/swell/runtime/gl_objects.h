@@ -56,6 +56,14 @@ GlBuffer makeStorageBuffer(std::size_t bytes, const void* data);
 GlProgram makeComputeProgram(std::string_view name, std::string_view source);
 /// Compiles and links the embedded shader `name` (shaders/<name>).
 GlProgram makeEmbeddedProgram(std::string_view name);
+
+/// Location of a uniform the shader must have; a missing one is a bug (std::logic_error).
+int uniformLocation(const GlProgram& program, const char* name);
+/// A GL_TIMESTAMP query. Timestamps, not GL_TIME_ELAPSED: llvmpipe reports elapsed time 0
+/// for compute dispatches, while timestamps work there and on GPU drivers alike.
+GlQuery makeTimestampQuery();
+/// Milliseconds between two written timestamp queries (waits for their results).
+double elapsedMs(const GlQuery& from, const GlQuery& to);
 /// Throws RuntimeError naming `what` if glGetError reports an error.
 void checkGl(std::string_view what);
 
