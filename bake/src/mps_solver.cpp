@@ -470,16 +470,20 @@ void MpsSolver::assemblePpe(double dt) {
     }
 }
 
-void MpsSolver::matVec(const double* v, double* out) const {
+double MpsSolver::matVec(const double* v, double* out) const {
     const int rows = static_cast<int>(m_rows);
-#pragma omp parallel for schedule(static) if(static_cast<std::size_t>(rows) >= kParallelMin)
+    double vAv = 0.0;
+#pragma omp parallel for schedule(static) reduction(+ : vAv) if(static_cast<std::size_t>(rows) >= kParallelMin)
     for (int r = 0; r < rows; ++r) {
+        const int end = m_rowPtr[static_cast<std::size_t>(r) + 1];
         double s = 0.0;
-        for (int k = m_rowPtr[static_cast<std::size_t>(r)]; k < m_rowPtr[static_cast<std::size_t>(r) + 1]; ++k) {
+        for (int k = m_rowPtr[static_cast<std::size_t>(r)]; k < end; ++k) {
             s += m_val[static_cast<std::size_t>(k)] * v[m_col[static_cast<std::size_t>(k)]];
         }
         out[r] = s;
+        vAv += v[r] * s;
     }
+    return vAv;
 }
 
 void MpsSolver::factorIncompleteCholesky() {
@@ -696,15 +700,16 @@ void MpsSolver::solvePpe() {
         std::copy(z, z + n, d);
         double rz = dot(r, z, n);
         while (it < m_par.ppeMaxIterations) {
-            matVec(d, q);
-            const double alpha = rz / dot(d, q, n);
-#pragma omp parallel for schedule(static) if(n >= kParallelVector)
+            const double alpha = rz / matVec(d, q); // q = A d and d.q in one sweep
+            double rr = 0.0;
+#pragma omp parallel for schedule(static) reduction(+ : rr) if(n >= kParallelVector)
             for (std::size_t i = 0; i < n; ++i) {
                 x[i] += alpha * d[i];
                 r[i] -= alpha * q[i];
+                rr += r[i] * r[i];
             }
             ++it;
-            rNorm = std::sqrt(dot(r, r, n));
+            rNorm = std::sqrt(rr);
             if (!(rNorm > target)) break; // also stops on NaN, caught below
             applyPreconditioner(r, z);
             const double rzNew = dot(r, z, n);

@@ -89,7 +89,7 @@ private:
     void factorIncompleteCholesky();
     void setupTwoLevel();
     void applyPreconditioner(const double* r, double* z) const;
-    void matVec(const double* v, double* out) const;
+    double matVec(const double* v, double* out) const; ///< out = A v; returns v.out
     void correctionPhase(double dt);
     void checkState(double dt);
     double chooseDt() const;
