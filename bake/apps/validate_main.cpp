@@ -1,8 +1,10 @@
 // swell-validate: developer runs behind docs/validation.md (dam break against Martin & Moyce,
+// regular waves against linear wavemaker theory,
 // still-tank hydrostatics). Thin: scene loading, the solver and the comparisons are library code.
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -11,8 +13,11 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 #include <omp.h>
+#include <unistd.h>
 
+#include "swell/bake/bake_driver.h"
 #include "swell/bake/error.h"
+#include "swell/bake/regular_wave.h"
 #include "swell/bake/scene.h"
 #include "swell/bake/validation.h"
 
@@ -161,10 +166,60 @@ json stillTank(const Scene& scene, double settle, long steps, long trace) {
     return out;
 }
 
+json regularWave(const Scene& scene, double from, double to, const std::string& keep) {
+    namespace fs = std::filesystem;
+    const fs::path dir = keep.empty() ? fs::temp_directory_path() / fmt::format("swell_regular_wave_{}", ::getpid())
+                                      : fs::path(keep);
+    fs::create_directories(dir);
+    BakeOptions opt;
+    opt.output = dir / (scene.name + ".swell");
+    opt.probes = dir / (scene.name + ".probes.csv");
+    opt.threads = omp_get_max_threads();
+    json out{{"scene", scene.name}, {"l0", scene.geometry.particleSpacing}};
+    BakeSummary summary;
+    try {
+        summary = runBake(scene, opt);
+        out["outcome"] = "stable";
+    } catch (const DivergenceError& e) {
+        out["outcome"] = std::string("stopped: ") + e.what();
+        if (keep.empty()) fs::remove_all(dir);
+        return out;
+    }
+    const std::vector<ProbeSample> samples = readProbeCsv(opt.probes);
+    if (keep.empty()) fs::remove_all(dir);
+    WaveWindow window = regularWaveWindow(scene);
+    if (from >= 0.0) window.start = from;
+    if (to >= 0.0) window.end = to;
+    const RegularWaveCheck c = checkRegularWave(scene, samples, window);
+    out["water"] = summary.particlesWater;
+    out["fixed"] = summary.particlesWall;
+    out["steps"] = summary.steps;
+    out["depth"] = c.depth;
+    out["kh"] = c.theory.kh;
+    out["window"] = {c.window.start, c.window.end};
+    out["samples"] = c.samples;
+    out["gauges"] = c.gauges;
+    out["height_theory"] = c.theory.height;
+    out["heights"] = c.heights;
+    json errors = json::array();
+    for (std::size_t g = 0; g < c.heights.size(); ++g) errors.push_back(c.heightError(g));
+    out["height_errors"] = errors;
+    out["wavelength_theory"] = c.theory.wavelength;
+    out["wavelength"] = c.wavelength;
+    out["wavelength_error"] = c.wavelengthError();
+    out["steepness_theory"] = c.theory.steepness;
+    out["ms_per_step"] = summary.msPerStep;
+    out["us_per_particle_step"] =
+        1e3 * summary.msPerStep / static_cast<double>(summary.particlesWater + summary.particlesWall);
+    out["ppe_iterations_mean"] = summary.ppeIterationsMean;
+    out["ppe_tolerance"] = scene.solver.ppeTolerance;
+    return out;
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
-    CLI::App app{"swell-validate: dam-break and still-tank validation runs of the MPS solver"};
+    CLI::App app{"swell-validate: dam-break, still-tank and regular-wave validation runs of the MPS solver"};
     app.require_subcommand(1);
     app.fallthrough();
     std::vector<std::string> sets;
@@ -193,6 +248,18 @@ int main(int argc, char** argv) {
     still->add_option("--steps", steps, "steps to run (default: end_time / dt)");
     still->add_option("--trace", trace, "print step stats to stderr every N steps");
 
+    auto* wave = app.add_subcommand("regular-wave", "bake a sinusoidal-piston scene and compare the wave height "
+                                                    "with Biesel's transfer function and the wavelength with the "
+                                                    "dispersion relation");
+    std::string waveScene;
+    double waveFrom = -1.0;
+    double waveTo = -1.0;
+    std::string keep;
+    wave->add_option("scene", waveScene, "scene JSON with piston.kind sinusoidal and two or more gauges")->required();
+    wave->add_option("--from", waveFrom, "start of the fit window (s); default: after the ramp and the wave's arrival");
+    wave->add_option("--to", waveTo, "end of the fit window (s); default: before reflections return");
+    wave->add_option("--keep", keep, "keep the cache and probes CSV in this folder");
+
     CLI11_PARSE(app, argc, argv);
     if (threads > 0) omp_set_num_threads(threads);
     try {
@@ -200,6 +267,8 @@ int main(int argc, char** argv) {
         const auto start = std::chrono::steady_clock::now();
         if (*dam) {
             out = damBreak(loadScene(damScene, sets), tEnd, csv);
+        } else if (*wave) {
+            out = regularWave(loadScene(waveScene, sets), waveFrom, waveTo, keep);
         } else {
             const Scene scene = loadScene(stillScene, sets);
             if (steps < 0) steps = std::lround(scene.solver.endTime / scene.solver.dt);

@@ -1,0 +1,131 @@
+#include "swell/bake/regular_wave.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <numbers>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+#include <fmt/format.h>
+
+#include "swell/bake/error.h"
+#include "swell/bake/validation.h"
+
+namespace swell::bake {
+namespace {
+
+const PistonParams& sinusoidalPiston(const Scene& scene) {
+    if (!scene.piston || scene.piston->kind != PistonKind::Sinusoidal) {
+        throw SceneError("piston.kind", "the regular-wave check needs a sinusoidal piston");
+    }
+    if (!scene.geometry.tank) throw SceneError("geometry.tank", "the regular-wave check needs a tank");
+    if (scene.output.gauges.size() < 2) {
+        throw SceneError("output.gauges", "the regular-wave check needs at least two gauges");
+    }
+    return *scene.piston;
+}
+
+LinearPistonWave theoryOf(const Scene& scene, double& depth) {
+    const PistonParams& p = sinusoidalPiston(scene);
+    depth = stillWaterLevel(scene) - scene.geometry.tank->y0;
+    return linearPistonWave(p.stroke, p.period, depth, scene.physics.gravity);
+}
+
+} // namespace
+
+WaveWindow regularWaveWindow(const Scene& scene) {
+    double h = 0.0;
+    const LinearPistonWave w = theoryOf(scene, h);
+    const PistonParams& p = *scene.piston;
+    // Group velocity of linear theory: c_g = c / 2 (1 + 2kh / sinh 2kh), c = omega / k.
+    const double omega = 2.0 * std::numbers::pi / p.period;
+    const double c = omega / w.wavenumber;
+    const double cg = 0.5 * c * (1.0 + 2.0 * w.kh / std::sinh(2.0 * w.kh));
+    const auto [gMin, gMax] = std::minmax_element(scene.output.gauges.begin(), scene.output.gauges.end());
+    const Box& tank = *scene.geometry.tank;
+    WaveWindow win;
+    win.start = p.rampTime + (*gMax - tank.x0) / cg + p.period;
+    const double reflected = (2.0 * (tank.x1 - tank.x0) - (*gMin - tank.x0)) / cg;
+    win.end = std::min(scene.solver.endTime, reflected);
+    return win;
+}
+
+RegularWaveCheck checkRegularWave(const Scene& scene, std::span<const ProbeSample> samples, const WaveWindow& window) {
+    RegularWaveCheck out;
+    out.theory = theoryOf(scene, out.depth);
+    out.window = window;
+    out.gauges = scene.output.gauges;
+    const std::size_t nGauges = out.gauges.size();
+    std::vector<double> t;
+    std::vector<std::vector<double>> v(nGauges);
+    for (const ProbeSample& s : samples) {
+        if (s.time < window.start || s.time > window.end) continue;
+        if (s.elevations.size() != nGauges) {
+            throw std::invalid_argument(fmt::format("probe sample at t = {} s has {} gauges, the scene {}", s.time,
+                                                    s.elevations.size(), nGauges));
+        }
+        for (std::size_t g = 0; g < nGauges; ++g) {
+            if (!std::isfinite(s.elevations[g])) {
+                throw std::invalid_argument(
+                    fmt::format("gauge at x = {} m is dry at t = {} s, inside the fit window", out.gauges[g], s.time));
+            }
+            v[g].push_back(s.elevations[g]);
+        }
+        t.push_back(s.time);
+    }
+    out.samples = t.size();
+    const double omega = 2.0 * std::numbers::pi / scene.piston->period;
+    std::vector<HarmonicFit> fits;
+    for (std::size_t g = 0; g < nGauges; ++g) {
+        fits.push_back(fitHarmonic(t, v[g], omega)); // throws for fewer than 3 samples
+        out.heights.push_back(2.0 * fits.back().amplitude);
+    }
+    // Phase lag between the first two gauges: the wave reaches the farther one later.
+    const double twoPi = 2.0 * std::numbers::pi;
+    const double dx = out.gauges[1] - out.gauges[0];
+    const double lag = std::fmod(fits[1].phase - fits[0].phase + 2.0 * twoPi, twoPi);
+    out.wavelength = lag > 0.0 ? twoPi * std::abs(dx) / lag : std::numeric_limits<double>::infinity();
+    return out;
+}
+
+std::vector<ProbeSample> readProbeCsv(const std::filesystem::path& path) {
+    std::ifstream in(path);
+    if (!in) throw std::runtime_error(fmt::format("{}: cannot open the probes file", path.string()));
+    std::string line;
+    if (!std::getline(in, line) || line.rfind("time,front_x", 0) != 0) {
+        throw std::runtime_error(fmt::format("{}:1: not a probes file (header must start with time,front_x)",
+                                             path.string()));
+    }
+    const auto columns = static_cast<std::size_t>(std::count(line.begin(), line.end(), ',')) + 1;
+    std::vector<ProbeSample> out;
+    for (long lineNo = 2; std::getline(in, line); ++lineNo) {
+        if (line.empty()) continue;
+        std::vector<double> values;
+        std::stringstream ss(line);
+        std::string cell;
+        while (std::getline(ss, cell, ',')) {
+            try {
+                std::size_t used = 0;
+                values.push_back(cell == "nan" ? std::numeric_limits<double>::quiet_NaN() : std::stod(cell, &used));
+                if (cell != "nan" && used != cell.size()) throw std::invalid_argument(cell);
+            } catch (const std::exception&) {
+                throw std::runtime_error(fmt::format("{}:{}: '{}' is not a number", path.string(), lineNo, cell));
+            }
+        }
+        if (values.size() != columns) {
+            throw std::runtime_error(fmt::format("{}:{}: {} values, the header has {} columns", path.string(), lineNo,
+                                                 values.size(), columns));
+        }
+        ProbeSample s;
+        s.time = values[0];
+        s.frontX = values[1];
+        s.elevations.assign(values.begin() + 2, values.end());
+        out.push_back(std::move(s));
+    }
+    return out;
+}
+
+} // namespace swell::bake
