@@ -116,13 +116,14 @@ MpsSolver::MpsSolver(const PhysicsParams& physics, const SolverParams& solver, P
     m_vStar.assign(n, 0.0);
     m_uC.assign(n, 0.0);
     m_vC.assign(n, 0.0);
-    m_pMin.assign(n, 0.0);
     m_divU.assign(n, 0.0);
     m_surface.assign(n, 0);
     m_row.assign(n, -1);
     m_rowParticle.assign(n, 0);
     const std::size_t cap = n * (static_cast<std::size_t>(m_par.maxNeighbors) + 1);
     m_rowPtr.assign(n + 1, 0);
+    m_rowEnd.assign(n, 0);
+    m_rowNnz.assign(n, 0);
     m_col.assign(cap, 0);
     m_val.assign(cap, 0.0);
     m_ic.assign(cap, 0.0);
@@ -188,7 +189,9 @@ std::vector<std::uint32_t> MpsSolver::ppeRowParticles() const {
 
 Eigen::Map<const Eigen::SparseMatrix<double, Eigen::RowMajor, int>> MpsSolver::ppeMatrix() const {
     const auto rows = static_cast<Eigen::Index>(m_rows);
-    return {rows, rows, m_rowPtr[m_rows], m_rowPtr.data(), m_col.data(), m_val.data()};
+    int nnz = 0;
+    for (std::size_t r = 0; r < m_rows; ++r) nnz += m_rowNnz[r];
+    return {rows, rows, nnz, m_rowPtr.data(), m_col.data(), m_val.data(), m_rowNnz.data()};
 }
 
 Eigen::Map<const Eigen::VectorXd> MpsSolver::ppeRhs() const {
@@ -407,23 +410,16 @@ void MpsSolver::assemblePpe(double dt) {
     }
     m_rows = static_cast<std::size_t>(rows);
     const double reL2 = m_reL * m_reL;
-    // First pass: entries per row (off-diagonals to other unknowns, plus the diagonal).
-#pragma omp parallel for schedule(static) if(static_cast<std::size_t>(rows) >= kParallelMin)
+    // Each row gets room for its whole neighbour list plus the diagonal, so one pass fills it;
+    // m_rowEnd marks the used part (sparse rows with small gaps, Eigen's uncompressed layout).
+    m_rowPtr[0] = 0;
     for (int r = 0; r < rows; ++r) {
         const std::uint32_t i = m_rowParticle[static_cast<std::size_t>(r)];
-        int count = 1;
-        for (std::uint32_t j : m_grid.neighbors(i)) {
-            if (m_row[j] < 0) continue;
-            const double dx = m_xStar[j] - m_xStar[i];
-            const double dy = m_yStar[j] - m_yStar[i];
-            if (dx * dx + dy * dy < reL2) ++count;
-        }
-        m_rowPtr[static_cast<std::size_t>(r) + 1] = count;
+        m_rowPtr[static_cast<std::size_t>(r) + 1] =
+            m_rowPtr[static_cast<std::size_t>(r)] + static_cast<int>(m_grid.neighbors(i).size()) + 1;
     }
-    m_rowPtr[0] = 0;
-    for (int r = 0; r < rows; ++r) m_rowPtr[static_cast<std::size_t>(r) + 1] += m_rowPtr[static_cast<std::size_t>(r)];
 
-    // Second pass: K&O 1996 pressure Poisson equation with the Laplacian model:
+    // K&O 1996 pressure Poisson equation with the Laplacian model:
     //   sum_j a w_ij (p_i - p_j) / rho + C p_i / dt^2 = RHS,  a = 2d / (lambda n0),
     // where surface neighbours (p_j = 0) only add to the diagonal, dummies are left out, and
     // the artificial compressibility C (textbook code) makes the system strictly diagonally
@@ -436,7 +432,8 @@ void MpsSolver::assemblePpe(double dt) {
 #pragma omp parallel for schedule(static) if(static_cast<std::size_t>(rows) >= kParallelMin)
     for (int r = 0; r < rows; ++r) {
         const std::uint32_t i = m_rowParticle[static_cast<std::size_t>(r)];
-        int pos = m_rowPtr[static_cast<std::size_t>(r)];
+        const int begin = m_rowPtr[static_cast<std::size_t>(r)];
+        int pos = begin;
         int diag = -1;
         double diagValue = compress;
         for (std::uint32_t j : m_grid.neighbors(i)) {
@@ -457,6 +454,8 @@ void MpsSolver::assemblePpe(double dt) {
             ++pos;
         }
         if (diag < 0) diag = pos++;
+        m_rowEnd[static_cast<std::size_t>(r)] = pos;
+        m_rowNnz[static_cast<std::size_t>(r)] = pos - begin;
         m_col[static_cast<std::size_t>(diag)] = r;
         m_val[static_cast<std::size_t>(diag)] = diagValue;
         m_diagPos[static_cast<std::size_t>(r)] = diag;
@@ -475,7 +474,7 @@ double MpsSolver::matVec(const double* v, double* out) const {
     double vAv = 0.0;
 #pragma omp parallel for schedule(static) reduction(+ : vAv) if(static_cast<std::size_t>(rows) >= kParallelMin)
     for (int r = 0; r < rows; ++r) {
-        const int end = m_rowPtr[static_cast<std::size_t>(r) + 1];
+        const int end = m_rowEnd[static_cast<std::size_t>(r)];
         double s = 0.0;
         for (int k = m_rowPtr[static_cast<std::size_t>(r)]; k < end; ++k) {
             s += m_val[static_cast<std::size_t>(k)] * v[m_col[static_cast<std::size_t>(k)]];
@@ -556,7 +555,7 @@ void MpsSolver::setupTwoLevel() {
     int bw = 0;
     for (int r = 0; r < rows; ++r) {
         const int I = m_aggOf[static_cast<std::size_t>(r)];
-        for (int k = m_rowPtr[static_cast<std::size_t>(r)]; k < m_rowPtr[static_cast<std::size_t>(r) + 1]; ++k) {
+        for (int k = m_rowPtr[static_cast<std::size_t>(r)]; k < m_rowEnd[static_cast<std::size_t>(r)]; ++k) {
             bw = std::max(bw, I - m_aggOf[static_cast<std::size_t>(m_col[static_cast<std::size_t>(k)])]);
         }
     }
@@ -571,7 +570,7 @@ void MpsSolver::setupTwoLevel() {
     for (int r = 0; r < rows; ++r) {
         const int I = m_aggOf[static_cast<std::size_t>(r)];
         double* rowI = band + static_cast<std::size_t>(I) * width;
-        for (int k = m_rowPtr[static_cast<std::size_t>(r)]; k < m_rowPtr[static_cast<std::size_t>(r) + 1]; ++k) {
+        for (int k = m_rowPtr[static_cast<std::size_t>(r)]; k < m_rowEnd[static_cast<std::size_t>(r)]; ++k) {
             const int J = m_aggOf[static_cast<std::size_t>(m_col[static_cast<std::size_t>(k)])];
             if (J <= I) rowI[I - J] += m_val[static_cast<std::size_t>(k)];
         }
@@ -642,7 +641,7 @@ void MpsSolver::applyPreconditioner(const double* r, double* z) const {
         for (int i = rows - 1; i >= 0; --i) {
             double s = 0.0;
             const int dpos = m_diagPos[static_cast<std::size_t>(i)];
-            for (int k = dpos + 1; k < m_rowPtr[static_cast<std::size_t>(i) + 1]; ++k) {
+            for (int k = dpos + 1; k < m_rowEnd[static_cast<std::size_t>(i)]; ++k) {
                 s += m_val[static_cast<std::size_t>(k)] * z[m_col[static_cast<std::size_t>(k)]];
             }
             z[i] -= s * m_invDiag[static_cast<std::size_t>(i)];
@@ -743,20 +742,6 @@ void MpsSolver::correctionPhase(double dt) {
         m_p.p[i] = r >= 0 ? std::max(0.0, m_x[static_cast<std::size_t>(r)]) : 0.0;
     }
     const double reN2 = m_reN * m_reN;
-    // Minimum pressure among neighbours within re (the K&O 1996 gradient model uses p_i^min for stability).
-#pragma omp parallel for schedule(static) if(n >= kParallelMin)
-    for (std::size_t i = 0; i < n; ++i) {
-        double pm = m_p.p[i];
-        if (m_p.kind[i] == ParticleKind::Water) {
-            for (std::uint32_t j : m_grid.neighbors(i)) {
-                if (m_p.kind[j] == ParticleKind::Dummy) continue;
-                const double dx = m_xStar[j] - m_xStar[i];
-                const double dy = m_yStar[j] - m_yStar[i];
-                if (dx * dx + dy * dy < reN2) pm = std::min(pm, m_p.p[j]);
-            }
-        }
-        m_pMin[i] = pm;
-    }
     // K&O 1996 gradient model: grad p_i = d/n0 sum (p_j - p_i^min) (r_j - r_i) / r^2 w; then the
     // correction u' = -dt/rho grad p, u = u* + u', r = r* + dt u' (K&O 1996 pressure correction).
     const double coefG = kDim / m_latN.n0;
@@ -771,6 +756,17 @@ void MpsSolver::correctionPhase(double dt) {
             m_p.vx[i] = m_uStar[i];
             continue;
         }
+        // Minimum pressure among neighbours within re (the K&O 1996 gradient model uses
+        // p_i^min for stability); the symmetric pair term does not need it.
+        double pm = m_p.p[i];
+        if (!sym) {
+            for (std::uint32_t j : m_grid.neighbors(i)) {
+                if (m_p.kind[j] == ParticleKind::Dummy) continue;
+                const double dx = m_xStar[j] - m_xStar[i];
+                const double dy = m_yStar[j] - m_yStar[i];
+                if (dx * dx + dy * dy < reN2) pm = std::min(pm, m_p.p[j]);
+            }
+        }
         double gx = 0.0, gy = 0.0;
         for (std::uint32_t j : m_grid.neighbors(i)) {
             if (m_p.kind[j] == ParticleKind::Dummy) continue;
@@ -778,7 +774,7 @@ void MpsSolver::correctionPhase(double dt) {
             const double dy = m_yStar[j] - m_yStar[i];
             const double r2 = dx * dx + dy * dy;
             if (r2 >= reN2 || r2 <= 0.0) continue;
-            const double pij = sym ? m_p.p[j] + m_p.p[i] : m_p.p[j] - m_pMin[i];
+            const double pij = sym ? m_p.p[j] + m_p.p[i] : m_p.p[j] - pm;
             const double f = pij / r2 * mpsWeight(std::sqrt(r2), m_reN);
             gx += f * dx;
             gy += f * dy;

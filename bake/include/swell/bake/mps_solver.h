@@ -111,7 +111,6 @@ private:
     // work arrays (structure of arrays, sized once)
     std::vector<double> m_xs, m_ys;   // positions at the last neighbour build
     std::vector<double> m_xStar, m_yStar, m_uStar, m_vStar; // predicted state
-    std::vector<double> m_pMin;       // minimum neighbour pressure (K&O 1996 gradient model)
     std::vector<double> m_divU;       // velocity divergence (mixed source term)
     std::vector<std::uint8_t> m_surface;
     std::vector<std::int32_t> m_row;  // PPE row of each particle, -1 if none
@@ -125,9 +124,10 @@ private:
     Box m_inflowZone;
     double m_inflowVelocity = 0.0;
 
-    // PPE in compressed sparse rows (rows in neighbour-grid order), viewed by Eigen as a
-    // SparseMatrix map. Our own PCG runs on it so a step allocates nothing.
-    std::vector<int> m_rowPtr, m_col;
+    // PPE in sparse rows with room for each particle's neighbour list (rows in neighbour-grid
+    // order; Eigen's uncompressed layout), viewed by Eigen as a SparseMatrix map. Our own PCG
+    // runs on it so a step allocates nothing.
+    std::vector<int> m_rowPtr, m_rowEnd, m_rowNnz, m_col; // row starts, ends (used part), lengths
     std::vector<double> m_val;
     std::vector<int> m_diagPos;        // position of the diagonal entry in each row
     std::vector<double> m_b, m_x, m_r, m_z, m_d, m_q, m_invDiag;
