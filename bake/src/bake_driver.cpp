@@ -234,7 +234,8 @@ BakeSummary runBake(const Scene& scene, const BakeOptions& opt) {
         try {
             solver.importState(resumed->solver);
         } catch (const std::invalid_argument& e) {
-            throw CheckpointError(fmt::format("{}: checkpoint does not fit the scene: {}", ckptPath.string(), e.what()));
+            throw CheckpointError(
+                fmt::format("{}: checkpoint does not fit the scene: {}", ckptPath.string(), e.what()));
         }
         tot = resumed->totals;
         sum.resumedFromStep = first;

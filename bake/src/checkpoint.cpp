@@ -275,14 +275,18 @@ Checkpoint readCheckpoint(const fs::path& path) {
                                           where(path)));
     }
     std::ifstream in(path, std::ios::binary);
-    if (!in) throw CheckpointError(fmt::format("{}: cannot open the checkpoint: {}", where(path), std::strerror(errno)));
+    if (!in) {
+        throw CheckpointError(fmt::format("{}: cannot open the checkpoint: {}", where(path), std::strerror(errno)));
+    }
     const std::vector<std::uint8_t> file{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
     if (in.bad()) throw CheckpointError(fmt::format("{}: cannot read the checkpoint", where(path)));
     const auto damaged = [&](const std::string& what) {
         throw CheckpointError(fmt::format("{}: damaged checkpoint: {}; bake without --resume to start over",
                                           where(path), what));
     };
-    if (file.size() < kHeaderSize) damaged(fmt::format("{} bytes, shorter than the {}-byte header", file.size(), kHeaderSize));
+    if (file.size() < kHeaderSize) {
+        damaged(fmt::format("{} bytes, shorter than the {}-byte header", file.size(), kHeaderSize));
+    }
     const std::uint8_t* h = file.data();
     if (std::memcmp(h, kMagic, sizeof kMagic) != 0) {
         throw CheckpointError(fmt::format("{}: not a swell-bake checkpoint (wrong magic bytes)", where(path)));
@@ -315,7 +319,8 @@ void checkFingerprint(const fs::path& path, const std::string& stored, const std
         const json patch = json::diff(a, b);
         if (!patch.empty()) {
             const json::json_pointer ptr(patch[0].at("path").get<std::string>());
-            what = fmt::format("{} is {} there, {} now", ptr.to_string(), a.contains(ptr) ? shorten(a.at(ptr)) : "absent",
+            what = fmt::format("{} is {} there, {} now", ptr.to_string(),
+                               a.contains(ptr) ? shorten(a.at(ptr)) : "absent",
                                b.contains(ptr) ? shorten(b.at(ptr)) : "absent");
         }
     }
