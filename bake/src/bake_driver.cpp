@@ -101,17 +101,27 @@ std::size_t recycle(MpsSolver& solver, const Scene& scene) {
 }
 
 /// A bake killed with SIGKILL leaves its temporary cache (CACHE.tmp-<pid>) and maybe a
-/// half-written checkpoint (CACHE.ckpt.tmp-<pid>); remove them once that process is gone.
-void removeStaleTemporaries(const std::filesystem::path& output, std::int64_t pid) {
-    if (pid <= 0 || pid == ::getpid()) return;
-    if (::kill(static_cast<pid_t>(pid), 0) == 0 || errno != ESRCH) return; // still running (or not ours)
-    const std::string suffix = ".tmp-" + std::to_string(pid);
+/// half-written checkpoint (CACHE.ckpt.tmp-<pid>) behind; remove those of processes that are
+/// gone (a resumed run that was itself killed may have left some too).
+void removeStaleTemporaries(const std::filesystem::path& output) {
+    namespace fs = std::filesystem;
+    const fs::path dir = output.has_parent_path() ? output.parent_path() : fs::path(".");
+    const std::string name = output.filename().string();
     std::error_code ec;
-    std::filesystem::path cacheTmp = output, ckptTmp = checkpointPath(output);
-    cacheTmp += suffix;
-    ckptTmp += suffix;
-    std::filesystem::remove(cacheTmp, ec);
-    std::filesystem::remove(ckptTmp, ec);
+    std::vector<fs::path> stale;
+    for (const auto& e : fs::directory_iterator(dir, ec)) {
+        const std::string f = e.path().filename().string();
+        std::string rest;
+        for (const std::string& prefix : {name + ".tmp-", name + ".ckpt.tmp-"}) {
+            if (f.size() > prefix.size() && f.compare(0, prefix.size(), prefix) == 0) rest = f.substr(prefix.size());
+        }
+        if (rest.empty() || rest.size() > 9 || rest.find_first_not_of("0123456789") != std::string::npos) continue;
+        const long pid = std::stol(rest);
+        if (pid <= 0 || pid == ::getpid()) continue;
+        if (::kill(static_cast<pid_t>(pid), 0) == 0 || errno != ESRCH) continue; // still running (or not ours)
+        stale.push_back(e.path());
+    }
+    for (const fs::path& p : stale) fs::remove(p, ec);
 }
 
 } // namespace
@@ -239,7 +249,7 @@ BakeSummary runBake(const Scene& scene, const BakeOptions& opt) {
         }
         tot = resumed->totals;
         sum.resumedFromStep = first;
-        removeStaleTemporaries(opt.output, resumed->writerPid);
+        removeStaleTemporaries(opt.output);
     }
     const long every = opt.checkpointEvery > 0 ? opt.checkpointEvery : (resumed ? resumed->checkpointEvery : 0);
 

@@ -259,6 +259,10 @@ TEST_F(BakeDriver, ResumedBakeIsByteIdenticalToAnUninterruptedOne) {
     opt.probes = m_dir / "s.csv";
     crashingBake(scene, opt, 60, 200); // last checkpoint: step 180 (between two stored frames)
     EXPECT_EQ(readCheckpoint(checkpointPath(opt.output)).solver.step, 180);
+    // What a SIGKILLed run leaves (no process has pid 999999999): removed by the resume.
+    std::ofstream(m_dir / "s.swell.tmp-999999999") << "partial cache";
+    std::ofstream(m_dir / "s.swell.ckpt.tmp-999999999") << "partial checkpoint";
+    std::ofstream(m_dir / "s.swell.tmp-notapid") << "not ours";
     opt.resume = true;
     long first = -1, last = 0;
     opt.onProgress = [&](const BakeProgress& p) {
@@ -278,7 +282,10 @@ TEST_F(BakeDriver, ResumedBakeIsByteIdenticalToAnUninterruptedOne) {
     EXPECT_EQ(resumed.maxCourant, whole.maxCourant);
     EXPECT_GT(resumed.checkpoints, 0u); // the resumed run keeps the checkpoint interval
     EXPECT_FALSE(fs::exists(checkpointPath(opt.output))) << "removed after a successful bake";
-    EXPECT_EQ(filesInDir(), 4u); // the two caches and the two probe files, no temporary
+    EXPECT_FALSE(fs::exists(m_dir / "s.swell.tmp-999999999"));
+    EXPECT_FALSE(fs::exists(m_dir / "s.swell.ckpt.tmp-999999999"));
+    EXPECT_TRUE(fs::exists(m_dir / "s.swell.tmp-notapid"));
+    EXPECT_EQ(filesInDir(), 5u); // the two caches, the two probe files and "notapid"
 }
 
 TEST_F(BakeDriver, ResumedRippleBakeWithRecyclingIsByteIdentical) {

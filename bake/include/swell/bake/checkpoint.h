@@ -47,7 +47,7 @@ struct Checkpoint {
     std::vector<cache::Frame> frames;   ///< frames stored so far (frame 0 = initial state)
     std::vector<std::string> probeRows; ///< the probes CSV row of each stored frame
     BakeTotals totals;
-    std::int64_t writerPid = 0;    ///< process that wrote it (its CACHE.tmp-<pid> is stale once it is gone)
+    std::int64_t writerPid = 0;    ///< process that wrote it (for diagnostics)
 };
 
 /// Where the checkpoint of a bake to `cache` lives: `cache` + ".ckpt".
