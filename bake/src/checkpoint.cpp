@@ -69,7 +69,7 @@ public:
         const std::uint64_t n = pod<std::uint64_t>();
         if (n > (m_b.size() - m_pos) / sizeof(T)) damaged("an array runs past the end of the payload");
         std::vector<T> v(static_cast<std::size_t>(n));
-        std::memcpy(v.data(), m_b.data() + m_pos, v.size() * sizeof(T));
+        if (!v.empty()) std::memcpy(v.data(), m_b.data() + m_pos, v.size() * sizeof(T));
         m_pos += v.size() * sizeof(T);
         return v;
     }
