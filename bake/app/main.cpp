@@ -16,6 +16,7 @@
 #include <omp.h>
 
 #include "swell/bake/bake_driver.h"
+#include "swell/bake/checkpoint.h"
 #include "swell/bake/error.h"
 #include "swell/bake/scene.h"
 #include "swell/cache/error.h"
@@ -51,7 +52,7 @@ public:
             if (!last && p.step % tenth != 0) return;
         }
         m_lastPrint = p.wallSeconds;
-        const double rate = p.wallSeconds > 0.0 ? p.step / p.wallSeconds : 0.0;
+        const double rate = p.wallSeconds > 0.0 ? (p.step - p.firstStep) / p.wallSeconds : 0.0;
         const double eta = rate > 0.0 ? (p.totalSteps - p.step) / rate : -1.0;
         const std::string line = fmt::format("step {}/{} ({:.0f}%)  t = {:.3f} s  {:.1f} steps/s  frames {}  "
                                              "elapsed {}  ETA {}", p.step, p.totalSteps,
@@ -81,13 +82,21 @@ int main(int argc, char** argv) {
     std::string scenePath, output, probes;
     std::vector<std::string> sets;
     int threads = 0;
-    bool asJson = false, quiet = false;
+    long checkpointEvery = 0;
+    bool asJson = false, quiet = false, resume = false;
     app.add_option("SCENE", scenePath, "scene file (JSON, docs/scenes.md)")->required();
     app.add_option("-o,--output", output, "cache file to write (.swell); appears only when the bake completes")
         ->required();
     app.add_option("--set", sets, "override a scene key before validation: section.key=value (repeatable)");
     app.add_option("--threads", threads, "OpenMP threads (default: OpenMP's choice)")->check(CLI::Range(1, 1024));
     app.add_option("--probes", probes, "write a CSV time,front_x,gauge_<x>... per stored frame");
+    app.add_option("--checkpoint-every", checkpointEvery,
+                   "write a checkpoint CACHE.ckpt every N steps (and on SIGINT/SIGTERM); removed when the bake "
+                   "completes")
+        ->check(CLI::Range(1L, 1000000000L));
+    app.add_flag("--resume", resume,
+                 "continue from CACHE.ckpt; the cache is byte-identical to an uninterrupted bake (same scene, "
+                 "--set, --threads and build)");
     app.add_flag("--json", asJson, "print the summary as one JSON object on stdout");
     app.add_flag("-q,--quiet", quiet, "no progress lines");
     try {
@@ -114,6 +123,9 @@ int main(int argc, char** argv) {
         opt.overrides = sets;
         opt.threads = threads > 0 ? threads : omp_get_max_threads();
         opt.programVersion = SWELL_VERSION;
+        opt.checkpointEvery = checkpointEvery;
+        opt.resume = resume;
+        if (checkpointEvery > 0 || resume) opt.buildId = fileDigest("/proc/self/exe");
         opt.onProgress = [&](const BakeProgress& p) { progress(p); };
         opt.cancelled = [] { return g_stop != 0; };
         const BakeSummary s = runBake(scene, opt);
@@ -130,6 +142,10 @@ int main(int argc, char** argv) {
                                                        s.recycled).c_str()
                                          : "");
         }
+        if (!quiet && s.resumedFromStep > 0) {
+            std::fprintf(stderr, "swell-bake: resumed from step %ld (checkpoint %s, now removed)\n",
+                         s.resumedFromStep, checkpointPath(output).c_str());
+        }
         if (asJson) std::printf("%s\n", toJson(s).dump().c_str());
         return 0;
     } catch (const BakeCancelled& e) {
@@ -143,6 +159,10 @@ int main(int argc, char** argv) {
     } catch (const SceneError& e) {
         std::fprintf(stderr, "swell-bake: %s: %s\n", scenePath.c_str(), e.what());
         return 2;
+    } catch (const CheckpointError& e) {
+        progress.endLine();
+        std::fprintf(stderr, "swell-bake: %s\n", e.what());
+        return 5;
     } catch (const swell::cache::CacheError& e) {
         progress.endLine();
         std::fprintf(stderr, "swell-bake: %s\n", e.what());

@@ -1,13 +1,19 @@
 #include "swell/bake/bake_driver.h"
 
+#include <cerrno>
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <fstream>
 #include <limits>
+#include <optional>
+
+#include <unistd.h>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "swell/bake/checkpoint.h"
 #include "swell/bake/classification.h"
 #include "swell/bake/error.h"
 #include "swell/bake/probes.h"
@@ -41,7 +47,7 @@ public:
         }
     }
     bool enabled() const { return !m_path.empty(); }
-    void add(const ProbeSample& s) { m_out << probeCsvRow(s) << '\n'; }
+    void add(const std::string& row) { m_out << row << '\n'; }
     void finish() {
         if (!enabled()) return;
         m_out.close();
@@ -92,6 +98,30 @@ std::size_t recycle(MpsSolver& solver, const Scene& scene) {
         nearY.push_back(y);
     }
     return moved;
+}
+
+/// A bake killed with SIGKILL leaves its temporary cache (CACHE.tmp-<pid>) and maybe a
+/// half-written checkpoint (CACHE.ckpt.tmp-<pid>) behind; remove those of processes that are
+/// gone (a resumed run that was itself killed may have left some too).
+void removeStaleTemporaries(const std::filesystem::path& output) {
+    namespace fs = std::filesystem;
+    const fs::path dir = output.has_parent_path() ? output.parent_path() : fs::path(".");
+    const std::string name = output.filename().string();
+    std::error_code ec;
+    std::vector<fs::path> stale;
+    for (const auto& e : fs::directory_iterator(dir, ec)) {
+        const std::string f = e.path().filename().string();
+        std::string rest;
+        for (const std::string& prefix : {name + ".tmp-", name + ".ckpt.tmp-"}) {
+            if (f.size() > prefix.size() && f.compare(0, prefix.size(), prefix) == 0) rest = f.substr(prefix.size());
+        }
+        if (rest.empty() || rest.size() > 9 || rest.find_first_not_of("0123456789") != std::string::npos) continue;
+        const long pid = std::stol(rest);
+        if (pid <= 0 || pid == ::getpid()) continue;
+        if (::kill(static_cast<pid_t>(pid), 0) == 0 || errno != ESRCH) continue; // still running (or not ours)
+        stale.push_back(e.path());
+    }
+    for (const fs::path& p : stale) fs::remove(p, ec);
 }
 
 } // namespace
@@ -149,6 +179,8 @@ json toJson(const BakeSummary& s) {
                 {"reduction", s.reduction}, {"wall_seconds", s.wallSeconds}, {"ms_per_step", s.msPerStep},
                 {"ppe_iterations_mean", s.ppeIterationsMean}, {"max_courant", s.maxCourant},
                 {"recycled", s.recycled}, {"cache_bytes", s.cacheBytes}, {"raw_bytes", s.rawBytes},
+                {"resumed_from_step", s.resumedFromStep}, {"checkpoints", s.checkpoints},
+                {"checkpoint_bytes", s.checkpointBytes}, {"checkpoint_seconds", s.checkpointSeconds},
                 {"compression_ratio", s.cacheBytes ? static_cast<double>(s.rawBytes) / s.cacheBytes : 0.0},
                 {"warnings", s.warnings}};
 }
@@ -192,42 +224,125 @@ BakeSummary runBake(const Scene& scene, const BakeOptions& opt) {
                     {"particles_water", sum.particlesWater},
                     {"particles_wall", sum.particlesWall}};
     header.metadataJson = meta.dump();
+
+    // Checkpoints (issue 4): what a resume must match is everything the cache records, plus
+    // the build of the program (a different build may step differently).
+    const std::filesystem::path ckptPath = checkpointPath(opt.output);
+    const std::string fingerprint = json{{"cache_metadata", meta}, {"build", opt.buildId}}.dump();
+    std::optional<Checkpoint> resumed;
+    long first = 0; // steps already done
+    BakeTotals tot;
+    if (opt.resume) {
+        resumed = readCheckpoint(ckptPath);
+        checkFingerprint(ckptPath, resumed->fingerprint, fingerprint);
+        first = resumed->solver.step;
+        if (first < 1 || first > steps || resumed->frames.size() != static_cast<std::size_t>(first / interval + 1)) {
+            throw CheckpointError(fmt::format("{}: damaged checkpoint: step {} with {} stored frames does not fit "
+                                              "this bake ({} steps, a frame every {})", ckptPath.string(), first,
+                                              resumed->frames.size(), steps, interval));
+        }
+        try {
+            solver.importState(resumed->solver);
+        } catch (const std::invalid_argument& e) {
+            throw CheckpointError(
+                fmt::format("{}: checkpoint does not fit the scene: {}", ckptPath.string(), e.what()));
+        }
+        tot = resumed->totals;
+        sum.resumedFromStep = first;
+        removeStaleTemporaries(opt.output);
+    }
+    const long every = opt.checkpointEvery > 0 ? opt.checkpointEvery : (resumed ? resumed->checkpointEvery : 0);
+
     cache::Writer writer(opt.output, header);
     ProbeFile probes(opt.probes, scene.output.gauges);
     const ProbeParams probeParams{n0, d1, scene.geometry.particleSpacing, stillWaterLevel(scene),
                                   scene.output.gauges};
+    // With checkpoints the stored frames and probe rows are kept: a checkpoint holds them all.
+    std::vector<cache::Frame> keptFrames;
+    std::vector<std::string> keptRows;
+    const bool keep = every > 0;
 
-    double surfaceTotal = 0.0, splashTotal = 0.0, solverSeconds = 0.0, ppeIterations = 0.0;
     // Stored frame: eq. (4) classification, only surface and splash particles kept (Sec. 3.2).
     const auto store = [&] {
-        const ClassifiedFrame c = classifyParticles(P, n0, d1, d2);
+        ClassifiedFrame c = classifyParticles(P, n0, d1, d2);
         writer.addFrame(c.frame);
-        surfaceTotal += static_cast<double>(c.surface());
-        splashTotal += static_cast<double>(c.splash());
-        sum.keptMax = std::max(sum.keptMax, c.surface() + c.splash());
-        sum.rawBytes += (c.frame.surface.size() + c.frame.splash.size()) * sizeof(float);
-        if (probes.enabled()) probes.add(sampleProbes(P, solver.time(), probeParams));
+        tot.surface += static_cast<double>(c.surface());
+        tot.splash += static_cast<double>(c.splash());
+        tot.keptMax = std::max<std::uint64_t>(tot.keptMax, c.surface() + c.splash());
+        tot.rawBytes += (c.frame.surface.size() + c.frame.splash.size()) * sizeof(float);
+        if (probes.enabled() || keep) {
+            std::string row = probeCsvRow(sampleProbes(P, solver.time(), probeParams));
+            if (probes.enabled()) probes.add(row);
+            if (keep) keptRows.push_back(std::move(row));
+        }
+        if (keep) keptFrames.push_back(std::move(c.frame));
     };
-    store(); // frame 0: the initial state
+    const auto saveCheckpoint = [&] {
+        const auto t0 = Clock::now();
+        Checkpoint ck;
+        ck.fingerprint = fingerprint;
+        ck.checkpointEvery = every;
+        ck.solver = solver.exportState();
+        ck.frames = std::move(keptFrames); // lent to the checkpoint, taken back below
+        ck.probeRows = std::move(keptRows);
+        ck.totals = tot;
+        ck.writerPid = ::getpid();
+        sum.checkpointBytes = writeCheckpoint(ckptPath, ck);
+        keptFrames = std::move(ck.frames);
+        keptRows = std::move(ck.probeRows);
+        ++sum.checkpoints;
+        sum.checkpointSeconds += secondsSince(t0);
+    };
+    if (resumed) {
+        // The frames stored before the checkpoint, re-encoded exactly as the first run did.
+        for (std::size_t f = 0; f < resumed->frames.size(); ++f) {
+            writer.addFrame(resumed->frames[f]);
+            if (probes.enabled()) probes.add(resumed->probeRows[f]);
+        }
+        if (keep) {
+            keptFrames = std::move(resumed->frames);
+            keptRows = std::move(resumed->probeRows);
+        }
+        resumed.reset();
+    } else {
+        store(); // frame 0: the initial state
+    }
     const auto solveStart = Clock::now();
-    for (long k = 1; k <= steps; ++k) {
+    for (long k = first + 1; k <= steps; ++k) {
         const StepStats& st = solver.step();
-        if (scene.recycling) sum.recycled += recycle(solver, scene);
-        solverSeconds += st.seconds();
-        ppeIterations += st.ppeIterations;
-        sum.maxCourant = std::max(sum.maxCourant, st.courant);
+        if (scene.recycling) tot.recycled += recycle(solver, scene);
+        tot.solverSeconds += st.seconds();
+        tot.ppeIterations += st.ppeIterations;
+        tot.maxCourant = std::max(tot.maxCourant, st.courant);
         if (k % interval == 0) store();
         if (opt.onProgress) {
-            opt.onProgress(BakeProgress{k, steps, solver.time(), secondsSince(solveStart), writer.frameCount()});
+            opt.onProgress(BakeProgress{k, first, steps, solver.time(), secondsSince(solveStart), writer.frameCount()});
         }
         if (opt.cancelled && opt.cancelled()) {
+            if (every > 0) {
+                saveCheckpoint();
+                throw BakeCancelled(fmt::format("bake cancelled at step {} (t = {:.4f} s); no cache written; "
+                                                "checkpoint {} saved: continue with --resume", k, solver.time(),
+                                                ckptPath.string()));
+            }
             throw BakeCancelled(fmt::format("bake cancelled at step {} (t = {:.4f} s); no cache written", k,
                                             solver.time()));
         }
+        if (every > 0 && k % every == 0 && k < steps) saveCheckpoint();
     }
     sum.frames = writer.frameCount();
     writer.finish();
     probes.finish();
+    if (every > 0 || opt.resume) {
+        std::error_code ec;
+        std::filesystem::remove(ckptPath, ec); // the cache is complete: nothing left to resume
+    }
+    sum.recycled = tot.recycled;
+    sum.maxCourant = tot.maxCourant;
+    sum.keptMax = static_cast<std::size_t>(tot.keptMax);
+    sum.rawBytes = tot.rawBytes;
+    const double surfaceTotal = tot.surface, splashTotal = tot.splash;
+    const double solverSeconds = tot.solverSeconds, ppeIterations = tot.ppeIterations;
     sum.cacheBytes = std::filesystem::file_size(opt.output);
     sum.surfaceMean = surfaceTotal / static_cast<double>(sum.frames);
     sum.splashMean = splashTotal / static_cast<double>(sum.frames);

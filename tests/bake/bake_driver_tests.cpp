@@ -1,5 +1,6 @@
 // The bake driver on the small surging scene: cache contents and metadata, determinism,
-// cancellation and divergence leave nothing at the output path, scene errors of a bake.
+// cancellation and divergence leave nothing at the output path, scene errors of a bake,
+// checkpoints and a resume that gives the uninterrupted bake's cache byte for byte.
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -11,6 +12,7 @@
 #include <unistd.h>
 
 #include "swell/bake/bake_driver.h"
+#include "swell/bake/checkpoint.h"
 #include "swell/bake/classification.h"
 #include "swell/bake/error.h"
 #include "swell/cache/reader.h"
@@ -48,6 +50,29 @@ protected:
     /// Files in the test directory (a cancelled bake must leave no temporary behind).
     std::size_t filesInDir() const {
         return static_cast<std::size_t>(std::distance(fs::directory_iterator(m_dir), fs::directory_iterator()));
+    }
+    /// Bakes `scene` with checkpoints every `every` steps and "crashes" (an exception out of
+    /// the progress callback, so no checkpoint is written at that step) after step `crashAt`.
+    void crashingBake(const Scene& scene, const BakeOptions& base, long every, long crashAt) const {
+        struct Crash {};
+        BakeOptions opt = base;
+        opt.checkpointEvery = every;
+        opt.onProgress = [&](const BakeProgress& p) {
+            if (p.step == crashAt) throw Crash{};
+        };
+        EXPECT_THROW(runBake(scene, opt), Crash);
+        EXPECT_FALSE(fs::exists(opt.output));
+        ASSERT_TRUE(fs::exists(checkpointPath(opt.output)));
+    }
+    /// The CheckpointError message of resuming `opt.output`'s bake ("" if it completes).
+    static std::string resumeError(const Scene& scene, BakeOptions opt) {
+        opt.resume = true;
+        try {
+            runBake(scene, opt);
+        } catch (const CheckpointError& e) {
+            return e.what();
+        }
+        return "";
     }
     fs::path m_dir;
 };
@@ -216,4 +241,141 @@ TEST_F(BakeDriver, RippleChannelRecyclesWaterAndConservesTheCount) {
     const swell::cache::Frame last = r.readFrame(50);
     EXPECT_GT(last.surfaceCount(), 30u);
     EXPECT_LE(last.surfaceCount() + last.splashCount(), s.particlesWater);
+}
+
+// Issue 4: a bake resumed from a checkpoint gives the uninterrupted bake's cache and probes
+// byte for byte, and the checkpoint is gone once the cache is complete.
+TEST_F(BakeDriver, ResumedBakeIsByteIdenticalToAnUninterruptedOne) {
+    const Scene scene = smallSurging(1.0);
+    BakeOptions ref;
+    ref.output = m_dir / "ref.swell";
+    ref.probes = m_dir / "ref.csv";
+    ref.sceneFile = "surging_small.json";
+    ref.programVersion = "test";
+    const BakeSummary whole = runBake(scene, ref);
+
+    BakeOptions opt = ref;
+    opt.output = m_dir / "s.swell";
+    opt.probes = m_dir / "s.csv";
+    crashingBake(scene, opt, 60, 200); // last checkpoint: step 180 (between two stored frames)
+    EXPECT_EQ(readCheckpoint(checkpointPath(opt.output)).solver.step, 180);
+    // What a SIGKILLed run leaves (no process has pid 999999999): removed by the resume.
+    std::ofstream(m_dir / "s.swell.tmp-999999999") << "partial cache";
+    std::ofstream(m_dir / "s.swell.ckpt.tmp-999999999") << "partial checkpoint";
+    std::ofstream(m_dir / "s.swell.tmp-notapid") << "not ours";
+    opt.resume = true;
+    long first = -1, last = 0;
+    opt.onProgress = [&](const BakeProgress& p) {
+        if (first < 0) first = p.step;
+        EXPECT_EQ(p.firstStep, 180);
+        last = p.step;
+    };
+    const BakeSummary resumed = runBake(scene, opt);
+    EXPECT_EQ(first, 181);
+    EXPECT_EQ(last, 500);
+    EXPECT_EQ(resumed.resumedFromStep, 180);
+    EXPECT_EQ(bytes(opt.output), bytes(ref.output));
+    EXPECT_EQ(bytes(opt.probes), bytes(ref.probes));
+    EXPECT_EQ(resumed.frames, whole.frames);
+    EXPECT_EQ(resumed.surfaceMean, whole.surfaceMean);
+    EXPECT_EQ(resumed.keptMax, whole.keptMax);
+    EXPECT_EQ(resumed.maxCourant, whole.maxCourant);
+    EXPECT_GT(resumed.checkpoints, 0u); // the resumed run keeps the checkpoint interval
+    EXPECT_FALSE(fs::exists(checkpointPath(opt.output))) << "removed after a successful bake";
+    EXPECT_FALSE(fs::exists(m_dir / "s.swell.tmp-999999999"));
+    EXPECT_FALSE(fs::exists(m_dir / "s.swell.ckpt.tmp-999999999"));
+    EXPECT_TRUE(fs::exists(m_dir / "s.swell.tmp-notapid"));
+    EXPECT_EQ(filesInDir(), 5u); // the two caches, the two probe files and "notapid"
+}
+
+TEST_F(BakeDriver, ResumedRippleBakeWithRecyclingIsByteIdentical) {
+    std::ifstream in(kScenes / "ripple_small.json");
+    json j = json::parse(in);
+    j["solver"]["end_time"] = 0.8;
+    const Scene scene = parseScene(j);
+    BakeOptions ref;
+    ref.output = m_dir / "ref.swell";
+    const BakeSummary whole = runBake(scene, ref);
+    BakeOptions opt = ref;
+    opt.output = m_dir / "r.swell";
+    crashingBake(scene, opt, 70, 300);
+    const BakeSummary resumed = runBake(scene, [&] {
+        BakeOptions o = opt;
+        o.resume = true;
+        return o;
+    }());
+    EXPECT_EQ(bytes(opt.output), bytes(ref.output));
+    EXPECT_EQ(resumed.recycled, whole.recycled); // the counter continues from the checkpoint
+}
+
+TEST_F(BakeDriver, CancelledBakeWithCheckpointsSavesOneAndResumes) {
+    const Scene scene = smallSurging(0.6);
+    BakeOptions ref;
+    ref.output = m_dir / "ref.swell";
+    runBake(scene, ref);
+    BakeOptions opt;
+    opt.output = m_dir / "s.swell";
+    opt.checkpointEvery = 1000; // none due before the stop: the cancel writes it
+    long steps = 0;
+    opt.onProgress = [&](const BakeProgress& p) { steps = p.step; };
+    opt.cancelled = [&] { return steps >= 77; };
+    try {
+        runBake(scene, opt);
+        FAIL() << "expected BakeCancelled";
+    } catch (const BakeCancelled& e) {
+        EXPECT_NE(std::string(e.what()).find("--resume"), std::string::npos) << e.what();
+    }
+    EXPECT_FALSE(fs::exists(opt.output));
+    EXPECT_EQ(readCheckpoint(checkpointPath(opt.output)).solver.step, 77);
+    BakeOptions again;
+    again.output = opt.output;
+    again.resume = true;
+    again.checkpointEvery = 25; // another interval changes nothing in the cache
+    runBake(scene, again);
+    EXPECT_EQ(bytes(opt.output), bytes(ref.output));
+    EXPECT_FALSE(fs::exists(checkpointPath(opt.output)));
+}
+
+TEST_F(BakeDriver, ResumeIsRefusedWithoutACheckpointOrForADifferentBake) {
+    const Scene scene = smallSurging(0.6);
+    BakeOptions opt;
+    opt.output = m_dir / "s.swell";
+    opt.threads = 1;
+    const fs::path ckpt = checkpointPath(opt.output);
+    std::string e = resumeError(scene, opt);
+    EXPECT_EQ(e.rfind(ckpt.string() + ": no checkpoint", 0), 0u) << e;
+    EXPECT_EQ(filesInDir(), 0u);
+
+    crashingBake(scene, opt, 50, 120);
+    json j = toJson(scene);
+    j["physics"]["kinematic_viscosity"] = 1e-6;
+    e = resumeError(parseScene(j), opt);
+    EXPECT_NE(e.find("different bake"), std::string::npos) << e;
+    EXPECT_NE(e.find("/cache_metadata/scene/physics/kinematic_viscosity"), std::string::npos) << e;
+    BakeOptions threads = opt;
+    threads.threads = 2;
+    e = resumeError(scene, threads);
+    EXPECT_NE(e.find("/cache_metadata/threads is 1 there, 2 now"), std::string::npos) << e;
+    BakeOptions build = opt;
+    build.buildId = "another";
+    EXPECT_NE(resumeError(scene, build).find("/build"), std::string::npos);
+    BakeOptions overrides = opt;
+    overrides.overrides = {"solver.end_time=0.6"};
+    EXPECT_NE(resumeError(scene, overrides).find("/cache_metadata/overrides"), std::string::npos);
+    // Refused resumes leave the checkpoint for a correct one and no cache.
+    EXPECT_FALSE(fs::exists(opt.output));
+    EXPECT_EQ(resumeError(scene, opt), "");
+    EXPECT_TRUE(fs::exists(opt.output));
+}
+
+TEST_F(BakeDriver, DamagedCheckpointIsRefusedNamingTheFile) {
+    const Scene scene = smallSurging(0.6);
+    BakeOptions opt;
+    opt.output = m_dir / "s.swell";
+    crashingBake(scene, opt, 50, 120);
+    const fs::path ckpt = checkpointPath(opt.output);
+    fs::resize_file(ckpt, fs::file_size(ckpt) - 100);
+    const std::string e = resumeError(scene, opt);
+    EXPECT_EQ(e.rfind(ckpt.string() + ": damaged checkpoint", 0), 0u) << e;
+    EXPECT_FALSE(fs::exists(opt.output));
 }

@@ -1,5 +1,6 @@
 // swell-bake end to end: help, bad input (one line, non-zero exit), a small bake verified by
-// swell-cache, --json keys, and kill safety (SIGKILL / SIGINT / SIGTERM leave no cache).
+// swell-cache, --json keys, kill safety (SIGKILL / SIGINT / SIGTERM leave no cache), and
+// checkpoint / resume (a bake killed after a checkpoint resumes to the same bytes).
 #include <chrono>
 #include <csignal>
 #include <cstdlib>
@@ -106,7 +107,7 @@ protected:
 TEST_F(SwellBakeApp, HelpListsTheOptions) {
     const Result r = bake("--help");
     EXPECT_EQ(r.code, 0);
-    for (const char* o : {"--output", "--set", "--threads", "--probes", "--json"}) {
+    for (const char* o : {"--output", "--set", "--threads", "--probes", "--json", "--checkpoint-every", "--resume"}) {
         EXPECT_NE(r.out.find(o), std::string::npos) << o;
     }
 }
@@ -125,6 +126,7 @@ TEST_F(SwellBakeApp, BadInputGivesOneLineAndNonZeroExit) {
         {small + " -o " + out + " --set output.frame_interval=0.003", "output.frame_interval"},
         {small + " -o " + out + " --set nonsense", "section.key=value"},
         {small + " -o " + out + " --threads 0", "--threads"},
+        {small + " -o " + out + " --checkpoint-every 0", "--checkpoint-every"},
         {small + " -o /no/such/dir/x.swell", "/no/such/dir"},
     };
     for (const Case& c : cases) {
@@ -181,4 +183,96 @@ TEST_F(SwellBakeApp, InterruptedBakeStopsCleanlyAndLeavesNothing) {
         EXPECT_EQ(cacheFiles(), 0u) << "neither the cache nor its temporary file";
         EXPECT_NE(slurp(m_dir / "bake.err").find("cancelled"), std::string::npos);
     }
+}
+
+// Issue 4: SIGKILL after a checkpoint exists, then --resume: the cache is byte-identical to
+// an uninterrupted bake, the checkpoint and the killed run's temporaries are gone.
+TEST_F(SwellBakeApp, BakeKilledAfterACheckpointResumesToTheSameCache) {
+    const std::string scene = (kScenes / "surging_small.json").string();
+    const std::string common = " --set solver.end_time=1.5 --threads 1 -q";
+    const fs::path ref = m_dir / "ref.swell", out = m_dir / "s.swell";
+    ASSERT_EQ(bake(scene + " -o " + ref.string() + common).code, 0);
+
+    const fs::path ckpt = m_dir / "s.swell.ckpt";
+    const pid_t pid = ::fork();
+    if (pid == 0) {
+        const std::string err = (m_dir / "bake.err").string();
+        std::freopen(err.c_str(), "w", stderr);
+        ::execl(SWELL_BAKE_EXE, SWELL_BAKE_EXE, scene.c_str(), "-o", out.c_str(), "--set", "solver.end_time=1.5",
+                "--threads", "1", "--checkpoint-every", "40", static_cast<char*>(nullptr));
+        ::_exit(127);
+    }
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+    while (!fs::exists(ckpt) && std::chrono::steady_clock::now() < deadline) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    }
+    ::kill(pid, SIGKILL);
+    int status = 0;
+    ::waitpid(pid, &status, 0);
+    ASSERT_TRUE(WIFSIGNALED(status)) << "the bake finished before it was killed; " << slurp(m_dir / "bake.err");
+    EXPECT_FALSE(fs::exists(out));
+    ASSERT_TRUE(fs::exists(ckpt));
+
+    const Result r = bake(scene + " -o " + out.string() + common + " --resume --json");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_GT(nlohmann::json::parse(r.out)["resumed_from_step"].get<long>(), 0);
+    EXPECT_EQ(slurp(out), slurp(ref));
+    EXPECT_FALSE(fs::exists(ckpt));
+    for (const auto& e : fs::directory_iterator(m_dir)) {
+        EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos) << e.path(); // stale ones removed
+    }
+}
+
+TEST_F(SwellBakeApp, SigtermWithCheckpointsSavesOneToResumeFrom) {
+    const fs::path out = m_dir / "k.swell";
+    const pid_t pid = ::fork();
+    if (pid == 0) {
+        const std::string scene = (kScenes / "surging_small.json").string();
+        const std::string err = (m_dir / "bake.err").string();
+        std::freopen(err.c_str(), "w", stderr);
+        ::execl(SWELL_BAKE_EXE, SWELL_BAKE_EXE, scene.c_str(), "-o", out.c_str(), "--set", "solver.end_time=100",
+                "--threads", "1", "--checkpoint-every", "100000", static_cast<char*>(nullptr));
+        ::_exit(127);
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+    ::kill(pid, SIGTERM);
+    int status = 0;
+    ::waitpid(pid, &status, 0);
+    ASSERT_TRUE(WIFEXITED(status));
+    EXPECT_EQ(WEXITSTATUS(status), 130);
+    EXPECT_FALSE(fs::exists(out));
+    EXPECT_TRUE(fs::exists(m_dir / "k.swell.ckpt"));
+    EXPECT_NE(slurp(m_dir / "bake.err").find("continue with --resume"), std::string::npos) << slurp(m_dir / "bake.err");
+
+    // Resuming it as another bake is refused, naming what differs; the checkpoint stays.
+    const std::string scene = (kScenes / "surging_small.json").string();
+    const std::string base = scene + " -o " + out.string() + " --set solver.end_time=100 --resume";
+    Result r = bake(base + " --threads 2");
+    EXPECT_EQ(r.code, 5);
+    EXPECT_EQ(errorLines(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find("k.swell.ckpt: checkpoint of a different bake (/cache_metadata/threads is 1 there, 2 now)"),
+              std::string::npos) << r.err;
+    r = bake(base + " --threads 1 --set physics.kinematic_viscosity=1e-6");
+    EXPECT_EQ(r.code, 5);
+    EXPECT_NE(r.err.find("/cache_metadata/overrides"), std::string::npos) << r.err;
+    EXPECT_TRUE(fs::exists(m_dir / "k.swell.ckpt"));
+    EXPECT_FALSE(fs::exists(out));
+}
+
+TEST_F(SwellBakeApp, ResumeErrorsGiveOneLineAndExitCode5) {
+    const std::string scene = (kScenes / "surging_small.json").string();
+    const fs::path out = m_dir / "s.swell", ckpt = m_dir / "s.swell.ckpt";
+    const std::string base = scene + " -o " + out.string() + " --set solver.end_time=0.3 --threads 1";
+    Result r = bake(base + " --resume");
+    EXPECT_EQ(r.code, 5);
+    EXPECT_EQ(errorLines(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find(ckpt.string() + ": no checkpoint"), std::string::npos) << r.err;
+
+    // A truncated checkpoint (right magic, nothing else).
+    std::ofstream(ckpt, std::ios::binary) << "\x89SWK\r\n\x1a\ntruncated";
+    r = bake(base + " --resume");
+    EXPECT_EQ(r.code, 5);
+    EXPECT_EQ(errorLines(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find(ckpt.string() + ": damaged checkpoint"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(out));
 }

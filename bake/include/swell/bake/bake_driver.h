@@ -24,9 +24,10 @@ public:
 /// Where a running bake is; passed to BakeOptions::onProgress after every step.
 struct BakeProgress {
     long step = 0;           ///< steps done
+    long firstStep = 0;      ///< step the run started from (> 0 when resumed from a checkpoint)
     long totalSteps = 0;     ///< steps the bake will take
     double time = 0.0;       ///< simulated time (s)
-    double wallSeconds = 0.0; ///< wall time since the first step (s)
+    double wallSeconds = 0.0; ///< wall time since this run's first step (s)
     std::size_t frames = 0;  ///< frames stored so far
 };
 
@@ -40,8 +41,19 @@ struct BakeOptions {
     std::string programVersion;    ///< recorded in the metadata
     /// Called after every step (cheap callers only: the app throttles its own output).
     std::function<void(const BakeProgress&)> onProgress;
-    /// Polled after every step; true stops the bake with BakeCancelled.
+    /// Polled after every step; true stops the bake with BakeCancelled (after writing a
+    /// checkpoint when checkpoints are on).
     std::function<bool()> cancelled;
+    /// Steps between checkpoints (checkpointPath(output), checkpoint.h); 0: none. A resumed
+    /// bake without its own value keeps the interval of the checkpoint it resumed from.
+    long checkpointEvery = 0;
+    /// Continue from the checkpoint at checkpointPath(output) (CheckpointError when it is
+    /// missing, damaged or from a different bake); the cache is byte-identical to that of an
+    /// uninterrupted bake.
+    bool resume = false;
+    /// Identifies the program build (e.g. fileDigest of the executable): a checkpoint is only
+    /// resumed by the same build. Not stored in the cache.
+    std::string buildId;
 };
 
 /// Per-run figures (the --json summary of swell-bake).
@@ -63,6 +75,10 @@ struct BakeSummary {
     std::uint64_t cacheBytes = 0;   ///< size of the cache file
     std::uint64_t rawBytes = 0;     ///< float32 bytes of the stored particles before compression
     std::vector<std::string> warnings; ///< e.g. a piston wave steeper than the breaking limit
+    long resumedFromStep = 0;       ///< step of the checkpoint this run resumed from (0: none)
+    std::size_t checkpoints = 0;    ///< checkpoints written by this run
+    std::uint64_t checkpointBytes = 0; ///< size of the last one
+    double checkpointSeconds = 0.0; ///< wall time spent writing them (s)
 };
 
 nlohmann::json toJson(const BakeSummary& summary);
@@ -78,8 +94,10 @@ long totalSteps(const Scene& scene);
 std::vector<std::string> sceneWarnings(const Scene& scene);
 
 /// Runs the bake. Throws SceneError (scene unusable for a bake), DivergenceError (the
-/// simulation diverged), BakeCancelled, cache::CacheError or std::runtime_error (I/O). On
-/// any throw nothing is left at options.output (the cache writer renames only when done).
+/// simulation diverged), BakeCancelled, CheckpointError, cache::CacheError or
+/// std::runtime_error (I/O). On any throw nothing is left at options.output (the cache writer
+/// renames only when done); the last checkpoint, if any, stays. After a successful bake
+/// with checkpoints (or resumed) the checkpoint is removed.
 BakeSummary runBake(const Scene& scene, const BakeOptions& options);
 
 } // namespace swell::bake

@@ -9,6 +9,7 @@
 #include "swell/bake/box.h"
 #include "swell/bake/kernel.h"
 #include "swell/bake/mps_params.h"
+#include "swell/bake/mps_state.h"
 #include "swell/bake/neighbor_grid.h"
 #include "swell/bake/particles.h"
 #include "swell/bake/piston_motion.h"
@@ -55,6 +56,14 @@ public:
     /// recycling, paper Sec. 3.3.2). Throws std::invalid_argument for a fixed particle or a
     /// position outside the domain.
     void relocateWater(std::size_t i, double x, double y, double vx, double vy);
+
+    /// Everything a later step depends on (checkpoints, issue 4); see mps_state.h.
+    MpsState exportState() const;
+    /// Continues from a state exported by a solver of the same scene (same particles, kinds
+    /// and moving wall; set the moving wall and inflow first, as makeSolver does). The next
+    /// step then gives bit for bit what the exporting solver's next step gave. Throws
+    /// std::invalid_argument (naming what differs) for a state of other particles.
+    void importState(const MpsState& state);
 
     const Particles& particles() const { return m_p; }
     double time() const { return m_time; }

@@ -1,0 +1,214 @@
+// Checkpoint files: every field round-trips, writing is atomic (no temporary left, an old
+// checkpoint replaced whole), and a missing, truncated, damaged or foreign file is refused
+// with an error naming it; a different bake is refused naming the value that differs.
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <unistd.h>
+
+#include "swell/bake/checkpoint.h"
+
+using namespace swell::bake;
+namespace fs = std::filesystem;
+
+namespace {
+
+Checkpoint sample() {
+    Checkpoint c;
+    c.fingerprint = R"({"build":"abc","cache_metadata":{"scene":{"solver":{"dt":0.002}},"threads":2}})";
+    c.checkpointEvery = 50;
+    c.writerPid = 4242;
+    MpsState& s = c.solver;
+    s.step = 150;
+    s.time = 0.3;
+    s.lastMaxSpeed = 0.25;
+    s.particles.add(0.01, 0.02, ParticleKind::Water);
+    s.particles.add(0.03, 0.04, ParticleKind::Wall);
+    s.particles.add(0.05, 0.06, ParticleKind::Dummy);
+    s.particles.vx = {0.1, 0.0, 0.0};
+    s.particles.vy = {-0.2, 0.0, 0.0};
+    s.particles.p = {123.5, 50.25, 0.0};
+    s.particles.n = {6.5, 5.0, 4.0};
+    s.neighborX = {0.011, 0.03, 0.05};
+    s.neighborY = {0.021, std::numeric_limits<double>::quiet_NaN(), 0.06};
+    s.wallRestX = {0.0, 0.025, 0.05};
+    c.frames.resize(4);
+    c.frames[1].surface = {0.1f, 0.2f, 0.3f, 0.4f};
+    c.frames[2].splash = {0.5f, 0.6f, 1.0f, -1.0f};
+    c.probeRows = {"0,1,2", "0.02,1,nan", "0.04,1,2", "0.06,1,3"};
+    c.totals = BakeTotals{10.0, 2.0, 7, 96, 1.5, 300.0, 0.12, 3};
+    return c;
+}
+
+std::string bytes(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+void writeBytes(const fs::path& p, const std::string& b) {
+    std::ofstream out(p, std::ios::binary | std::ios::trunc);
+    out << b;
+}
+
+class CheckpointFile : public ::testing::Test {
+protected:
+    void SetUp() override {
+        m_dir = fs::temp_directory_path() /
+                ("swell_checkpoint_" + std::to_string(::getpid()) + "_" +
+                 ::testing::UnitTest::GetInstance()->current_test_info()->name());
+        fs::remove_all(m_dir);
+        fs::create_directories(m_dir);
+        m_path = checkpointPath(m_dir / "c.swell");
+    }
+    void TearDown() override { fs::remove_all(m_dir); }
+    /// The CheckpointError message of reading m_path ("" if it reads).
+    std::string readError() const {
+        try {
+            (void)readCheckpoint(m_path);
+        } catch (const CheckpointError& e) {
+            return e.what();
+        }
+        return "";
+    }
+    fs::path m_dir, m_path;
+};
+
+} // namespace
+
+TEST(CheckpointPath, IsTheCachePathPlusCkpt) {
+    EXPECT_EQ(checkpointPath("out/a.swell"), fs::path("out/a.swell.ckpt"));
+}
+
+TEST_F(CheckpointFile, EveryFieldRoundTrips) {
+    const Checkpoint c = sample();
+    const std::uint64_t size = writeCheckpoint(m_path, c);
+    EXPECT_EQ(size, fs::file_size(m_path));
+    const Checkpoint r = readCheckpoint(m_path);
+    EXPECT_EQ(r.fingerprint, c.fingerprint);
+    EXPECT_EQ(r.checkpointEvery, 50);
+    EXPECT_EQ(r.writerPid, 4242);
+    EXPECT_EQ(r.solver.step, 150);
+    EXPECT_EQ(r.solver.time, 0.3);
+    EXPECT_EQ(r.solver.lastMaxSpeed, 0.25);
+    const Particles &a = r.solver.particles, &b = c.solver.particles;
+    EXPECT_EQ(a.x, b.x);
+    EXPECT_EQ(a.y, b.y);
+    EXPECT_EQ(a.vx, b.vx);
+    EXPECT_EQ(a.vy, b.vy);
+    EXPECT_EQ(a.p, b.p);
+    EXPECT_EQ(a.n, b.n);
+    EXPECT_EQ(a.kind, b.kind);
+    EXPECT_EQ(r.solver.neighborX, c.solver.neighborX);
+    ASSERT_EQ(r.solver.neighborY.size(), 3u);
+    EXPECT_TRUE(std::isnan(r.solver.neighborY[1])); // a stale neighbour reference survives
+    EXPECT_EQ(r.solver.neighborY[2], 0.06);
+    EXPECT_EQ(r.solver.wallRestX, c.solver.wallRestX);
+    EXPECT_EQ(r.frames, c.frames);
+    EXPECT_EQ(r.probeRows, c.probeRows);
+    EXPECT_EQ(r.totals.surface, 10.0);
+    EXPECT_EQ(r.totals.splash, 2.0);
+    EXPECT_EQ(r.totals.keptMax, 7u);
+    EXPECT_EQ(r.totals.rawBytes, 96u);
+    EXPECT_EQ(r.totals.solverSeconds, 1.5);
+    EXPECT_EQ(r.totals.ppeIterations, 300.0);
+    EXPECT_EQ(r.totals.maxCourant, 0.12);
+    EXPECT_EQ(r.totals.recycled, 3u);
+}
+
+TEST_F(CheckpointFile, WritingReplacesTheOldFileWholeAndLeavesNoTemporary) {
+    Checkpoint c = sample();
+    writeCheckpoint(m_path, c);
+    c.solver.step = 200;
+    c.frames.emplace_back();
+    c.probeRows.emplace_back("0.08,1,2");
+    writeCheckpoint(m_path, c);
+    EXPECT_EQ(readCheckpoint(m_path).solver.step, 200);
+    std::size_t files = 0;
+    for (const auto& e : fs::directory_iterator(m_dir)) {
+        ++files;
+        EXPECT_EQ(e.path(), m_path);
+    }
+    EXPECT_EQ(files, 1u);
+}
+
+TEST_F(CheckpointFile, UnwritableDirectoryNamesTheFile) {
+    try {
+        writeCheckpoint(m_dir / "no" / "such" / "c.ckpt", sample());
+        FAIL() << "wrote into a missing directory";
+    } catch (const CheckpointError& e) {
+        EXPECT_NE(std::string(e.what()).find("c.ckpt"), std::string::npos) << e.what();
+    }
+}
+
+TEST_F(CheckpointFile, MissingFileIsNamed) {
+    const std::string e = readError();
+    EXPECT_NE(e.find(m_path.string()), std::string::npos) << e;
+    EXPECT_NE(e.find("no checkpoint"), std::string::npos) << e;
+}
+
+TEST_F(CheckpointFile, TruncatedFileIsDamagedAndNamed) {
+    writeCheckpoint(m_path, sample());
+    const std::string whole = bytes(m_path);
+    for (std::size_t keep : {std::size_t{0}, std::size_t{10}, std::size_t{47}, std::size_t{48}, whole.size() / 2,
+                             whole.size() - 1}) {
+        SCOPED_TRACE(keep);
+        writeBytes(m_path, whole.substr(0, keep));
+        const std::string e = readError();
+        EXPECT_EQ(e.rfind(m_path.string() + ": ", 0), 0u) << e;
+        EXPECT_NE(e.find("damaged"), std::string::npos) << e;
+    }
+}
+
+TEST_F(CheckpointFile, AnyFlippedByteIsDetected) {
+    writeCheckpoint(m_path, sample());
+    const std::string whole = bytes(m_path);
+    for (std::size_t at = 0; at < whole.size(); at += 7) {
+        SCOPED_TRACE(at);
+        std::string b = whole;
+        b[at] = static_cast<char>(b[at] ^ 0x10);
+        writeBytes(m_path, b);
+        const std::string e = readError();
+        EXPECT_EQ(e.rfind(m_path.string() + ": ", 0), 0u) << e;
+    }
+}
+
+TEST_F(CheckpointFile, OtherFileIsNotACheckpoint) {
+    writeBytes(m_path, std::string(100, 'x'));
+    EXPECT_NE(readError().find("not a swell-bake checkpoint"), std::string::npos) << readError();
+}
+
+TEST_F(CheckpointFile, FingerprintOfADifferentBakeNamesTheValue) {
+    const std::string stored = sample().fingerprint;
+    EXPECT_NO_THROW(checkFingerprint(m_path, stored, stored));
+    const auto message = [&](const std::string& current) -> std::string {
+        try {
+            checkFingerprint(m_path, stored, current);
+        } catch (const CheckpointError& e) {
+            return e.what();
+        }
+        return "";
+    };
+    const std::string dt =
+        message(R"({"build":"abc","cache_metadata":{"scene":{"solver":{"dt":0.001}},"threads":2}})");
+    EXPECT_EQ(dt.rfind(m_path.string() + ": ", 0), 0u) << dt;
+    EXPECT_NE(dt.find("/cache_metadata/scene/solver/dt is 0.002 there, 0.001 now"), std::string::npos) << dt;
+    const std::string threads =
+        message(R"({"build":"abc","cache_metadata":{"scene":{"solver":{"dt":0.002}},"threads":1}})");
+    EXPECT_NE(threads.find("/cache_metadata/threads is 2 there, 1 now"), std::string::npos) << threads;
+    const std::string build =
+        message(R"({"build":"abd","cache_metadata":{"scene":{"solver":{"dt":0.002}},"threads":2}})");
+    EXPECT_NE(build.find("/build"), std::string::npos) << build;
+}
+
+TEST_F(CheckpointFile, FileDigestTellsFilesApart) {
+    writeBytes(m_dir / "a", "hello");
+    writeBytes(m_dir / "b", "hellp");
+    EXPECT_EQ(fileDigest(m_dir / "a").size(), 16u);
+    EXPECT_EQ(fileDigest(m_dir / "a"), fileDigest(m_dir / "a"));
+    EXPECT_NE(fileDigest(m_dir / "a"), fileDigest(m_dir / "b"));
+    EXPECT_THROW(fileDigest(m_dir / "missing"), CheckpointError);
+}
