@@ -26,6 +26,7 @@
 #include <fstream>
 #include <iostream>
 #include <spawn.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -37,6 +38,14 @@ using namespace swell;
 using namespace swell::runtime;
 using json = nlohmann::json;
 using Clock = std::chrono::steady_clock;
+
+/// CPU time of the whole process (every thread, llvmpipe's included), ms.
+double processCpuMs() {
+    rusage u{};
+    ::getrusage(RUSAGE_SELF, &u);
+    return 1e3 * (static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec)) +
+           1e-3 * static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
 
 double msSince(Clock::time_point t0) {
     return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
@@ -591,10 +600,10 @@ int runRender(Options& o, RenderOptions& r) {
     std::vector<Image> sheet;
     json frames = json::array();
     double drawMs = 0.0, spriteMs = 0.0, readMs = 0.0, writeMs = 0.0, exportMs = 0.0;
-    double lookupMs = 0.0, reconstructMs = 0.0, timedDrawMs = 0.0;
+    double lookupMs = 0.0, reconstructMs = 0.0, timedDrawMs = 0.0, drawCpuMs = 0.0;
     std::size_t timedFrames = 0;
     RenderStageTimes stages;
-    std::size_t spriteTotal = 0;
+    std::size_t spriteTotal = 0, culledTotal = 0;
     const bool progress = ::isatty(2) != 0 && !o.json;
     const auto t0 = Clock::now();
     for (std::size_t i = 0; i < count; ++i) {
@@ -612,10 +621,13 @@ int runRender(Options& o, RenderOptions& r) {
         gpu.setTiming(timed);
         renderer.setTiming(timed);
         ts = Clock::now();
+        const double cpu0 = processCpuMs();
         gpu.update(taus[i]);
         renderer.draw(gpu.heightBuffer(), camera, sprites, r.splash.spriteRadius);
         gpu.finish();
         const double frameDrawMs = msSince(ts);
+        const double frameCpuMs = processCpuMs() - cpu0;
+        culledTotal += renderer.lastCulledSplashCount();
         if (timed) {
             ++timedFrames;
             timedDrawMs += frameDrawMs;
@@ -629,6 +641,7 @@ int runRender(Options& o, RenderOptions& r) {
             stages.resolveMs += st.resolveMs;
         } else {
             drawMs += frameDrawMs;
+            drawCpuMs += frameCpuMs;
         }
 
         ts = Clock::now();
@@ -647,7 +660,8 @@ int runRender(Options& o, RenderOptions& r) {
         json entry{{"file", name},
                    {"tau", taus[i]},
                    {"seconds", seconds},
-                   {"splash_sprites", sprites.size()}};
+                   {"splash_sprites", sprites.size()},
+                   {"splash_sprites_culled", renderer.lastCulledSplashCount()}};
         if (exportHeights || exportMesh) {
             const HeightField field = gpu.readHeights();
             if (exportHeights) {
@@ -748,7 +762,8 @@ int runRender(Options& o, RenderOptions& r) {
                    {"lifetime_s", {r.splash.minLifetime, r.splash.maxLifetime}},
                    {"gravity", r.splash.gravity},
                    {"seed", o.params.seed ^ 0x5b1a54e5ULL},
-                   {"sprites_mean", static_cast<double>(spriteTotal) / n}}},
+                   {"sprites_mean", static_cast<double>(spriteTotal) / n},
+                   {"culled_under_water_mean", static_cast<double>(culledTotal) / n}}},
                  {"exports",
                   {{"heights", exportHeights}, {"mesh", exportMesh}, {"splashes", exportSplashes}}},
                  {"height_scale",
@@ -767,6 +782,7 @@ int runRender(Options& o, RenderOptions& r) {
                  {"shaded_fps_frames", untimed > 0 ? untimed : nt},
                  {"timing_ms_per_frame",
                   {{"draw_synced", drawMsPerFrame},
+                   {"draw_cpu", untimed > 0 ? drawCpuMs / untimed : 0.0},
                    {"splash_sprites_cpu", spriteMs / n},
                    {"readback", readMs / n},
                    {"png_write", writeMs / n},
