@@ -1,9 +1,10 @@
 #version 450 core
 // Sec. 5: the vertices of the water mesh, one per cell centre of the reconstructed height field
 // (eq. 7; vertex m * N + n, the layout of GpuReplay::heightBuffer): position, normal by central
-// differences of the neighbouring heights (one-sided at the edges), and the shading that varies
-// slowly over the surface: the colour along the refracted ray, the reflected environment (cube
-// map) and the Fresnel weight (Schlick), mixed. water.frag adds the per-pixel sun highlight.
+// differences of the neighbouring heights (one-sided at the edges), the reflected view ray, and
+// the shading that varies slowly over the surface: the colour along the refracted ray, the
+// reflected environment (cube map) and the Fresnel weight (Schlick), mixed. water.frag adds the
+// per-pixel sun highlight around the interpolated reflected ray.
 // A compute pass: llvmpipe runs it on every core, while its vertex shaders run on one thread and
 // once per triangle corner, so water.vert only fetches these.
 layout(local_size_x = 64) in;
@@ -11,7 +12,7 @@ layout(local_size_x = 64) in;
 layout(std430, binding = 0) readonly buffer Heights { float h[]; };
 struct Vertex {
     vec4 position;  // xyz, metres; w = 1
-    vec4 normal;    // xyz unit; w = 0
+    vec4 reflected; // xyz: the reflected view ray (unit; y >= 0, see below); w = 0
     vec4 shade;     // rgb: mix(refracted, reflected, F), linear; a: F
 };
 layout(std430, binding = 1) writeonly buffer Vertices { Vertex vertices[]; };
@@ -78,6 +79,6 @@ void main() {
     const float F = u_f0 + (1.0 - u_f0) * (c2 * c2 * c);
 
     vertices[id].position = vec4(world, 1.0);
-    vertices[id].normal = vec4(normal, 0.0);
+    vertices[id].reflected = vec4(R, 0.0);
     vertices[id].shade = vec4(mix(refracted, reflected, F), F);
 }

@@ -83,8 +83,8 @@ WaterRenderer::WaterRenderer(const Grid& grid, const cache::Domain& domain,
     m_indices = GlBuffer(name);
     glNamedBufferStorage(name, static_cast<GLsizeiptr>(m_indexCount * sizeof(std::uint32_t)),
                          nullptr, GL_DYNAMIC_STORAGE_BIT);
-    // The mesh's vertices, written by surface_vertices.comp each frame: position, normal and
-    // refracted colour, three vec4 per vertex.
+    // The mesh's vertices, written by surface_vertices.comp each frame: position, reflected
+    // view ray, shaded colour and Fresnel weight, three vec4 per vertex.
     constexpr GLsizei kVertexBytes = 3 * 4 * sizeof(float);
     glCreateBuffers(1, &name);
     m_vertices = GlBuffer(name);
@@ -220,8 +220,25 @@ void WaterRenderer::draw(GlName heightBuffer, const Camera& camera,
     if (!m_indexValid || m_indexEye != eye)
         updateMeshOrder(eye);
 
-    // 1. Environment: the cached sky pass, copied by a texel-fetch pass (a framebuffer blit
-    //    cannot write a multisampled target).
+    m_lastSplashes = splashes.size();
+    m_lastCulled = 0;
+    const double pixelsPerMetre =
+        H / (2.0 * std::tan(0.5 * camera.fovYDegrees * std::numbers::pi / 180.0));
+    if (!splashes.empty()) {
+        // Drops under the (opaque) surface are invisible: skip their vertex and set-up work.
+        // The heights are read before anything is drawn: once a draw reading them (the sides)
+        // is in flight, llvmpipe would wait for it to be rasterised before mapping the buffer.
+        m_heights.resize(static_cast<std::size_t>(m_grid.cellsX) * m_grid.cellsZ);
+        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+        glGetNamedBufferSubData(heightBuffer, 0,
+                                static_cast<GLsizeiptr>(m_heights.size() * sizeof(float)),
+                                m_heights.data());
+        m_visibleSprites.clear();
+        m_lastCulled = cullSubmergedSplashes(splashes, m_heights, m_grid,
+                                             {splashRadius, eye, pixelsPerMetre}, m_visibleSprites);
+    }
+    // 1. Environment: the cached sky pass, copied (a texel-fetch pass when multisampled: a copy
+    //    or a framebuffer blit cannot write a multisampled target).
     stamp(m_queries[0]);
     glEnable(GL_FRAMEBUFFER_SRGB); // shaders write linear RGB; the colour buffers are sRGB
     glBindFramebuffer(GL_FRAMEBUFFER, m_msFramebuffer);
@@ -250,9 +267,8 @@ void WaterRenderer::draw(GlName heightBuffer, const Camera& camera,
     glDepthFunc(GL_LESS);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, heightBuffer);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, m_vertices.get());
-    for (GLuint p : {m_surfaceProgram.get(), m_waterProgram.get(), m_skirtProgram.get()}) {
+    for (GLuint p : {m_surfaceProgram.get(), m_skirtProgram.get()})
         setVec3(p, kEye, eye);
-    }
     for (GLuint p : {m_waterProgram.get(), m_skirtProgram.get()}) {
         glProgramUniformMatrix4fv(p, kViewProj, 1, GL_FALSE, viewProj.data());
     }
@@ -277,22 +293,7 @@ void WaterRenderer::draw(GlName heightBuffer, const Camera& camera,
     stamp(m_queries[2]);
 
     // 3. Splash point sprites (Sec. 5), blended over the water, depth tested, not written.
-    m_lastSplashes = splashes.size();
-    m_lastCulled = 0;
-    const double pixelsPerMetre =
-        H / (2.0 * std::tan(0.5 * camera.fovYDegrees * std::numbers::pi / 180.0));
-    if (!splashes.empty()) {
-        // Drops under the (opaque) surface are invisible: skip their vertex and set-up work.
-        m_heights.resize(static_cast<std::size_t>(m_grid.cellsX) * m_grid.cellsZ);
-        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-        glGetNamedBufferSubData(heightBuffer, 0,
-                                static_cast<GLsizeiptr>(m_heights.size() * sizeof(float)),
-                                m_heights.data());
-        m_visibleSprites.clear();
-        m_lastCulled = cullSubmergedSplashes(splashes, m_heights, m_grid,
-                                             {splashRadius, eye, pixelsPerMetre}, m_visibleSprites);
-    }
-    if (!m_visibleSprites.empty() && !splashes.empty()) {
+    if (!splashes.empty() && !m_visibleSprites.empty()) {
         const std::span<const SplashSprite> visible(m_visibleSprites);
         const auto bytes = static_cast<GLsizeiptr>(visible.size_bytes());
         if (visible.size() > m_splashCapacity) {
