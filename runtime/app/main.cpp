@@ -11,6 +11,7 @@
 #include "swell/runtime/gpu_reconstruction.h"
 #include "swell/runtime/height_png.h"
 #include "swell/runtime/mode_replay.h"
+#include "swell/runtime/mode_splashes.h"
 #include "swell/runtime/slice_sampler.h"
 #include "swell/runtime/splash_system.h"
 #include "swell/runtime/water_renderer.h"
@@ -572,13 +573,13 @@ int runRender(Options& o, RenderOptions& r) {
     const EglContext context;
     ModeReplay gpu(set, o.params, o.modeParams, samplers);
     const Grid& grid = gpu.grid();
-    // Splash sprites sit on straight transverse slices (Sec. 5, surging wave); the ripple's
-    // rotated slice sets and the whirlpool's spirals draw no splash pass yet.
-    const bool splashMode = o.modeParams.mode == ReplayMode::Surging;
     const cache::Domain& domain = set.header.domain;
     const double waterLevel = domain.yMin + waterDepth(set);
-    Camera camera =
-        defaultCamera(grid, domain, waterLevel, static_cast<double>(width) / height, r.fov);
+    // The whirlpool's spirals show best from higher up; the surging and ripple waves from a
+    // lower three-quarter view.
+    const double elevation = o.modeParams.mode == ReplayMode::Whirlpool ? 55.0 : 28.0;
+    Camera camera = defaultCamera(grid, domain, waterLevel, static_cast<double>(width) / height,
+                                  r.fov, elevation);
     if (!r.eye.empty()) {
         camera.position = toVec3(r.eye, "--camera");
         camera.target = toVec3(r.target, "--target");
@@ -586,7 +587,13 @@ int runRender(Options& o, RenderOptions& r) {
     camera.validate();
     WaterRenderer renderer(grid, domain, r.shading, faces, sunDirection(r.sky));
     // The artificial splashes get their own stream, derived from the run's seed.
-    const SplashSystem splashes(set, grid, r.splash, o.params.seed ^ 0x5b1a54e5ULL);
+    // Each slice set (the ripple's directions) has its own; they follow the mode's layout
+    // (mode_splashes.h).
+    std::vector<SplashSystem> splashSets;
+    splashSets.reserve(samplers.size());
+    for (int d = 0; d < static_cast<int>(samplers.size()); ++d)
+        splashSets.emplace_back(set, grid, r.splash, sliceSetSeed(o.params.seed, d) ^ 0x5b1a54e5ULL);
+    const SplashSystem& splashes = splashSets.front();
     // Stage times (GL timestamp queries) on every 8th frame; the frame rate is taken over the
     // other frames, so the queries do not slow what is measured.
     constexpr std::size_t kTimedEvery = 8;
@@ -611,8 +618,11 @@ int runRender(Options& o, RenderOptions& r) {
         auto ts = Clock::now();
         // Each real slice shows its own frame's splashes: the same frame choice as the GPU (eq. 5).
         std::vector<SplashSprite> sprites;
-        if (splashMode && splashes.active())
-            sprites = splashes.sprites(samplers.front().frames(taus[i]), seconds);
+        for (std::size_t d = 0; d < splashSets.size() && splashes.active(); ++d) {
+            std::vector<SplashSprite> more = splashSets[d].sprites(samplers[d].frames(taus[i]), seconds);
+            placeSplashes(more, grid, o.modeParams, static_cast<int>(d), taus[i]);
+            sprites.insert(sprites.end(), more.begin(), more.end());
+        }
         spriteMs += msSince(ts);
         spriteTotal += sprites.size();
 

@@ -50,7 +50,8 @@ TEST(Camera, TargetProjectsToTheCentreAndInverseInverts) {
 TEST(Camera, DefaultFramingShowsTheWholeMesh) {
     const Grid g = testGrid();
     for (double aspect : {16.0 / 9.0, 1.0, 0.6}) {
-        const Camera c = defaultCamera(g, kDomain, 0.5, aspect);
+      for (double elevation : {28.0, 55.0}) {
+        const Camera c = defaultCamera(g, kDomain, 0.5, aspect, 40.0, elevation);
         EXPECT_NO_THROW(c.validate());
         const Mat4 vp = multiply(projectionMatrix(c, aspect), viewMatrix(c));
         for (double x : {g.x0, g.x0 + g.cellsX * g.dx}) {
@@ -65,7 +66,9 @@ TEST(Camera, DefaultFramingShowsTheWholeMesh) {
                 }
             }
         }
+      }
     }
+    EXPECT_THROW(defaultCamera(g, kDomain, 0.5, 1.0, 40.0, 90.0), std::invalid_argument);
 }
 
 TEST(Camera, ValidateNamesTheProblem) {
