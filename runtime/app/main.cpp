@@ -592,7 +592,8 @@ int runRender(Options& o, RenderOptions& r) {
     std::vector<SplashSystem> splashSets;
     splashSets.reserve(samplers.size());
     for (int d = 0; d < static_cast<int>(samplers.size()); ++d)
-        splashSets.emplace_back(set, grid, r.splash, sliceSetSeed(o.params.seed, d) ^ 0x5b1a54e5ULL);
+        splashSets.emplace_back(set, grid, r.splash,
+                                sliceSetSeed(o.params.seed, d) ^ 0x5b1a54e5ULL);
     const SplashSystem& splashes = splashSets.front();
     // Stage times (GL timestamp queries) on every 8th frame; the frame rate is taken over the
     // other frames, so the queries do not slow what is measured.
@@ -619,7 +620,8 @@ int runRender(Options& o, RenderOptions& r) {
         // Each real slice shows its own frame's splashes: the same frame choice as the GPU (eq. 5).
         std::vector<SplashSprite> sprites;
         for (std::size_t d = 0; d < splashSets.size() && splashes.active(); ++d) {
-            std::vector<SplashSprite> more = splashSets[d].sprites(samplers[d].frames(taus[i]), seconds);
+            std::vector<SplashSprite> more =
+                splashSets[d].sprites(samplers[d].frames(taus[i]), seconds);
             placeSplashes(more, grid, o.modeParams, static_cast<int>(d), taus[i]);
             sprites.insert(sprites.end(), more.begin(), more.end());
         }

@@ -11,8 +11,10 @@ std::size_t cullSubmergedSplashes(std::span<const SplashSprite> sprites,
                                   const SpriteFootprint& footprint,
                                   std::vector<SplashSprite>& out) {
     const int N = grid.cellsX, M = grid.cellsZ;
-    if (N < 4 || M < 4 || heights.size() != static_cast<std::size_t>(N) * static_cast<std::size_t>(M))
-        throw std::invalid_argument("cullSubmergedSplashes: heights must hold N x M >= 4 x 4 values");
+    if (N < 4 || M < 4 ||
+        heights.size() != static_cast<std::size_t>(N) * static_cast<std::size_t>(M))
+        throw std::invalid_argument(
+            "cullSubmergedSplashes: heights must hold N x M >= 4 x 4 values");
     const double cell = std::min(grid.dx, grid.dz);
     const double pixelRadius = 0.71 / footprint.pixelsPerMetre; // per metre of distance
     const double ox = grid.x0 + 0.5 * grid.dx, oz = 0.5 * grid.dz;

@@ -335,12 +335,12 @@ void WaterRenderer::draw(GlName heightBuffer, const Camera& camera,
 }
 
 void WaterRenderer::updateMeshOrder(const Vec3& eye) {
-    const MeshLayout mesh{m_grid.cellsX,
-                          m_grid.cellsZ,
-                          m_grid.x0 + 0.5 * m_grid.dx,
-                          0.5 * m_grid.dz,
-                          m_grid.dx,
-                          m_grid.dz};
+    const MeshLayout mesh{.verticesX = m_grid.cellsX,
+                          .verticesZ = m_grid.cellsZ,
+                          .x0 = m_grid.x0 + 0.5 * m_grid.dx,
+                          .z0 = 0.5 * m_grid.dz,
+                          .dx = m_grid.dx,
+                          .dz = m_grid.dz};
     const std::vector<std::uint32_t> indices = frontToBackIndices(mesh, eye);
     glNamedBufferSubData(m_indices.get(), 0,
                          static_cast<GLsizeiptr>(indices.size() * sizeof(std::uint32_t)),

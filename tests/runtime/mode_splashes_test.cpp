@@ -38,8 +38,8 @@ TEST(ModeSplashes, RippleRotatesAboutTheCentreAndDropsWhatLeavesTheMesh) {
     mode.ripple.anglesDegrees = {0.0, 90.0, 45.0};
     // The mesh is x in [-0.5, 3.5], z in [0, 4], centre (1.5, 2.0): a sprite 1 m along +x from
     // the centre, one at the centre, one near a corner (45 degrees take it past the edge).
-    std::vector<SplashSprite> s{{2.5f, 0.7f, 2.0f, 0.8f}, {1.5f, 0.4f, 2.0f, 1.0f},
-                                {3.4f, 0.5f, 3.9f, 1.0f}};
+    std::vector<SplashSprite> s{
+        {2.5f, 0.7f, 2.0f, 0.8f}, {1.5f, 0.4f, 2.0f, 1.0f}, {3.4f, 0.5f, 3.9f, 1.0f}};
     std::vector<SplashSprite> d0 = s;
     placeSplashes(d0, testGrid(), mode, 0, 0.0);
     ASSERT_EQ(d0.size(), 3u); // 0 degrees: unchanged

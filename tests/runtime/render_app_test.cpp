@@ -131,16 +131,16 @@ TEST_F(RenderApp, RippleAndWhirlpoolDrawSplashesAndTheWhirlpoolIsSeenFromHigher)
     for (int k = 0; k < 3; ++k) {
         const fs::path out = s_dir / (std::string("mode_") + modes[k]);
         // A square mesh: the whirlpool's spirals (inner radius 15 cells) need the room.
-        const Result r = run("render " + cache() + " --out " + out.string() + " --mode " +
-                             modes[k] +
-                             " --res 64x64 --slices 16 --size 160x90 --seconds 0.2 --fps 20 --json");
+        const Result r =
+            run("render " + cache() + " --out " + out.string() + " --mode " + modes[k] +
+                " --res 64x64 --slices 16 --size 160x90 --seconds 0.2 --fps 20 --json");
         ASSERT_EQ(r.code, 0) << modes[k] << ": " << r.err;
         const nlohmann::json meta = nlohmann::json::parse(slurp(out / "render.json"));
         EXPECT_TRUE(meta["splash"]["active"].get<bool>()) << modes[k];
         for (const auto& f : meta["frames"])
             sprites[k] += f["splash_sprites"].get<std::size_t>();
-        eyeHeight[k] = meta["camera"]["position"][1].get<double>() -
-                       meta["camera"]["target"][1].get<double>();
+        eyeHeight[k] =
+            meta["camera"]["position"][1].get<double>() - meta["camera"]["target"][1].get<double>();
     }
     for (int k = 0; k < 3; ++k)
         EXPECT_GT(sprites[k], 0u) << modes[k];

@@ -13,12 +13,12 @@
 namespace swell::runtime {
 
 struct MeshLayout {
-    int verticesX = 0;  ///< N
-    int verticesZ = 0;  ///< M
-    double x0 = 0.0;    ///< x of vertex column 0, metres
-    double z0 = 0.0;    ///< z of vertex row 0, metres
-    double dx = 1.0;    ///< spacing along x, metres
-    double dz = 1.0;    ///< spacing along z, metres
+    int verticesX = 0; ///< N
+    int verticesZ = 0; ///< M
+    double x0 = 0.0;   ///< x of vertex column 0, metres
+    double z0 = 0.0;   ///< z of vertex row 0, metres
+    double dx = 1.0;   ///< spacing along x, metres
+    double dz = 1.0;   ///< spacing along z, metres
 };
 
 /// Indices of the 2 (N - 1)(M - 1) triangles, six per quad: for the quad with corners

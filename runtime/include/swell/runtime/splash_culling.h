@@ -18,8 +18,8 @@ namespace swell::runtime {
 /// pixel at distance d from the eye spans d / pixelsPerMetre metres (pixelsPerMetre: pixels per
 /// metre at unit distance, height / (2 tan(fov / 2))).
 struct SpriteFootprint {
-    double radius = 0.0;        ///< metres
-    Vec3 eye{0.0, 0.0, 0.0};    ///< metres
+    double radius = 0.0;     ///< metres
+    Vec3 eye{0.0, 0.0, 0.0}; ///< metres
     double pixelsPerMetre = 1.0;
 };
 
@@ -28,12 +28,12 @@ struct SpriteFootprint {
 /// z = (m + 0.5) dz, as GpuReplay::heightBuffer), in their order. A sprite is dropped when it
 /// lies over the mesh at least one cell in from its edge and its top (y + radius) is below the
 /// lowest of the 4 x 4 vertices around it: every point within its drawn radius (the larger of
-/// `footprint.radius` and 0.71 pixel at its distance; only when that is under a cell) is then below the drawn surface (each triangle lies between its corner heights), inside
-/// the opaque water. Sprites near the edge, outside the mesh or above it are kept. Returns the
-/// number dropped. Throws std::invalid_argument if `heights` does not hold N x M values.
+/// `footprint.radius` and 0.71 pixel at its distance; only when that is under a cell) is then below
+/// the drawn surface (each triangle lies between its corner heights), inside the opaque water.
+/// Sprites near the edge, outside the mesh or above it are kept. Returns the number dropped. Throws
+/// std::invalid_argument if `heights` does not hold N x M values.
 std::size_t cullSubmergedSplashes(std::span<const SplashSprite> sprites,
                                   std::span<const float> heights, const Grid& grid,
-                                  const SpriteFootprint& footprint,
-                                  std::vector<SplashSprite>& out);
+                                  const SpriteFootprint& footprint, std::vector<SplashSprite>& out);
 
 } // namespace swell::runtime

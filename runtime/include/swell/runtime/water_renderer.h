@@ -109,7 +109,7 @@ private:
     Camera m_backgroundCamera;
     bool m_backgroundValid = false;
     GlTexture m_sky;
-    GlBuffer m_indices;    // the mesh's triangles, front to back from m_indexEye
+    GlBuffer m_indices; // the mesh's triangles, front to back from m_indexEye
     Vec3 m_indexEye{0.0, 0.0, 0.0};
     bool m_indexValid = false;
     GlBuffer m_splashBuffer;
