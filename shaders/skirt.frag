@@ -14,11 +14,12 @@ layout(location = 5) uniform vec3 u_sunDir;
 layout(location = 7) uniform vec3 u_absorption;
 layout(location = 8) uniform vec3 u_scatter;
 layout(location = 11) uniform float u_f0;
+layout(location = 19) uniform vec3 u_ambient; // the sky straight up (zenithRadiance), linear
 
 void main() {
     const float below = max(v_surface - v_world.y, 0.0);
     const vec3 down = exp(-u_absorption * below);
-    const vec3 lit = texture(u_sky, vec3(0.0, 1.0, 0.0)).rgb * (0.35 + 0.65 * max(u_sunDir.y, 0.0));
+    const vec3 lit = u_ambient * (0.35 + 0.65 * max(u_sunDir.y, 0.0));
     vec3 colour = u_scatter * (1.0 - down) + lit * 0.6 * down * vec3(0.55, 0.85, 0.9);
     const vec3 V = normalize(u_eye - v_world);
     const float F = u_f0 + (1.0 - u_f0) * pow(1.0 - clamp(abs(dot(v_normal, V)), 0.0, 1.0), 5.0);

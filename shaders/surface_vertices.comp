@@ -1,16 +1,19 @@
 #version 450 core
 // Sec. 5: the vertices of the water mesh, one per cell centre of the reconstructed height field
 // (eq. 7; vertex m * N + n, the layout of GpuReplay::heightBuffer): position, normal by central
-// differences of the neighbouring heights (one-sided at the edges), and the colour along the
-// refracted ray. A compute pass: llvmpipe runs it on every core, while its vertex shaders run
-// on one thread and once per triangle corner, so water.vert only fetches these.
+// differences of the neighbouring heights (one-sided at the edges), the reflected view ray, and
+// the shading that varies slowly over the surface: the colour along the refracted ray, the
+// reflected environment (cube map) and the Fresnel weight (Schlick), mixed. water.frag adds the
+// per-pixel sun highlight around the interpolated reflected ray.
+// A compute pass: llvmpipe runs it on every core, while its vertex shaders run on one thread and
+// once per triangle corner, so water.vert only fetches these.
 layout(local_size_x = 64) in;
 
 layout(std430, binding = 0) readonly buffer Heights { float h[]; };
 struct Vertex {
     vec4 position;  // xyz, metres; w = 1
-    vec4 normal;    // xyz unit; w = 0
-    vec4 refracted; // rgb linear; a = 1
+    vec4 reflected; // xyz: the reflected view ray (unit; y >= 0, see below); w = 0
+    vec4 shade;     // rgb: mix(refracted, reflected, F), linear; a: F
 };
 layout(std430, binding = 1) writeonly buffer Vertices { Vertex vertices[]; };
 
@@ -24,6 +27,9 @@ layout(location = 7) uniform vec3 u_absorption; // per metre, per channel
 layout(location = 8) uniform vec3 u_scatter;    // colour of light scattered by deep water
 layout(location = 9) uniform vec3 u_bed;        // bed albedo
 layout(location = 10) uniform float u_eta;      // n_air / n_water
+layout(location = 11) uniform float u_f0;             // Schlick's F0 = ((n - 1) / (n + 1))^2
+layout(location = 18) uniform float u_reflectionLod; // fixed cube-map level of the reflections
+layout(binding = 0) uniform samplerCube u_sky;
 
 float heightAt(int n, int m) {
     n = clamp(n, 0, u_cells.x - 1);
@@ -49,8 +55,7 @@ void main() {
 
     // Refraction: the ray goes down to the bed; light is absorbed along the path (Beer-Lambert)
     // and scattered in, so deep water tends to u_scatter and shallow water shows the bed, lit
-    // by the sun through the water above it. It varies slowly over the surface, so it is
-    // computed per vertex (reflection, Fresnel and the sun stay per pixel, in water.frag).
+    // by the sun through the water above it.
     const vec3 V = normalize(u_eye - world);
     const vec3 T = refract(-V, normal, u_eta);
     const float depth = max(y - u_bedY, 0.0);
@@ -59,7 +64,21 @@ void main() {
     const float sunDown = max(u_sunDir.y, 0.15);
     const vec3 bedLit = u_bed * (0.25 + 0.75 * sunDown) * exp(-u_absorption * depth / sunDown);
 
+    const vec3 refracted = bedLit * transmit + u_scatter * (1.0 - transmit);
+
+    // Reflection of the environment; a normal facing away from the eye (a silhouette) is
+    // turned towards it. A reflected ray into the water would hit the surface again: take the sky.
+    vec3 N = normal;
+    if (dot(N, V) < 0.0) N = normalize(N - 1.01 * dot(N, V) * V);
+    vec3 R = reflect(-V, N);
+    R.y = abs(R.y);
+    const vec3 reflected = textureLod(u_sky, R, u_reflectionLod).rgb;
+    // Fresnel, Schlick's approximation: F0 + (1 - F0) (1 - cos)^5.
+    const float c = 1.0 - clamp(dot(N, V), 0.0, 1.0);
+    const float c2 = c * c;
+    const float F = u_f0 + (1.0 - u_f0) * (c2 * c2 * c);
+
     vertices[id].position = vec4(world, 1.0);
-    vertices[id].normal = vec4(normal, 0.0);
-    vertices[id].refracted = vec4(bedLit * transmit + u_scatter * (1.0 - transmit), 1.0);
+    vertices[id].reflected = vec4(R, 0.0);
+    vertices[id].shade = vec4(mix(refracted, reflected, F), F);
 }

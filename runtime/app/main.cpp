@@ -11,6 +11,7 @@
 #include "swell/runtime/gpu_reconstruction.h"
 #include "swell/runtime/height_png.h"
 #include "swell/runtime/mode_replay.h"
+#include "swell/runtime/mode_splashes.h"
 #include "swell/runtime/slice_sampler.h"
 #include "swell/runtime/splash_system.h"
 #include "swell/runtime/water_renderer.h"
@@ -26,6 +27,7 @@
 #include <fstream>
 #include <iostream>
 #include <spawn.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -37,6 +39,14 @@ using namespace swell;
 using namespace swell::runtime;
 using json = nlohmann::json;
 using Clock = std::chrono::steady_clock;
+
+/// CPU time of the whole process (every thread, llvmpipe's included), ms.
+double processCpuMs() {
+    rusage u{};
+    ::getrusage(RUSAGE_SELF, &u);
+    return 1e3 * (static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec)) +
+           1e-3 * static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
 
 double msSince(Clock::time_point t0) {
     return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
@@ -563,13 +573,13 @@ int runRender(Options& o, RenderOptions& r) {
     const EglContext context;
     ModeReplay gpu(set, o.params, o.modeParams, samplers);
     const Grid& grid = gpu.grid();
-    // Splash sprites sit on straight transverse slices (Sec. 5, surging wave); the ripple's
-    // rotated slice sets and the whirlpool's spirals draw no splash pass yet.
-    const bool splashMode = o.modeParams.mode == ReplayMode::Surging;
     const cache::Domain& domain = set.header.domain;
     const double waterLevel = domain.yMin + waterDepth(set);
-    Camera camera =
-        defaultCamera(grid, domain, waterLevel, static_cast<double>(width) / height, r.fov);
+    // The whirlpool's spirals show best from higher up; the surging and ripple waves from a
+    // lower three-quarter view.
+    const double elevation = o.modeParams.mode == ReplayMode::Whirlpool ? 55.0 : 28.0;
+    Camera camera = defaultCamera(grid, domain, waterLevel, static_cast<double>(width) / height,
+                                  r.fov, elevation);
     if (!r.eye.empty()) {
         camera.position = toVec3(r.eye, "--camera");
         camera.target = toVec3(r.target, "--target");
@@ -577,7 +587,14 @@ int runRender(Options& o, RenderOptions& r) {
     camera.validate();
     WaterRenderer renderer(grid, domain, r.shading, faces, sunDirection(r.sky));
     // The artificial splashes get their own stream, derived from the run's seed.
-    const SplashSystem splashes(set, grid, r.splash, o.params.seed ^ 0x5b1a54e5ULL);
+    // Each slice set (the ripple's directions) has its own; they follow the mode's layout
+    // (mode_splashes.h).
+    std::vector<SplashSystem> splashSets;
+    splashSets.reserve(samplers.size());
+    for (int d = 0; d < static_cast<int>(samplers.size()); ++d)
+        splashSets.emplace_back(set, grid, r.splash,
+                                sliceSetSeed(o.params.seed, d) ^ 0x5b1a54e5ULL);
+    const SplashSystem& splashes = splashSets.front();
     // Stage times (GL timestamp queries) on every 8th frame; the frame rate is taken over the
     // other frames, so the queries do not slow what is measured.
     constexpr std::size_t kTimedEvery = 8;
@@ -591,10 +608,10 @@ int runRender(Options& o, RenderOptions& r) {
     std::vector<Image> sheet;
     json frames = json::array();
     double drawMs = 0.0, spriteMs = 0.0, readMs = 0.0, writeMs = 0.0, exportMs = 0.0;
-    double lookupMs = 0.0, reconstructMs = 0.0, timedDrawMs = 0.0;
+    double lookupMs = 0.0, reconstructMs = 0.0, timedDrawMs = 0.0, drawCpuMs = 0.0;
     std::size_t timedFrames = 0;
     RenderStageTimes stages;
-    std::size_t spriteTotal = 0;
+    std::size_t spriteTotal = 0, culledTotal = 0;
     const bool progress = ::isatty(2) != 0 && !o.json;
     const auto t0 = Clock::now();
     for (std::size_t i = 0; i < count; ++i) {
@@ -602,8 +619,12 @@ int runRender(Options& o, RenderOptions& r) {
         auto ts = Clock::now();
         // Each real slice shows its own frame's splashes: the same frame choice as the GPU (eq. 5).
         std::vector<SplashSprite> sprites;
-        if (splashMode && splashes.active())
-            sprites = splashes.sprites(samplers.front().frames(taus[i]), seconds);
+        for (std::size_t d = 0; d < splashSets.size() && splashes.active(); ++d) {
+            std::vector<SplashSprite> more =
+                splashSets[d].sprites(samplers[d].frames(taus[i]), seconds);
+            placeSplashes(more, grid, o.modeParams, static_cast<int>(d), taus[i]);
+            sprites.insert(sprites.end(), more.begin(), more.end());
+        }
         spriteMs += msSince(ts);
         spriteTotal += sprites.size();
 
@@ -612,10 +633,13 @@ int runRender(Options& o, RenderOptions& r) {
         gpu.setTiming(timed);
         renderer.setTiming(timed);
         ts = Clock::now();
+        const double cpu0 = processCpuMs();
         gpu.update(taus[i]);
         renderer.draw(gpu.heightBuffer(), camera, sprites, r.splash.spriteRadius);
         gpu.finish();
         const double frameDrawMs = msSince(ts);
+        const double frameCpuMs = processCpuMs() - cpu0;
+        culledTotal += renderer.lastCulledSplashCount();
         if (timed) {
             ++timedFrames;
             timedDrawMs += frameDrawMs;
@@ -629,6 +653,7 @@ int runRender(Options& o, RenderOptions& r) {
             stages.resolveMs += st.resolveMs;
         } else {
             drawMs += frameDrawMs;
+            drawCpuMs += frameCpuMs;
         }
 
         ts = Clock::now();
@@ -647,7 +672,8 @@ int runRender(Options& o, RenderOptions& r) {
         json entry{{"file", name},
                    {"tau", taus[i]},
                    {"seconds", seconds},
-                   {"splash_sprites", sprites.size()}};
+                   {"splash_sprites", sprites.size()},
+                   {"splash_sprites_culled", renderer.lastCulledSplashCount()}};
         if (exportHeights || exportMesh) {
             const HeightField field = gpu.readHeights();
             if (exportHeights) {
@@ -748,7 +774,8 @@ int runRender(Options& o, RenderOptions& r) {
                    {"lifetime_s", {r.splash.minLifetime, r.splash.maxLifetime}},
                    {"gravity", r.splash.gravity},
                    {"seed", o.params.seed ^ 0x5b1a54e5ULL},
-                   {"sprites_mean", static_cast<double>(spriteTotal) / n}}},
+                   {"sprites_mean", static_cast<double>(spriteTotal) / n},
+                   {"culled_under_water_mean", static_cast<double>(culledTotal) / n}}},
                  {"exports",
                   {{"heights", exportHeights}, {"mesh", exportMesh}, {"splashes", exportSplashes}}},
                  {"height_scale",
@@ -767,6 +794,7 @@ int runRender(Options& o, RenderOptions& r) {
                  {"shaded_fps_frames", untimed > 0 ? untimed : nt},
                  {"timing_ms_per_frame",
                   {{"draw_synced", drawMsPerFrame},
+                   {"draw_cpu", untimed > 0 ? drawCpuMs / untimed : 0.0},
                    {"splash_sprites_cpu", spriteMs / n},
                    {"readback", readMs / n},
                    {"png_write", writeMs / n},

@@ -48,7 +48,7 @@ void Camera::validate() const {
 }
 
 Camera defaultCamera(const Grid& grid, const cache::Domain& domain, double waterLevel,
-                     double aspect, double fovYDegrees) {
+                     double aspect, double fovYDegrees, double elevationDegrees) {
     using std::numbers::pi;
     const double sizeX = grid.cellsX * grid.dx;
     const double sizeZ = grid.extentZ;
@@ -62,7 +62,9 @@ Camera defaultCamera(const Grid& grid, const cache::Domain& domain, double water
     c.target = {grid.x0 + 0.5 * sizeX, waterLevel, 0.5 * sizeZ};
     const double radius =
         0.5 * std::sqrt(sizeX * sizeX + sizeZ * sizeZ + (yHigh - yLow) * (yHigh - yLow));
-    const double elevation = 28.0 * pi / 180.0;
+    if (!(elevationDegrees > 0.0 && elevationDegrees < 90.0))
+        throw std::invalid_argument("default camera elevation must be in (0, 90) degrees");
+    const double elevation = elevationDegrees * pi / 180.0;
     const double azimuth = -35.0 * pi / 180.0; // from +z towards -x: the waves run to the right
     const Vec3 dir{std::cos(elevation) * std::sin(azimuth), std::sin(elevation),
                    std::cos(elevation) * std::cos(azimuth)};

@@ -184,6 +184,27 @@ CubeFaces loadSkyImages(const std::filesystem::path& dir) {
     return faces;
 }
 
+Vec3 zenithRadiance(const CubeFaces& faces) {
+    const Image& top = faces[2]; // +y
+    if (top.width <= 0 || top.height <= 0)
+        throw std::invalid_argument("zenithRadiance: empty +y face");
+    auto decode = [](std::uint8_t byte) { // the GL sRGB8 decoding
+        const double c = byte / 255.0;
+        return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
+    };
+    // (0, 1, 0) is the face's centre: texel (n - 1) / 2 for odd n, the four around it for even.
+    const int x0 = (top.width - 1) / 2, x1 = top.width / 2;
+    const int y0 = (top.height - 1) / 2, y1 = top.height / 2;
+    Vec3 sum{0.0, 0.0, 0.0};
+    for (int y : {y0, y1})
+        for (int x : {x0, x1})
+            for (int k = 0; k < 3; ++k)
+                sum[static_cast<std::size_t>(k)] += decode(top.pixel(x, y)[k]);
+    for (double& c : sum)
+        c *= 0.25;
+    return sum;
+}
+
 GlTexture makeCubemapTexture(const CubeFaces& faces) {
     const int n = faces[0].width;
     for (const Image& im : faces) {

@@ -2,6 +2,8 @@
 
 #include "swell/runtime/error.h"
 #include "swell/runtime/graphics_program.h"
+#include "swell/runtime/mesh_order.h"
+#include "swell/runtime/splash_culling.h"
 
 #define GL_GLEXT_PROTOTYPES
 #include <GL/glcorearb.h>
@@ -21,7 +23,7 @@ namespace {
 constexpr GLint kViewProj = 0, kCells = 1, kOrigin = 2, kSpacing = 3, kEye = 4, kSunDir = 5,
                 kBedY = 6, kAbsorption = 7, kScatter = 8, kBed = 9, kEta = 10, kF0 = 11, kSun = 12,
                 kSunColour = 13, kEdge = 14, kPixelsPerMetre = 15, kRadius = 16, kSplashColour = 17,
-                kReflectionLod = 18;
+                kReflectionLod = 18, kAmbient = 19, kDropLight = 20;
 
 void setVec3(GLuint program, GLint loc, const Vec3& v) {
     glProgramUniform3f(program, loc, static_cast<float>(v[0]), static_cast<float>(v[1]),
@@ -72,26 +74,17 @@ WaterRenderer::WaterRenderer(const Grid& grid, const cache::Domain& domain,
     m_sky = makeCubemapTexture(sky);
     glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
 
-    // Triangles of the N x M vertex grid (vertex id m * N + n).
+    // Triangles of the N x M vertex grid (vertex id m * N + n), reordered front to back for
+    // each new eye point (updateMeshOrder).
     const int N = grid.cellsX, M = grid.cellsZ;
-    std::vector<std::uint32_t> indices;
-    indices.reserve(static_cast<std::size_t>(N - 1) * (M - 1) * 6);
-    for (int m = 0; m + 1 < M; ++m) {
-        for (int n = 0; n + 1 < N; ++n) {
-            const auto a = static_cast<std::uint32_t>(m * N + n), b = a + 1;
-            const auto c = a + static_cast<std::uint32_t>(N), d = c + 1;
-            for (std::uint32_t i : {a, c, b, b, c, d})
-                indices.push_back(i);
-        }
-    }
-    m_indexCount = indices.size();
+    m_indexCount = static_cast<std::size_t>(N - 1) * static_cast<std::size_t>(M - 1) * 6;
     GLuint name = 0;
     glCreateBuffers(1, &name);
     m_indices = GlBuffer(name);
-    glNamedBufferStorage(name, static_cast<GLsizeiptr>(indices.size() * sizeof(std::uint32_t)),
-                         indices.data(), 0);
-    // The mesh's vertices, written by surface_vertices.comp each frame: position, normal and
-    // refracted colour, three vec4 per vertex.
+    glNamedBufferStorage(name, static_cast<GLsizeiptr>(m_indexCount * sizeof(std::uint32_t)),
+                         nullptr, GL_DYNAMIC_STORAGE_BIT);
+    // The mesh's vertices, written by surface_vertices.comp each frame: position, reflected
+    // view ray, shaded colour and Fresnel weight, three vec4 per vertex.
     constexpr GLsizei kVertexBytes = 3 * 4 * sizeof(float);
     glCreateBuffers(1, &name);
     m_vertices = GlBuffer(name);
@@ -168,15 +161,22 @@ WaterRenderer::WaterRenderer(const Grid& grid, const cache::Domain& domain,
     const GLuint v = m_surfaceProgram.get();
     setVec3(v, kBed, shading.bedColour);
     glProgramUniform1f(v, kEta, eta);
+    glProgramUniform1f(v, kF0, f0);
+    glProgramUniform1f(v, kReflectionLod, static_cast<float>(shading.reflectionLod));
     glProgramUniform1f(m_skirtProgram.get(), kF0, f0);
     const GLuint w = m_waterProgram.get();
     setVec3(w, kSunDir, sun);
-    glProgramUniform1f(w, kF0, f0);
-    glProgramUniform1f(w, kReflectionLod, static_cast<float>(shading.reflectionLod));
     glProgramUniform2f(w, kSun, static_cast<float>(shading.sunShininess),
                        static_cast<float>(shading.sunIntensity));
     setVec3(w, kSunColour, shading.sunColour);
-    setVec3(m_splashProgram.get(), kSunDir, sun);
+    const Vec3 ambient = zenithRadiance(sky);
+    setVec3(m_skirtProgram.get(), kAmbient, ambient);
+    setVec3(m_splashProgram.get(), kAmbient, ambient);
+    Vec3 dropLight{sun[0], sun[1], sun[2] + 0.5};
+    const double dropNorm = std::hypot(dropLight[0], dropLight[1], dropLight[2]);
+    for (double& c : dropLight)
+        c /= dropNorm;
+    setVec3(m_splashProgram.get(), kDropLight, dropLight);
     setVec3(m_splashProgram.get(), kSplashColour, shading.splashColour);
     checkGl("setting up the water renderer");
 }
@@ -217,9 +217,28 @@ void WaterRenderer::draw(GlName heightBuffer, const Camera& camera,
                             m_backgroundCamera.fovYDegrees == camera.fovYDegrees;
     if (!sameCamera)
         renderBackground(camera, invViewProj);
+    if (!m_indexValid || m_indexEye != eye)
+        updateMeshOrder(eye);
 
-    // 1. Environment: the cached sky pass, copied by a texel-fetch pass (a framebuffer blit
-    //    cannot write a multisampled target).
+    m_lastSplashes = splashes.size();
+    m_lastCulled = 0;
+    const double pixelsPerMetre =
+        H / (2.0 * std::tan(0.5 * camera.fovYDegrees * std::numbers::pi / 180.0));
+    if (!splashes.empty()) {
+        // Drops under the (opaque) surface are invisible: skip their vertex and set-up work.
+        // The heights are read before anything is drawn: once a draw reading them (the sides)
+        // is in flight, llvmpipe would wait for it to be rasterised before mapping the buffer.
+        m_heights.resize(static_cast<std::size_t>(m_grid.cellsX) * m_grid.cellsZ);
+        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+        glGetNamedBufferSubData(heightBuffer, 0,
+                                static_cast<GLsizeiptr>(m_heights.size() * sizeof(float)),
+                                m_heights.data());
+        m_visibleSprites.clear();
+        m_lastCulled = cullSubmergedSplashes(splashes, m_heights, m_grid,
+                                             {splashRadius, eye, pixelsPerMetre}, m_visibleSprites);
+    }
+    // 1. Environment: the cached sky pass, copied (a texel-fetch pass when multisampled: a copy
+    //    or a framebuffer blit cannot write a multisampled target).
     stamp(m_queries[0]);
     glEnable(GL_FRAMEBUFFER_SRGB); // shaders write linear RGB; the colour buffers are sRGB
     glBindFramebuffer(GL_FRAMEBUFFER, m_msFramebuffer);
@@ -229,11 +248,17 @@ void WaterRenderer::draw(GlName heightBuffer, const Camera& camera,
     // Depth and stencil are cleared together (llvmpipe's fast path; a depth-only clear, or
     // writing the far depth from the background pass, measured several times slower).
     glClear(GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
-    glDisable(GL_DEPTH_TEST);
     glBindVertexArray(m_vertexArray);
-    glBindTextureUnit(1, m_background.get());
-    glUseProgram(m_backgroundProgram.get());
-    glDrawArrays(GL_TRIANGLES, 0, 3);
+    if (m_samples == 1) {
+        // A plain copy (a memcpy on llvmpipe: no sRGB decoding and encoding per pixel).
+        glCopyImageSubData(m_background.get(), GL_TEXTURE_2D, 0, 0, 0, 0, m_renderbuffers[0],
+                           GL_RENDERBUFFER, 0, 0, 0, 0, W, H, 1);
+    } else {
+        glDisable(GL_DEPTH_TEST);
+        glBindTextureUnit(1, m_background.get());
+        glUseProgram(m_backgroundProgram.get());
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+    }
     glBindTextureUnit(0, m_sky.get());
     stamp(m_queries[1]);
 
@@ -242,9 +267,8 @@ void WaterRenderer::draw(GlName heightBuffer, const Camera& camera,
     glDepthFunc(GL_LESS);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, heightBuffer);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, m_vertices.get());
-    for (GLuint p : {m_surfaceProgram.get(), m_waterProgram.get(), m_skirtProgram.get()}) {
+    for (GLuint p : {m_surfaceProgram.get(), m_skirtProgram.get()})
         setVec3(p, kEye, eye);
-    }
     for (GLuint p : {m_waterProgram.get(), m_skirtProgram.get()}) {
         glProgramUniformMatrix4fv(p, kViewProj, 1, GL_FALSE, viewProj.data());
     }
@@ -263,22 +287,23 @@ void WaterRenderer::draw(GlName heightBuffer, const Camera& camera,
             glDrawArrays(GL_TRIANGLE_STRIP, 0, 2 * (edge < 2 ? m_grid.cellsX : m_grid.cellsZ));
         }
     }
+    // Hand the sky and water to llvmpipe's rasteriser threads now: they shade them while this
+    // thread sets up the splash sprites (vertex processing and binning run on one thread).
+    glFlush();
     stamp(m_queries[2]);
 
     // 3. Splash point sprites (Sec. 5), blended over the water, depth tested, not written.
-    m_lastSplashes = splashes.size();
-    if (!splashes.empty()) {
-        const auto bytes = static_cast<GLsizeiptr>(splashes.size_bytes());
-        if (splashes.size() > m_splashCapacity) {
-            m_splashCapacity = splashes.size() + splashes.size() / 2;
+    if (!splashes.empty() && !m_visibleSprites.empty()) {
+        const std::span<const SplashSprite> visible(m_visibleSprites);
+        const auto bytes = static_cast<GLsizeiptr>(visible.size_bytes());
+        if (visible.size() > m_splashCapacity) {
+            m_splashCapacity = visible.size() + visible.size() / 2;
             glNamedBufferData(m_splashBuffer.get(),
                               static_cast<GLsizeiptr>(m_splashCapacity * sizeof(SplashSprite)),
                               nullptr, GL_STREAM_DRAW);
         }
-        glNamedBufferSubData(m_splashBuffer.get(), 0, bytes, splashes.data());
+        glNamedBufferSubData(m_splashBuffer.get(), 0, bytes, visible.data());
         glVertexArrayVertexBuffer(m_splashArray, 0, m_splashBuffer.get(), 0, sizeof(SplashSprite));
-        const double pixelsPerMetre =
-            H / (2.0 * std::tan(0.5 * camera.fovYDegrees * std::numbers::pi / 180.0));
         const GLuint p = m_splashProgram.get();
         glProgramUniformMatrix4fv(p, kViewProj, 1, GL_FALSE, viewProj.data());
         glProgramUniform1f(p, kPixelsPerMetre, static_cast<float>(pixelsPerMetre));
@@ -289,7 +314,7 @@ void WaterRenderer::draw(GlName heightBuffer, const Camera& camera,
         glDepthMask(GL_FALSE);
         glUseProgram(p);
         glBindVertexArray(m_splashArray);
-        glDrawArrays(GL_POINTS, 0, static_cast<GLsizei>(splashes.size()));
+        glDrawArrays(GL_POINTS, 0, static_cast<GLsizei>(visible.size()));
         glDepthMask(GL_TRUE);
         glDisable(GL_BLEND);
     }
@@ -307,6 +332,21 @@ void WaterRenderer::draw(GlName heightBuffer, const Camera& camera,
     m_timed = m_timing;
     m_splashTimed = !splashes.empty();
     checkGl("drawing the water");
+}
+
+void WaterRenderer::updateMeshOrder(const Vec3& eye) {
+    const MeshLayout mesh{.verticesX = m_grid.cellsX,
+                          .verticesZ = m_grid.cellsZ,
+                          .x0 = m_grid.x0 + 0.5 * m_grid.dx,
+                          .z0 = 0.5 * m_grid.dz,
+                          .dx = m_grid.dx,
+                          .dz = m_grid.dz};
+    const std::vector<std::uint32_t> indices = frontToBackIndices(mesh, eye);
+    glNamedBufferSubData(m_indices.get(), 0,
+                         static_cast<GLsizeiptr>(indices.size() * sizeof(std::uint32_t)),
+                         indices.data());
+    m_indexEye = eye;
+    m_indexValid = true;
 }
 
 void WaterRenderer::renderBackground(const Camera& camera, const Mat4& invViewProj) {

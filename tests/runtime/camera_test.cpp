@@ -50,22 +50,25 @@ TEST(Camera, TargetProjectsToTheCentreAndInverseInverts) {
 TEST(Camera, DefaultFramingShowsTheWholeMesh) {
     const Grid g = testGrid();
     for (double aspect : {16.0 / 9.0, 1.0, 0.6}) {
-        const Camera c = defaultCamera(g, kDomain, 0.5, aspect);
-        EXPECT_NO_THROW(c.validate());
-        const Mat4 vp = multiply(projectionMatrix(c, aspect), viewMatrix(c));
-        for (double x : {g.x0, g.x0 + g.cellsX * g.dx}) {
-            for (double y : {0.0, 0.9}) {
-                for (double z : {0.0, g.extentZ}) {
-                    const auto p = transform(vp, x, y, z);
-                    ASSERT_GT(p[3], 0.0);
-                    EXPECT_LE(std::abs(p[0] / p[3]), 1.0) << aspect << " " << x << " " << z;
-                    EXPECT_LE(std::abs(p[1] / p[3]), 1.0) << aspect << " " << y;
-                    EXPECT_GT(p[2] / p[3], -1.0); // not clipped by the near plane
-                    EXPECT_LT(p[2] / p[3], 1.0);
+        for (double elevation : {28.0, 55.0}) {
+            const Camera c = defaultCamera(g, kDomain, 0.5, aspect, 40.0, elevation);
+            EXPECT_NO_THROW(c.validate());
+            const Mat4 vp = multiply(projectionMatrix(c, aspect), viewMatrix(c));
+            for (double x : {g.x0, g.x0 + g.cellsX * g.dx}) {
+                for (double y : {0.0, 0.9}) {
+                    for (double z : {0.0, g.extentZ}) {
+                        const auto p = transform(vp, x, y, z);
+                        ASSERT_GT(p[3], 0.0);
+                        EXPECT_LE(std::abs(p[0] / p[3]), 1.0) << aspect << " " << x << " " << z;
+                        EXPECT_LE(std::abs(p[1] / p[3]), 1.0) << aspect << " " << y;
+                        EXPECT_GT(p[2] / p[3], -1.0); // not clipped by the near plane
+                        EXPECT_LT(p[2] / p[3], 1.0);
+                    }
                 }
             }
         }
     }
+    EXPECT_THROW(defaultCamera(g, kDomain, 0.5, 1.0, 40.0, 90.0), std::invalid_argument);
 }
 
 TEST(Camera, ValidateNamesTheProblem) {

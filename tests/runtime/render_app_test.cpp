@@ -124,6 +124,33 @@ TEST_F(RenderApp, SameSeedSameFramesOtherSeedOtherFrames) {
     EXPECT_LT(compareImages(a, readPng(s_dir / "s3" / "frame_00003.png")).psnr, 45.0);
 }
 
+TEST_F(RenderApp, RippleAndWhirlpoolDrawSplashesAndTheWhirlpoolIsSeenFromHigher) {
+    double eyeHeight[3] = {0.0, 0.0, 0.0};
+    std::size_t sprites[3] = {0, 0, 0};
+    const char* modes[3] = {"surging", "ripple", "whirlpool"};
+    for (int k = 0; k < 3; ++k) {
+        const fs::path out = s_dir / (std::string("mode_") + modes[k]);
+        // A square mesh: the whirlpool's spirals (inner radius 15 cells) need the room.
+        const Result r =
+            run("render " + cache() + " --out " + out.string() + " --mode " + modes[k] +
+                " --res 64x64 --slices 16 --size 160x90 --seconds 0.2 --fps 20 --json");
+        ASSERT_EQ(r.code, 0) << modes[k] << ": " << r.err;
+        const nlohmann::json meta = nlohmann::json::parse(slurp(out / "render.json"));
+        EXPECT_TRUE(meta["splash"]["active"].get<bool>()) << modes[k];
+        for (const auto& f : meta["frames"])
+            sprites[k] += f["splash_sprites"].get<std::size_t>();
+        eyeHeight[k] =
+            meta["camera"]["position"][1].get<double>() - meta["camera"]["target"][1].get<double>();
+    }
+    for (int k = 0; k < 3; ++k)
+        EXPECT_GT(sprites[k], 0u) << modes[k];
+    // Two ripple directions: about twice the surging's sprites (less those past the mesh).
+    EXPECT_GT(sprites[1], sprites[0]);
+    // 55 degrees above the horizon instead of 28 (relative to the distance: the height over
+    // the target grows more than the framing distance changes).
+    EXPECT_GT(eyeHeight[2], eyeHeight[0]);
+}
+
 TEST_F(RenderApp, ACacheWithoutSplashRunsNoSplashPass) {
     const fs::path out = s_dir / "calm";
     const Result r =

@@ -90,3 +90,38 @@ TEST(SkyCubemap, UserImagesLoadOrNameTheMissingFile) {
 
 } // namespace
 } // namespace swell::runtime
+
+namespace swell::runtime {
+namespace {
+
+TEST(SkyCubemap, ZenithRadianceIsTheSrgbDecodedCentreOfTheTopFace) {
+    CubeFaces faces;
+    for (Image& f : faces)
+        f = Image(4, 4);
+    // The centre of an even face lies between its four middle texels: their mean, decoded.
+    const std::uint8_t values[4] = {0, 255, 128, 10};
+    int k = 0;
+    for (int y : {1, 2})
+        for (int x : {1, 2}) {
+            std::uint8_t* p = faces[2].pixel(x, y);
+            p[0] = values[k++];
+            p[1] = 255;
+            p[2] = 0;
+        }
+    const Vec3 z = zenithRadiance(faces);
+    const double mid = std::pow((128.0 / 255.0 + 0.055) / 1.055, 2.4);
+    EXPECT_NEAR(z[0], (0.0 + 1.0 + mid + 10.0 / 255.0 / 12.92) / 4.0, 1e-12);
+    EXPECT_NEAR(z[1], 1.0, 1e-12);
+    EXPECT_NEAR(z[2], 0.0, 1e-12);
+    // An odd face: its middle texel.
+    faces[2] = Image(3, 3);
+    faces[2].pixel(1, 1)[2] = 255;
+    EXPECT_NEAR(zenithRadiance(faces)[2], 1.0, 1e-12);
+    EXPECT_NEAR(zenithRadiance(faces)[0], 0.0, 1e-12);
+    // The procedural sky: bluish straight up.
+    const Vec3 sky = zenithRadiance(proceduralSky(SkyParams{}));
+    EXPECT_GT(sky[2], sky[0]);
+}
+
+} // namespace
+} // namespace swell::runtime

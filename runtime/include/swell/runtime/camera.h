@@ -27,13 +27,14 @@ struct Camera {
 };
 
 /// A three-quarter view of the whole base mesh: the eye looks across the propagation
-/// direction (x) from the far z side, slightly against the waves, 28 degrees above the
-/// horizon, at the nearest distance where the box of the mesh (x and z extent, from the bed to
+/// direction (x) from the far z side, slightly against the waves, `elevationDegrees` (28 by
+/// default; swell-play uses more for the whirlpool, whose spirals show best from above) above
+/// the horizon, at the nearest distance where the box of the mesh (x and z extent, from the bed to
 /// halfway between `waterLevel` and the domain's top) fills at most 92% of the picture at
 /// `aspect` (width / height), with the box centred in the picture. Clip planes follow from
 /// the distance.
 Camera defaultCamera(const Grid& grid, const cache::Domain& domain, double waterLevel,
-                     double aspect, double fovYDegrees = 40.0);
+                     double aspect, double fovYDegrees = 40.0, double elevationDegrees = 28.0);
 
 /// Right-handed view matrix (camera looks down -z, y up).
 Mat4 viewMatrix(const Camera& camera);

@@ -42,6 +42,12 @@ CubeFaces loadSkyImages(const std::filesystem::path& dir);
 /// Direction of texel (x, y) of face `face` (0..5) of an edge-`size` cube map (not normalised).
 Vec3 cubeDirection(int face, int x, int y, int size);
 
+/// The linear RGB radiance straight up: what sampling the cube map of `faces` at (0, 1, 0)
+/// gives (sRGB-decoded texels at the centre of the +y face, bilinear). The diffuse sky light of
+/// splash drops and the block's sides, passed to their shaders as a constant instead of a
+/// cube-map lookup per fragment.
+Vec3 zenithRadiance(const CubeFaces& faces);
+
 /// A GL cube-map texture (sRGB8, mipmapped, bilinear within a level; seamless filtering is
 /// enabled by the renderer).
 /// Needs a current context. Throws std::invalid_argument for faces that are not square or

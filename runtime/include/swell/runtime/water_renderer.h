@@ -14,6 +14,7 @@
 #include "swell/runtime/splash_system.h"
 
 #include <span>
+#include <vector>
 
 namespace swell::runtime {
 
@@ -74,9 +75,12 @@ public:
     int samples() const { return m_samples; }
     /// Splash sprites drawn by the last draw() (0: no splash pass ran).
     std::size_t lastSplashCount() const { return m_lastSplashes; }
+    /// Of those, the sprites not drawn because they were under the water (cullSubmergedSplashes).
+    std::size_t lastCulledSplashCount() const { return m_lastCulled; }
 
 private:
     void renderBackground(const Camera& camera, const Mat4& invViewProj);
+    void updateMeshOrder(const Vec3& eye);
     void stamp(const GlQuery& query) const;
 
     Grid m_grid;
@@ -89,6 +93,9 @@ private:
     bool m_splashTimed = false;
     std::size_t m_lastSplashes = 0;
     std::size_t m_splashCapacity = 0;
+    std::size_t m_lastCulled = 0;
+    std::vector<float> m_heights;               // read back for the splash culling
+    std::vector<SplashSprite> m_visibleSprites; // the sprites drawn
 
     GlProgram m_skyProgram;
     GlProgram m_waterProgram;
@@ -102,7 +109,9 @@ private:
     Camera m_backgroundCamera;
     bool m_backgroundValid = false;
     GlTexture m_sky;
-    GlBuffer m_indices;
+    GlBuffer m_indices; // the mesh's triangles, front to back from m_indexEye
+    Vec3 m_indexEye{0.0, 0.0, 0.0};
+    bool m_indexValid = false;
     GlBuffer m_splashBuffer;
     GlName m_vertexArray = 0; // no attributes
     GlName m_meshArray = 0;   // the mesh: m_vertices + m_indices
