@@ -133,7 +133,7 @@ class Bench:
     def regular_wave(self):
         self.note_load("regular wave")
         has_validate = "regular-wave" in self.run([bl.exe("swell-validate"), "--help"], 60).out
-        spacings = [0.04, 0.02] if self.quick else [0.04, 0.02, 0.01]
+        spacings = [0.04, 0.02, 0.0133333] if self.quick else [0.04, 0.02, 0.0133333, 0.01]
         rows = []
         with open(scene("regular_wave_small.json")) as f:
             sc = json.load(f)
@@ -141,20 +141,38 @@ class Bench:
         h = sc["geometry"]["water"][0]["y1"] - sc["geometry"]["water"][0]["y0"]
         theory = biesel(S, T, h)
         for l0 in spacings:
-            dt = 0.002 * l0 / 0.02
+            dt = round(0.002 * l0 / 0.02, 9)
+            s = {"geometry.particle_spacing": "%.7g" % l0, "solver.dt": "%.7g" % dt}
+            row = {"resolution": "h/%d" % round(h / l0), "l0_m": l0, "dt_s": dt,
+                   "theory_H_m": theory["H"], "theory_L_m": theory["L"]}
+            if has_validate:
+                r = self.run([bl.exe("swell-validate"), "--json", "--threads", "1"] + sets(s) +
+                             ["regular-wave", scene("regular_wave_small.json")], 3600)
+                j = r.json or {}
+                hs, he = j.get("heights") or [None], j.get("height_errors") or [None]
+                win = j.get("window")
+                row.update({"particles": (j.get("water") or 0) + (j.get("fixed") or 0) or None,
+                            "water": j.get("water"), "steps": j.get("steps"),
+                            "outcome": j.get("outcome", "exit %s: %s" % (r.rc, r.last_err_line())),
+                            "window_s": "%.1f-%.1f" % tuple(win) if win else None,
+                            "H_m": hs[0], "height_error": he[0], "theory_H_m": j.get("height_theory", theory["H"]),
+                            "L_m": j.get("wavelength"), "wavelength_error": j.get("wavelength_error"),
+                            "theory_L_m": j.get("wavelength_theory", theory["L"]),
+                            "wall_s": j.get("wall_seconds", r.wall),
+                            "us_per_particle_step": j.get("us_per_particle_step"),
+                            "source": "swell-validate regular-wave"})
+                rows.append(row)
+                continue
             cache = os.path.join(OUT, "rw_%g.swell" % l0)
             probes = os.path.join(OUT, "rw_%g.probes.csv" % l0)
-            s = {"geometry.particle_spacing": "%g" % l0, "solver.dt": "%g" % dt}
             r = self.run([bl.exe("swell-bake"), scene("regular_wave_small.json"), "-o", cache,
                           "--probes", probes, "--threads", "1", "--json", "-q"] + sets(s), 3600)
             j = r.json or {}
-            row = {"resolution": "h/%d" % round(h / l0), "l0_m": l0, "dt_s": dt,
-                   "particles": (j.get("particles_water") or 0) + (j.get("particles_wall") or 0) or None,
-                   "water": j.get("particles_water"), "steps": j.get("steps"),
-                   "outcome": "stable" if r.rc == 0 else "exit %s: %s" % (r.rc, r.last_err_line()),
-                   "theory_H_m": theory["H"], "theory_L_m": theory["L"],
-                   "wall_s": j.get("wall_seconds", r.wall),
-                   "us_per_particle_step": None, "source": "swell-bake --probes, fit by tools/bench"}
+            row.update({"particles": (j.get("particles_water") or 0) + (j.get("particles_wall") or 0) or None,
+                        "water": j.get("particles_water"), "steps": j.get("steps"),
+                        "outcome": "stable" if r.rc == 0 else "exit %s: %s" % (r.rc, r.last_err_line()),
+                        "wall_s": j.get("wall_seconds", r.wall), "us_per_particle_step": None,
+                        "source": "swell-bake --probes, fit by tools/bench"})
             if j.get("steps") and row["particles"]:
                 row["us_per_particle_step"] = 1e3 * j["ms_per_step"] / row["particles"]
             if r.rc == 0:
@@ -166,15 +184,16 @@ class Bench:
                 if "L_m" in fit:
                     row["wavelength_error"] = fit["L_m"] / theory["L"] - 1.0
             rows.append(row)
-            for p in (cache,):
-                if os.path.exists(p):
-                    os.remove(p)
-        note = ("computed here from the `swell-bake --probes` gauge records (least-squares "
-                "harmonic fit, as docs/validation.md section 5)")
+            if os.path.exists(cache):
+                os.remove(cache)
         if has_validate:
-            note += "; `swell-validate regular-wave` exists but is not used by this table"
+            note = ("`swell-validate --json --threads 1 --set geometry.particle_spacing=L0 --set solver.dt=DT "
+                    "regular-wave scenes/regular_wave_small.json`: its default fit window (after the ramp "
+                    "and the wave's arrival, before reflections)")
         else:
-            note += "; `swell-validate regular-wave` is not in this build"
+            note = ("`swell-validate regular-wave` is not in this build: computed here from `swell-bake "
+                    "--probes` gauge records (least-squares harmonic fit over t = 3-6 s, as "
+                    "docs/validation.md section 5)")
         return rows, note
 
     # ---------------------------------------------------------------- replay
@@ -328,56 +347,86 @@ class Bench:
                      "saves": "%.1f B per frame (%.1f%%)" % ((sizes[1] - sizes[0]) / 1200,
                                                             100 * (sizes[1] - sizes[0]) / sizes[1]),
                      "command": "swell-cache synth F --frames 1200 --surface 175 --splash 0|1"})
-        # Replay: no noise when F = 0.
+        # Replay: A/B pairs, interleaved so that both sides see the same load.
+        def ab(cmd_a, cmd_b, keys, n=2 * reps):
+            va, vb = {k: [] for k in keys}, {k: [] for k in keys}
+            for _ in range(n):
+                for cmd, into in ((cmd_a, va), (cmd_b, vb)):
+                    r = self.run(cmd, 600)
+                    for k in keys:
+                        v = r.json
+                        for part in k.split("."):
+                            v = v.get(part) if isinstance(v, dict) else None
+                        if v is not None:
+                            into[k].append(v)
+            med = lambda v: float(np.median(v)) if v else None
+            return {k: med(v) for k, v in va.items()}, {k: med(v) for k, v in vb.items()}
+
+        def saving(a, b, unit="ms/frame"):
+            if a is None or b is None:
+                return "-"
+            return "%.3f %s (%.0f%%)" % (b - a, unit, 100 * (b - a) / b) if b else "-"
+
         base = [bl.exe("swell-play"), "bench", cache, "--frames", 300, "--warmup", 20, "--error-frames", 1,
                 "--cpu-frames", 0, "--json"]
-        f0, _ = median_of(base + ["-F", "0"], "frame_ms_median")
-        f3, _ = median_of(base + ["-F", "0.3"], "frame_ms_median")
-        rows.append({"stage": "replay", "skip": "no noise when F = 0",
-                     "with_skip": "%.3f ms/frame (F = 0)" % f0 if f0 else "-",
-                     "without": "%.3f ms/frame (F = 0.3)" % f3 if f3 else "-",
-                     "saves": "%.3f ms/frame (%.0f%%)" % (f3 - f0, 100 * (f3 - f0) / f3) if f0 and f3 else "-",
-                     "command": "swell-play bench CACHE -F 0|0.3 --frames 300"})
-        # Replay: no synthesis pass for one direction.
-        a0, _ = median_of(base + ["--mode", "ripple", "--angles", "0"], "frame_ms_median")
-        a1, _ = median_of(base + ["--mode", "ripple", "--angles", "0.001"], "frame_ms_median")
+        keys = ["frame_ms_median", "stage_gpu_ms.slice_lookup", "upload_ms"]
+        f0, f3 = ab(base + ["-F", "0"], base + ["-F", "0.3"], keys)
+        rows.append({"stage": "replay", "skip": "no noise when F = 0 (no fBm noise built, no noise "
+                                                "lookup in the slice-lookup pass)",
+                     "with_skip": "slice lookup %s ms GPU, frame %s ms, set-up %s ms (F = 0)" % (
+                         bl.fmt(f0["stage_gpu_ms.slice_lookup"]), bl.fmt(f0["frame_ms_median"]),
+                         bl.fmt(f0["upload_ms"])),
+                     "without": "slice lookup %s ms GPU, frame %s ms, set-up %s ms (F = 0.3)" % (
+                         bl.fmt(f3["stage_gpu_ms.slice_lookup"]), bl.fmt(f3["frame_ms_median"]),
+                         bl.fmt(f3["upload_ms"])),
+                     "saves": "slice lookup: %s; whole frame: %s" % (
+                         saving(f0["stage_gpu_ms.slice_lookup"], f3["stage_gpu_ms.slice_lookup"], "ms"),
+                         saving(f0["frame_ms_median"], f3["frame_ms_median"], "ms")),
+                     "command": "swell-play bench CACHE -F 0|0.3 --frames 300 (interleaved)"})
+        a0, a1 = ab(base + ["--mode", "ripple", "--angles", "0"], base + ["--mode", "ripple", "--angles", "0.001"],
+                    ["frame_ms_median", "stage_gpu_ms.synthesis"])
         rows.append({"stage": "replay", "skip": "no synthesis pass for one unrotated direction",
-                     "with_skip": "%.3f ms/frame (--angles 0)" % a0 if a0 else "-",
-                     "without": "%.3f ms/frame (--angles 0.001)" % a1 if a1 else "-",
-                     "saves": "%.3f ms/frame (%.0f%%)" % (a1 - a0, 100 * (a1 - a0) / a1) if a0 and a1 else "-",
-                     "command": "swell-play bench CACHE --mode ripple --angles 0|0.001"})
-        # Replay: no splash pass without splashes; no readback without output.
+                     "with_skip": "%s ms/frame (--angles 0)" % bl.fmt(a0["frame_ms_median"]),
+                     "without": "%s ms/frame (--angles 0.001; synthesis pass %s ms GPU)" % (
+                         bl.fmt(a1["frame_ms_median"]), bl.fmt(a1["stage_gpu_ms.synthesis"])),
+                     "saves": saving(a0["frame_ms_median"], a1["frame_ms_median"]),
+                     "command": "swell-play bench CACHE --mode ripple --angles 0|0.001 (interleaved)"})
+        # Render: the splash pass skips itself for frames without splash particles.
+        sp0, sp8 = os.path.join(OUT, "synth_splash0.swell"), os.path.join(OUT, "synth_splash8.swell")
+        for p, n in ((sp0, 0), (sp8, 8)):
+            self.run([bl.exe("swell-cache"), "synth", p, "--frames", 1200, "--surface", 400, "--splash", n], 300)
         rdir = os.path.join(OUT, "render_skip")
-        stats = {}
-        for label, extra in [("splashes", []), ("none", ["--no-splashes"])]:
-            vals, reads = [], []
-            for _ in range(reps):
-                r = self.run([bl.exe("swell-play"), "render", cache, "--out", rdir, "--size", "320x180",
-                              "--seconds", "1", "--json"] + extra, 600)
-                if r.json:
-                    vals.append(r.json.get("shaded_fps"))
-                    st = r.json.get("timing_ms_per_frame") or {}
-                    reads.append(st.get("readback") if isinstance(st, dict) else None)
-                    stats["keys"] = list(r.json.keys())
-                    stats["json_" + label] = r.json
-            stats[label] = float(np.median([v for v in vals if v])) if any(vals) else None
-            stats["read_" + label] = float(np.median([v for v in reads if v])) if any(reads) else None
-        sp = (stats.get("json_splashes") or {}).get("stage_gpu_ms", {})
-        rows.append({"stage": "replay/render", "skip": "no splash pass without splashes (--no-splashes; "
-                                                     "the pass also skips itself for frames without any)",
-                     "with_skip": "%s shaded fps" % bl.fmt(stats.get("none")),
-                     "without": "%s shaded fps; splash sprites %s ms GPU" % (
-                         bl.fmt(stats.get("splashes")), bl.fmt(sp.get("splashes") if isinstance(sp, dict) else None)),
-                     "saves": "splash pass of the surging_small cache (%.1f splash particles per frame)" %
-                              s["splash_mean"],
-                     "command": "swell-play render CACHE --size 320x180 --seconds 1 [--no-splashes]"})
+        rend = lambda c, extra=(): [bl.exe("swell-play"), "render", c, "--out", rdir, "--size", "320x180",
+                                    "--seconds", "1", "--json"] + list(extra)
+        rk = ["shaded_fps", "stage_gpu_ms.splashes", "timing_ms_per_frame.draw_synced",
+              "timing_ms_per_frame.splash_sprites_cpu"]
+        r0, r8 = ab(rend(sp0), rend(sp8), rk, n=reps)
+        rows.append({"stage": "replay/render", "skip": "no splash pass without splashes",
+                     "with_skip": "%s ms/frame drawn (no splash particles: pass skipped)" % bl.fmt(
+                         r0["timing_ms_per_frame.draw_synced"]),
+                     "without": "%s ms/frame drawn with 8 splash particles per frame (14,336 sprites; "
+                                "splash pass %s ms GPU, sprites built on the CPU %s ms)" % (
+                                    bl.fmt(r8["timing_ms_per_frame.draw_synced"]),
+                                    bl.fmt(r8["stage_gpu_ms.splashes"]),
+                                    bl.fmt(r8["timing_ms_per_frame.splash_sprites_cpu"])),
+                     "saves": saving(r0["timing_ms_per_frame.draw_synced"], r8["timing_ms_per_frame.draw_synced"]),
+                     "command": "swell-play render synth_splash0|8.swell --size 320x180 --seconds 1 (interleaved)"})
+        # Readback: bench and the on-screen part of render never read back; output does.
+        rb = self.run([bl.exe("swell-play"), "render", sp0, "--out", rdir, "--size", "1280x720", "--seconds",
+                       "0.2", "--json"], 600)
         fb, _ = median_of(base, "frame_ms_median")
-        rows.append({"stage": "replay", "skip": "no readback without output (bench keeps the heights on the GPU)",
-                     "with_skip": "%.3f ms/frame (bench, 128 x 128)" % fb if fb else "-",
-                     "without": "readback of a 320 x 180 picture: %s ms/frame (render)" % bl.fmt(
-                         stats.get("read_none")),
-                     "saves": "the readback (plus PNG writing) per frame",
-                     "command": "swell-play bench CACHE; swell-play render CACHE --size 320x180"})
+        rbj = (rb.json or {}).get("timing_ms_per_frame", {})
+        rows.append({"stage": "replay", "skip": "no readback without output (the height field and the "
+                                                "picture stay on the GPU unless written)",
+                     "with_skip": "%s ms/frame (bench, 128 x 128, no readback)" % bl.fmt(fb),
+                     "without": "readback of a 1280 x 720 picture %s ms/frame, its PNG %s ms/frame" % (
+                         bl.fmt(rbj.get("readback")), bl.fmt(rbj.get("png_write"))),
+                     "saves": "%s ms/frame of readback (+ %s ms PNG) when nothing is written" % (
+                         bl.fmt(rbj.get("readback")), bl.fmt(rbj.get("png_write"))),
+                     "command": "swell-play bench CACHE; swell-play render synth_splash0.swell --size 1280x720 "
+                                "--seconds 0.2"})
+        for p in (sp0, sp8):
+            os.remove(p)
         # Replay: frames never selected are never decoded.
         synth = os.path.join(OUT, "synthetic.swell")
         self.run([bl.exe("swell-cache"), "synth", synth, "--frames", 1200, "--surface", 400], 300)
@@ -573,10 +622,9 @@ def docs(res, m, rw_note):
                  ("bed p / rho g H", "bed_pressure_ratio"), ("pressure error", "pressure_error"),
                  ("max speed / sqrt(gH)", "max_speed_over_sqrt_gH"), ("wall s", "wall_s"),
                  ("us / particle-step", "us_per_particle_step")]), "",
-             "**Regular waves against Biesel** (`swell-bake scenes/regular_wave_small.json --set "
-             "geometry.particle_spacing=L0 --set solver.dt=DT --probes P`; h = 0.2 m, T = 0.8 s, "
-             "S = 2 cm; H at the first gauge (x = 0.5 m) and L from the lag between the first two; "
-             "%s):" % rw_note, "",
+             "**Regular waves against Biesel** (`scenes/regular_wave_small.json`, dt = 2 ms x l0 / 20 mm; "
+             "h = 0.2 m, T = 0.8 s, S = 2 cm; H at the first gauge (x = 0.5 m = 2.5 h), L from the "
+             "phase lag between the first two gauges; %s):" % rw_note, "",
              bl.md_table(res["regular_wave"], [
                  ("resolution", "resolution"), ("particles", "particles"), ("steps", "steps"),
                  ("outcome", lambda r: r["outcome"][:60]), ("window s", "window_s"),
