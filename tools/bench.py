@@ -133,7 +133,7 @@ class Bench:
     def regular_wave(self):
         self.note_load("regular wave")
         has_validate = "regular-wave" in self.run([bl.exe("swell-validate"), "--help"], 60).out
-        spacings = [0.04, 0.025, 0.02] if self.quick else [0.04, 0.025, 0.02, 0.01]
+        spacings = [0.04, 0.02, 0.2 / 15] if self.quick else [0.04, 0.02, 0.2 / 15, 0.01]
         rows = []
         with open(scene("regular_wave_small.json")) as f:
             sc = json.load(f)
@@ -141,8 +141,8 @@ class Bench:
         h = sc["geometry"]["water"][0]["y1"] - sc["geometry"]["water"][0]["y0"]
         theory = biesel(S, T, h)
         for l0 in spacings:
-            dt = round(0.002 * l0 / 0.02, 9)
-            s = {"geometry.particle_spacing": "%.7g" % l0, "solver.dt": "%.7g" % dt}
+            dt = 0.004 if l0 >= 0.04 else 0.002 if l0 >= 0.02 else 0.001  # frames every 20 ms
+            s = {"geometry.particle_spacing": repr(l0), "solver.dt": repr(dt)}
             row = {"resolution": "h/%d" % round(h / l0), "l0_m": l0, "dt_s": dt,
                    "theory_H_m": theory["H"], "theory_L_m": theory["L"]}
             if has_validate:
@@ -194,6 +194,7 @@ class Bench:
             note = ("`swell-validate regular-wave` is not in this build: computed here from `swell-bake "
                     "--probes` gauge records (least-squares harmonic fit over t = 3-6 s, as "
                     "docs/validation.md section 5)")
+        note = ("h = %g m, T = %g s, S = %g cm; %s" % (h, T, 100 * S, note))
         return rows, note
 
     # ---------------------------------------------------------------- replay
@@ -679,9 +680,9 @@ def docs(res, m, rw_note):
                  ("bed p / rho g H", "bed_pressure_ratio"), ("pressure error", "pressure_error"),
                  ("max speed / sqrt(gH)", "max_speed_over_sqrt_gH"), ("wall s", "wall_s"),
                  ("us / particle-step", "us_per_particle_step")]), "",
-             "**Regular waves against Biesel** (`scenes/regular_wave_small.json`, dt = 2 ms x l0 / 20 mm; "
-             "h = 0.2 m, T = 0.8 s, S = 2 cm; H at the first gauge (x = 0.5 m = 2.5 h), L from the "
-             "phase lag between the first two gauges; %s):" % rw_note, "",
+             "**Regular waves against Biesel** (`scenes/regular_wave_small.json` with its other "
+             "settings; dt 4, 2, 1 ms at l0 >= 40, >= 20, below 20 mm; H at the first gauge "
+             "(x = 0.5 m = 2.5 h), L from the phase lag between the first two gauges; %s):" % rw_note, "",
              bl.md_table(res["regular_wave"], [
                  ("resolution", "resolution"), ("particles", "particles"), ("steps", "steps"),
                  ("outcome", lambda r: r["outcome"][:60]), ("window s", "window_s"),

@@ -280,6 +280,10 @@ TEST_F(BakeDriver, ResumedBakeIsByteIdenticalToAnUninterruptedOne) {
     EXPECT_EQ(resumed.surfaceMean, whole.surfaceMean);
     EXPECT_EQ(resumed.keptMax, whole.keptMax);
     EXPECT_EQ(resumed.maxCourant, whole.maxCourant);
+    // Conservation figures (issue 8): the start is the scene's initial state in both runs.
+    EXPECT_EQ(resumed.start.potentialEnergy, whole.start.potentialEnergy);
+    EXPECT_EQ(resumed.start.volume, whole.start.volume);
+    EXPECT_EQ(resumed.end.kineticEnergy, whole.end.kineticEnergy);
     EXPECT_GT(resumed.checkpoints, 0u); // the resumed run keeps the checkpoint interval
     EXPECT_FALSE(fs::exists(checkpointPath(opt.output))) << "removed after a successful bake";
     EXPECT_FALSE(fs::exists(m_dir / "s.swell.tmp-999999999"));
