@@ -171,8 +171,49 @@ std::vector<std::string> sceneWarnings(const Scene& scene) {
     return out;
 }
 
+Conservation measureConservation(const MpsSolver& solver, const Scene& scene, double bed) {
+    const Particles& P = solver.particles();
+    const double l0 = scene.geometry.particleSpacing;
+    const double n0 = solver.densityConstants().n0;
+    const double mass = scene.physics.density * l0 * l0;
+    const double g = scene.physics.gravity;
+    Conservation c;
+    double nSum = 0.0;
+    std::size_t interior = 0;
+    for (std::size_t i = 0; i < P.size(); ++i) {
+        if (P.kind[i] != ParticleKind::Water) continue;
+        ++c.water;
+        if (!scene.geometry.tank || scene.geometry.tank->contains(P.x[i], P.y[i])) ++c.inTank;
+        if (P.n[i] >= scene.output.surfaceRatio * n0) {
+            nSum += P.n[i];
+            ++interior;
+        }
+        c.kineticEnergy += 0.5 * mass * (P.vx[i] * P.vx[i] + P.vy[i] * P.vy[i]);
+        c.potentialEnergy += mass * g * (P.y[i] - bed);
+    }
+    const double nMean = interior ? nSum / static_cast<double>(interior) : n0;
+    c.volume = static_cast<double>(c.water) * l0 * l0 * (nMean > 0.0 ? n0 / nMean : 1.0);
+    return c;
+}
+
+namespace {
+json conservationJson(const Conservation& c) {
+    return json{{"water", c.water}, {"in_tank", c.inTank}, {"volume", c.volume},
+                {"kinetic_energy", c.kineticEnergy}, {"potential_energy", c.potentialEnergy},
+                {"energy", c.kineticEnergy + c.potentialEnergy}};
+}
+} // namespace
+
 json toJson(const BakeSummary& s) {
-    return json{{"particles_water", s.particlesWater}, {"particles_wall", s.particlesWall},
+    const double e0 = s.start.kineticEnergy + s.start.potentialEnergy;
+    const double e1 = s.end.kineticEnergy + s.end.potentialEnergy;
+    return json{{"conservation",
+                 {{"start", conservationJson(s.start)},
+                  {"end", conservationJson(s.end)},
+                  {"water_lost", static_cast<long long>(s.start.water) - static_cast<long long>(s.end.water)},
+                  {"volume_change", s.start.volume > 0.0 ? s.end.volume / s.start.volume - 1.0 : 0.0},
+                  {"energy_drift", e0 > 0.0 ? e1 / e0 - 1.0 : 0.0}}},
+                {"particles_water", s.particlesWater}, {"particles_wall", s.particlesWall},
                 {"steps", s.steps}, {"frame_interval_steps", s.frameIntervalSteps},
                 {"frames", s.frames}, {"surface_mean", s.surfaceMean}, {"splash_mean", s.splashMean},
                 {"kept_mean", s.surfaceMean + s.splashMean}, {"kept_max", s.keptMax},
@@ -196,6 +237,15 @@ BakeSummary runBake(const Scene& scene, const BakeOptions& opt) {
 
     MpsSolver solver = makeSolver(scene);
     const Particles& P = solver.particles();
+    // Conservation at the start: the scene's initial state (also when resuming, before the
+    // checkpoint's state is imported below).
+    double bed = scene.geometry.tank ? scene.geometry.tank->y0 : std::numeric_limits<double>::infinity();
+    if (!scene.geometry.tank) {
+        for (std::size_t i = 0; i < P.size(); ++i) {
+            if (P.kind[i] == ParticleKind::Water) bed = std::min(bed, P.y[i]);
+        }
+    }
+    sum.start = measureConservation(solver, scene, bed);
     sum.particlesWater = P.count(ParticleKind::Water);
     sum.particlesWall = P.size() - sum.particlesWater;
     const double n0 = solver.densityConstants().n0;
@@ -330,6 +380,7 @@ BakeSummary runBake(const Scene& scene, const BakeOptions& opt) {
         }
         if (every > 0 && k % every == 0 && k < steps) saveCheckpoint();
     }
+    sum.end = measureConservation(solver, scene, bed);
     sum.frames = writer.frameCount();
     writer.finish();
     probes.finish();

@@ -6,6 +6,7 @@
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <cmath>
 #include <fmt/format.h>
 #include <iostream>
 #include <map>
@@ -100,6 +101,12 @@ int main(int argc, char** argv) {
     dump->add_option("CACHE", path, "cache file")->required();
     dump->add_option("--frame", frameIndex, "frame index")->required();
 
+    std::string recodeOut;
+    auto* recode = app.add_subcommand(
+        "recode", "Copy a cache with another encoding or filters (frames, header and metadata kept)");
+    recode->add_option("CACHE", path, "input cache file")->required();
+    recode->add_option("OUT", recodeOut, "output cache file")->required();
+
     SyntheticWave wave;
     std::size_t frames = 1200;
     std::string encoding = "float32";
@@ -121,6 +128,12 @@ int main(int argc, char** argv) {
     synth->add_flag("--no-delta", noDelta, "disable the delta filter");
     synth->add_option("--level", level, "zstd level")->check(CLI::Range(1, 19));
 
+    recode->add_option("--encoding", encoding, "float32 or quantized16")
+        ->check(CLI::IsMember({"float32", "quantized16"}));
+    recode->add_flag("--no-shuffle", noShuffle, "disable the byte-shuffle filter");
+    recode->add_flag("--no-delta", noDelta, "disable the delta filter");
+    recode->add_option("--level", level, "zstd level")->check(CLI::Range(1, 19));
+
     CLI11_PARSE(app, argc, argv);
 
     try {
@@ -136,10 +149,17 @@ int main(int argc, char** argv) {
             for (std::size_t i = 0; i < r.frameCount(); ++i) {
                 const Frame f = r.readFrame(i);
                 particles += f.surfaceCount() + f.splashCount();
+                // A NaN or infinity (position or splash velocity) is damage too.
+                const auto bad = [](float v) { return !std::isfinite(v); };
+                if (std::any_of(f.surface.begin(), f.surface.end(), bad) ||
+                    std::any_of(f.splash.begin(), f.splash.end(), bad))
+                    throw CacheError(
+                        fmt::format("{}: frame {}: holds a non-finite value (NaN or infinity)",
+                                    path, i));
             }
             if (asJson)
                 std::cout << json{{"file", path}, {"ok", true}, {"frames", r.frameCount()},
-                                  {"particles", particles}}
+                                  {"particles", particles}, {"nonfinite", 0}}
                                  .dump()
                           << "\n";
             else
@@ -157,6 +177,19 @@ int main(int argc, char** argv) {
             for (std::size_t i = 0; i < f.splashCount(); ++i)
                 fmt::print("splash,{:.9g},{:.9g},{:.9g},{:.9g}\n", f.splash[4 * i],
                            f.splash[4 * i + 1], f.splash[4 * i + 2], f.splash[4 * i + 3]);
+        } else if (*recode) {
+            const Reader r(path);
+            Header h = r.header();
+            h.encoding = encoding == "float32" ? Encoding::Float32 : Encoding::Quantized16;
+            h.shuffle = !noShuffle;
+            h.delta = !noDelta;
+            h.compressionLevel = level;
+            Writer w(recodeOut, h);
+            for (std::size_t i = 0; i < r.frameCount(); ++i)
+                w.addFrame(r.readFrame(i));
+            w.finish();
+            fmt::print(stderr, "wrote {} ({} frames, {}, {} bytes)\n", recodeOut, r.frameCount(),
+                       encoding, w.bytesWritten());
         } else if (*synth) {
             Header h;
             h.encoding = encoding == "float32" ? Encoding::Float32 : Encoding::Quantized16;

@@ -26,6 +26,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <spawn.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
@@ -230,7 +231,8 @@ double percentile(std::vector<double> v, double q) {
     return v[lo] + (pos - static_cast<double>(lo)) * (v[hi] - v[lo]);
 }
 
-int runBench(Options& o, int frames, int warmup, int errorFrames, int cpuFrames) {
+int runBench(Options& o, int frames, int warmup, int errorFrames, int cpuFrames,
+             const std::string& referenceCache) {
     finishOptions(o);
     if (frames < 1)
         throw std::invalid_argument("--frames must be >= 1");
@@ -280,8 +282,20 @@ int runBench(Options& o, int frames, int warmup, int errorFrames, int cpuFrames)
     }
     gpu.setTiming(false);
 
-    // Error against the double-precision CPU reference on evenly spread frames.
-    const CpuModeReference cpu(set, o.params, o.modeParams, samplers);
+    // Error against the double-precision CPU reference on evenly spread frames; with
+    // --reference-cache the reference reads the same frames from that cache (e.g. the float32
+    // original of a quantized cache), so the error includes the encoding's.
+    std::optional<FrameSet> refSet;
+    if (!referenceCache.empty()) {
+        const cache::Reader refReader(referenceCache);
+        if (refReader.frameCount() != reader.frameCount()) {
+            throw std::invalid_argument(fmt::format(
+                "--reference-cache {} has {} frames, {} has {}", referenceCache,
+                refReader.frameCount(), o.cache, reader.frameCount()));
+        }
+        refSet = loadUsed(refReader, samplers, taus);
+    }
+    const CpuModeReference cpu(refSet ? *refSet : set, o.params, o.modeParams, samplers);
     double maxAbs = 0.0, sumSq = 0.0;
     std::size_t cells = 0;
     bool framesExact = true;
@@ -344,6 +358,7 @@ int runBench(Options& o, int frames, int warmup, int errorFrames, int cpuFrames)
                 {"rms_error", rms},
                 {"water_depth", depth},
                 {"max_rel_error", maxAbs / depth},
+                {"reference_cache", referenceCache},
                 {"cpu_reference_frames", cpuCount},
                 {"cpu_reference_ms", cpuMs},
                 {"cpu_reference_fps", cpuMs > 0.0 ? 1000.0 / cpuMs : 0.0}});
@@ -368,6 +383,8 @@ int runBench(Options& o, int frames, int warmup, int errorFrames, int cpuFrames)
             errorCount, maxAbs, rms, maxAbs / depth, depth, framesExact ? "exact" : "DIFFERS",
             cpuMs > 0 ? 1000.0 / cpuMs : 0.0, cpuMs);
     }
+    if (!referenceCache.empty()) // the encodings differ: report the error, judge nothing
+        return framesExact && std::isfinite(maxAbs) ? 0 : 2;
     if (!framesExact || !(maxAbs <= 1e-4 * depth)) {
         std::cerr
             << "swell-play: GPU result differs from the CPU reference beyond 1e-4 of the depth\n";
@@ -882,6 +899,11 @@ int main(int argc, char** argv) {
     benchCmd->add_option("--cpu-frames", cpuFrames, "frames timed on the CPU reference (0: skip)")
         ->capture_default_str()
         ->check(CLI::Range(0, 100000));
+    std::string referenceCache;
+    benchCmd->add_option("--reference-cache", referenceCache,
+                         "CPU reference reads its frames from this cache (same frame count), e.g. "
+                         "the float32 original of a quantized cache; the error is then reported, "
+                         "not judged");
 
     Options heights;
     std::string outDir;
@@ -961,7 +983,7 @@ int main(int argc, char** argv) {
     }
     try {
         if (*benchCmd)
-            return runBench(bench, frames, warmup, errorFrames, cpuFrames);
+            return runBench(bench, frames, warmup, errorFrames, cpuFrames, referenceCache);
         if (*renderCmd)
             return runRender(render, renderOpts);
         return runHeights(heights, outDir, seconds);

@@ -134,9 +134,12 @@ HeightField CpuReconstruction::heights(double tau) const {
             const double Px = n + 0.5;
             double sumGh = 0.0;
             double sumG = 0.0;
+            // One slice in the row (always so when M > 2K: the nearest one): its G_z cancels
+            // and is taken as 1, since far from the slice it underflows to 0 (0 / 0 = NaN).
+            const bool single = m_rowSlices[static_cast<std::size_t>(m)].size() == 1;
             for (int j : m_rowSlices[static_cast<std::size_t>(m)]) {
                 const BinnedFrame& f = *frameOf[static_cast<std::size_t>(j)];
-                const double dz = m_grid.sliceZCells(j) - Pz;
+                const double dz = single ? 0.0 : m_grid.sliceZCells(j) - Pz;
                 const std::uint32_t first = f.start[static_cast<std::size_t>(n)]; // bin n - 1
                 const std::uint32_t last =
                     f.start[static_cast<std::size_t>(n + 3)]; // bin n + 1 end
@@ -154,7 +157,7 @@ HeightField CpuReconstruction::heights(double tau) const {
                 double sumF = 0.0;
                 double sumGz = 0.0;
                 for (int j : m_rowSlices[static_cast<std::size_t>(m)]) {
-                    const double dz = m_grid.sliceZCells(j) - Pz;
+                    const double dz = single ? 0.0 : m_grid.sliceZCells(j) - Pz;
                     const double Gz = std::exp(-dz * dz * inv2s2);
                     sumF += Gz * fallback(*frameOf[static_cast<std::size_t>(j)], n);
                     sumGz += Gz;

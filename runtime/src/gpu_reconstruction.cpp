@@ -201,7 +201,10 @@ GpuReplay::GpuReplay(const FrameSet& frames, const ReplayParams& params,
         rows[2 * static_cast<std::size_t>(m)] = first;
         rows[2 * static_cast<std::size_t>(m) + 1] = last - first + 1;
         for (int j = first; j <= last; ++j) {
-            const double dz = m_grid.sliceZCells(j) - (m + 0.5);
+            // A row of one slice (always so when M > 2K) has G_z = 1: it cancels in eq. (7),
+            // and far from the slice exp() underflows to 0, which made 0 / 0 = NaN heights
+            // (found by tools/stress at 1 x 4096 cells, K = 64).
+            const double dz = first == last ? 0.0 : m_grid.sliceZCells(j) - (m + 0.5);
             rowWeights[static_cast<std::size_t>(m)].push_back(
                 static_cast<float>(std::exp(-dz * dz * inv2s2)));
         }

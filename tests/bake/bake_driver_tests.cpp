@@ -280,6 +280,10 @@ TEST_F(BakeDriver, ResumedBakeIsByteIdenticalToAnUninterruptedOne) {
     EXPECT_EQ(resumed.surfaceMean, whole.surfaceMean);
     EXPECT_EQ(resumed.keptMax, whole.keptMax);
     EXPECT_EQ(resumed.maxCourant, whole.maxCourant);
+    // Conservation figures (issue 8): the start is the scene's initial state in both runs.
+    EXPECT_EQ(resumed.start.potentialEnergy, whole.start.potentialEnergy);
+    EXPECT_EQ(resumed.start.volume, whole.start.volume);
+    EXPECT_EQ(resumed.end.kineticEnergy, whole.end.kineticEnergy);
     EXPECT_GT(resumed.checkpoints, 0u); // the resumed run keeps the checkpoint interval
     EXPECT_FALSE(fs::exists(checkpointPath(opt.output))) << "removed after a successful bake";
     EXPECT_FALSE(fs::exists(m_dir / "s.swell.tmp-999999999"));
@@ -378,4 +382,31 @@ TEST_F(BakeDriver, DamagedCheckpointIsRefusedNamingTheFile) {
     const std::string e = resumeError(scene, opt);
     EXPECT_EQ(e.rfind(ckpt.string() + ": damaged checkpoint", 0), 0u) << e;
     EXPECT_FALSE(fs::exists(opt.output));
+}
+
+// Issue 8: the summary reports conservation figures. A still tank keeps its water, its
+// volume (from the mean number density) and, starting at rest, its energy can only drop
+// (viscosity, collisions) or grow by the solver's own error: both stay small in a short run.
+TEST_F(BakeDriver, SummaryReportsConservationOfCountVolumeAndEnergy) {
+    std::ifstream in(kScenes / "still_tank_small.json");
+    json j = json::parse(in);
+    j["solver"]["end_time"] = 0.5;
+    const Scene scene = parseScene(j);
+    BakeOptions opt;
+    opt.output = m_dir / "still.swell";
+    const BakeSummary s = runBake(scene, opt);
+    EXPECT_EQ(s.start.water, 200u);
+    EXPECT_EQ(s.end.water, 200u);
+    EXPECT_EQ(s.end.inTank, 200u);
+    // At rest on the lattice: 200 particles of l0^2 = 1e-4 m^2, i.e. the 0.2 m x 0.1 m water.
+    EXPECT_NEAR(s.start.volume, 0.02, 0.02 * 0.02);
+    EXPECT_NEAR(s.end.volume / s.start.volume, 1.0, 0.03);
+    EXPECT_DOUBLE_EQ(s.start.kineticEnergy, 0.0);
+    // Potential energy of the column above the bed: rho g W H^2 / 2 = 1000 9.81 0.2 0.01 / 2.
+    EXPECT_NEAR(s.start.potentialEnergy, 9.81, 0.01);
+    const json sj = toJson(s);
+    ASSERT_TRUE(sj.contains("conservation"));
+    EXPECT_EQ(sj["conservation"]["water_lost"], 0);
+    EXPECT_LT(std::abs(sj["conservation"]["energy_drift"].get<double>()), 0.02);
+    EXPECT_LT(std::abs(sj["conservation"]["volume_change"].get<double>()), 0.03);
 }

@@ -14,6 +14,23 @@ grep -q '"frames":20' "$dir/info.json" || fail "info --json frames"
 grep -q '"surface_mean":50' "$dir/info.json" || fail "info --json surface_mean"
 [[ $("$bin/swell-cache" dump "$dir/a.swell" --frame 19 | wc -l) -eq 53 ]] || fail "dump rows"
 
+# recode: the same frames in quantized16, within the header's position error; refused
+# encodings leave nothing behind.
+"$bin/swell-cache" recode "$dir/a.swell" "$dir/q.swell" --encoding quantized16 2>/dev/null
+"$bin/swell-cache" verify "$dir/q.swell" --json | grep -q '"nonfinite":0' || fail "recode verify"
+"$bin/swell-cache" info "$dir/q.swell" --json > "$dir/qinfo.json"
+grep -q '"encoding":"quantized16"' "$dir/qinfo.json" || fail "recode encoding"
+grep -q '"frames":20' "$dir/qinfo.json" || fail "recode frames"
+err=$(grep -o '"max_position_error_m":[0-9.e-]*' "$dir/qinfo.json" | cut -d: -f2)
+paste -d, <("$bin/swell-cache" dump "$dir/a.swell" --frame 7 | tail -n +2) \
+          <("$bin/swell-cache" dump "$dir/q.swell" --frame 7 | tail -n +2) |
+    awk -F, -v e="$err" '{ d = $2 - $7; if (d < 0) d = -d; if (d > e * 1.0001 + 1e-9) bad = 1 }
+                         END { exit bad }' || fail "recode error above max_position_error_m $err"
+if "$bin/swell-cache" recode "$dir/a.swell" "$dir/z.swell" --encoding int8 2>/dev/null; then
+    fail "recode accepted --encoding int8"
+fi
+[[ ! -e "$dir/z.swell" ]] || fail "a refused recode left a file"
+
 # Damage in the middle of the frame data: verify must fail and name file and frame.
 cp "$dir/a.swell" "$dir/bad.swell"
 size=$(stat -c %s "$dir/bad.swell")

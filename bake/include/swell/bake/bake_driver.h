@@ -56,6 +56,20 @@ struct BakeOptions {
     std::string buildId;
 };
 
+/// Conservation figures of the water particles at one instant (per metre of the 2D section).
+struct Conservation {
+    std::size_t water = 0;        ///< water particles
+    std::size_t inTank = 0;       ///< of them inside the tank's inner box (all when there is no tank)
+    /// Water volume (area, m^2) from the mean number density of the interior water
+    /// (n >= surface_ratio n0): water l0^2 n0 / mean n. Equal to water l0^2 at rest on the lattice.
+    double volume = 0.0;
+    double kineticEnergy = 0.0;   ///< sum 1/2 rho l0^2 |u|^2 (J/m)
+    double potentialEnergy = 0.0; ///< sum rho l0^2 g (y - bed) (J/m), bed: tank y0 or lowest water
+};
+
+/// Conservation figures of `solver`'s water now; `bed` is the potential energy's zero level.
+Conservation measureConservation(const MpsSolver& solver, const Scene& scene, double bed);
+
 /// Per-run figures (the --json summary of swell-bake).
 struct BakeSummary {
     std::size_t particlesWater = 0;
@@ -79,6 +93,8 @@ struct BakeSummary {
     std::size_t checkpoints = 0;    ///< checkpoints written by this run
     std::uint64_t checkpointBytes = 0; ///< size of the last one
     double checkpointSeconds = 0.0; ///< wall time spent writing them (s)
+    /// Conservation figures of the water, at the start (before the first step) and the end.
+    Conservation start, end;
 };
 
 nlohmann::json toJson(const BakeSummary& summary);

@@ -22,6 +22,9 @@ std::string toString(FramePolicy policy);
 /// Inverse of toString; throws std::invalid_argument naming "policy".
 FramePolicy framePolicyFromString(const std::string& name);
 
+/// Smallest Gaussian sigma of eq. (7), cells: below it float32 weights underflow in the window.
+inline constexpr double kMinSigma = 0.25;
+
 struct ReplayParams {
     int cellsX = 128;             ///< N: base-mesh cells along x, propagation (paper 128)
     int cellsZ = 128;             ///< M: base-mesh cells along z, transverse (paper 128)
@@ -30,7 +33,7 @@ struct ReplayParams {
     double timeUnitSeconds = 4.0; ///< simulated seconds per animation time unit: A = this / frame
                                   ///< time (paper: A = 4/dt steps)
     FramePolicy policy = FramePolicy::Loop; ///< frames outside the cache (see FramePolicy)
-    double sigma = 2.0;                     ///< Gaussian sigma of eq. (7), in cells (paper 2.0)
+    double sigma = 2.0; ///< Gaussian sigma of eq. (7), in cells (paper 2.0), >= kMinSigma
     double extentZ = 0.0;   ///< transverse extent in metres; 0: cellsZ * dx (square cells)
     std::uint64_t seed = 1; ///< noise seed
     NoiseParams noise;      ///< T, beta, c, filter of N (paper: 16, 2.0, 128, low-pass)

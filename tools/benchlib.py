@@ -1,0 +1,213 @@
+"""Shared helpers of tools/bench.py and tools/stress.py: running our programs with a
+timeout, machine description, CSV / Markdown output and marked sections in docs.
+
+Run with Debian's /usr/bin/python3 (numpy, zstandard, matplotlib from tools/setup)."""
+
+import csv
+import datetime
+import json
+import os
+import platform
+import re
+import subprocess
+import time
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+BIN = os.path.join(ROOT, "build", "bin")
+
+
+def exe(name):
+    return os.path.join(BIN, name)
+
+
+class Run:
+    """One finished command: rc (None on timeout), stdout, stderr, wall seconds, json."""
+
+    def __init__(self, cmd, rc, out, err, wall, timed_out):
+        self.cmd, self.rc, self.out, self.err, self.wall = cmd, rc, out, err, wall
+        self.timed_out = timed_out
+        self.json = None
+        for line in reversed(out.strip().splitlines()):
+            line = line.strip()
+            if line.startswith("{"):
+                try:
+                    self.json = json.loads(line)
+                except ValueError:
+                    pass
+                break
+
+    def last_err_line(self):
+        lines = [l for l in self.err.strip().splitlines() if l.strip()]
+        return lines[-1] if lines else ""
+
+
+def run(cmd, timeout=600, nice=5, env=None, log=None):
+    """Runs cmd (a list) under `nice -n`, kills its process group after `timeout` s."""
+    full = (["nice", "-n", str(nice)] if nice else []) + [str(c) for c in cmd]
+    e = dict(os.environ)
+    e.setdefault("OMP_WAIT_POLICY", "PASSIVE")
+    if env:
+        e.update(env)
+    t0 = time.monotonic()
+    p = subprocess.Popen(full, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=e,
+                         start_new_session=True)
+    timed_out = False
+    try:
+        out, err = p.communicate(timeout=timeout)
+    except subprocess.TimeoutExpired:
+        timed_out = True
+        os.killpg(p.pid, 9)
+        out, err = p.communicate()
+    wall = time.monotonic() - t0
+    r = Run(" ".join(str(c) for c in cmd), None if timed_out else p.returncode, out, err, wall,
+            timed_out)
+    if log:
+        log.write("$ %s\n  rc %s, %.1f s%s\n" % (r.cmd, r.rc, wall,
+                                                 ", TIMED OUT" if timed_out else ""))
+        if r.rc not in (0, None) or timed_out:
+            log.write("  stderr: %s\n" % r.last_err_line())
+        log.flush()
+    return r
+
+
+def load_average():
+    try:
+        with open("/proc/loadavg") as f:
+            return " ".join(f.read().split()[:3])
+    except OSError:
+        return "?"
+
+
+def machine(renderer=None):
+    cpu = "?"
+    try:
+        with open("/proc/cpuinfo") as f:
+            for line in f:
+                if line.startswith("model name"):
+                    cpu = line.split(":", 1)[1].strip()
+                    break
+    except OSError:
+        pass
+    try:
+        commit = subprocess.run(["git", "-C", ROOT, "rev-parse", "--short", "HEAD"],
+                                capture_output=True, text=True).stdout.strip()
+        dirty = subprocess.run(["git", "-C", ROOT, "status", "--porcelain", "-uno"],
+                               capture_output=True, text=True).stdout.strip()
+        if dirty:
+            commit += " (with uncommitted changes)"
+    except OSError:
+        commit = "?"
+    try:
+        mem = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES") / 2**30
+    except (ValueError, OSError):
+        mem = 0
+    return {
+        "date": datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC"),
+        "cpu": cpu,
+        "cores": os.cpu_count(),
+        "memory_gib": round(mem, 1),
+        "os": platform.platform(),
+        "renderer": renderer or "?",
+        "commit": commit,
+        "load_average": load_average(),
+    }
+
+
+def write_csv(path, rows, fields=None):
+    os.makedirs(os.path.dirname(path), exist_ok=True)
+    if fields is None:
+        fields = []
+        for r in rows:
+            for k in r:
+                if k not in fields:
+                    fields.append(k)
+    with open(path, "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=fields, extrasaction="ignore")
+        w.writeheader()
+        for r in rows:
+            w.writerow(r)
+
+
+def fmt(v, digits=3):
+    """Number for a table: 3 significant digits, thousands separated; '-' for None."""
+    if v is None or v == "":
+        return "-"
+    if isinstance(v, bool):
+        return "yes" if v else "no"
+    if isinstance(v, int):
+        return "{:,}".format(v)
+    if isinstance(v, float):
+        if v != v:
+            return "NaN"
+        if v == 0:
+            return "0"
+        a = abs(v)
+        if a >= 1e5 or a < 1e-3:
+            return "{:.{}g}".format(v, digits - 1 if digits > 1 else 1).replace("e-0", "e-").replace("e+0", "e")
+        if a >= 100:
+            return "{:,.0f}".format(v)
+        return "{:.{}g}".format(v, digits)
+    return str(v)
+
+
+def md_table(rows, columns):
+    """columns: [(header, key or function of the row)]."""
+    head = "| " + " | ".join(h for h, _ in columns) + " |"
+    sep = "|" + "|".join("---" for _ in columns) + "|"
+    lines = [head, sep]
+    for r in rows:
+        cells = []
+        for _, k in columns:
+            v = k(r) if callable(k) else r.get(k)
+            cells.append(v if isinstance(v, str) else fmt(v))
+        lines.append("| " + " | ".join(c.replace("|", "\\|") for c in cells) + " |")
+    return "\n".join(lines)
+
+
+def replace_section(path, name, text):
+    """Replaces (or appends) the text between <!-- bench:begin NAME --> and
+    <!-- bench:end NAME --> in the Markdown file at path; the rest stays as it is."""
+    begin, end = "<!-- bench:begin %s -->" % name, "<!-- bench:end %s -->" % name
+    with open(path) as f:
+        doc = f.read()
+    block = "%s\n%s\n%s" % (begin, text.strip("\n"), end)
+    pattern = re.compile(re.escape(begin) + ".*?" + re.escape(end), re.S)
+    if pattern.search(doc):
+        doc = pattern.sub(lambda _: block, doc)
+    else:
+        doc = doc.rstrip("\n") + "\n\n" + block + "\n"
+    with open(path, "w") as f:
+        f.write(doc)
+
+
+def plot(path, title, xlabel, ylabel, series, logx=False, logy=False, annotate=None):
+    """series: [(label, xs, ys)]. Writes a PNG; returns False when matplotlib is missing."""
+    try:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+    except ImportError:
+        return False
+    fig, ax = plt.subplots(figsize=(6.4, 4.2), dpi=100)
+    for label, xs, ys in series:
+        pts = [(x, y) for x, y in zip(xs, ys) if x is not None and y is not None and y == y]
+        if not pts:
+            continue
+        ax.plot([p[0] for p in pts], [p[1] for p in pts], "o-", label=label)
+        if annotate:
+            for (x, y), a in zip(pts, annotate.get(label, [])):
+                ax.annotate(a, (x, y), textcoords="offset points", xytext=(4, 4), fontsize=7)
+    if logx:
+        ax.set_xscale("log")
+    if logy:
+        ax.set_yscale("log")
+    ax.set_title(title, fontsize=10)
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    os.makedirs(os.path.dirname(path), exist_ok=True)
+    fig.savefig(path)
+    plt.close(fig)
+    return True

@@ -1,0 +1,284 @@
+#!/usr/bin/python3
+"""Stability stress suite (issue 8). Bake sweeps over dt, particle spacing, piston stroke and
+period (up to and past breaking), inflow speed and long runs (100,000 steps of the small still
+tank and surging scenes); replay at extreme parameters and on degenerate caches.
+
+Every bake must end either stable (cache verified, no NaN, conservation figures reported) or
+stopped by the divergence detector with a clear message and no cache; every replay must give a
+finite result that matches the CPU reference or one clear error line. A timeout is a hang.
+Writes out/stress/*.csv and the outcome table in docs/validation.md; exits 1 on any failure."""
+
+import argparse
+import json
+import math
+import os
+import sys
+import time
+
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import benchlib as bl  # noqa: E402
+import swell_cache  # noqa: E402
+
+OUT = os.path.join(bl.ROOT, "out", "stress")
+DOC = os.path.join(bl.ROOT, "docs", "validation.md")
+
+
+def scene(name):
+    return os.path.join(bl.ROOT, "scenes", name)
+
+
+def bake_cases(long_steps):
+    dam = "dam_break_small.json"
+    c = []
+    # dt: the load-time Courant check is bypassed (expected_speed) so the run-time detector is tested.
+    for dt in [0.00025, 0.0005, 0.001, 0.002, 0.004]:
+        c.append(("dt", "dam break, dt = %g ms" % (dt * 1e3), dam,
+                  {"solver.dt": dt, "solver.expected_speed": 0.1, "output.frame_interval": 0.02,
+                   "solver.end_time": 0.3}))
+    for l0, dt in [(0.01, 0.001), (0.005, 0.0005), (0.0025, 0.00025)]:
+        c.append(("spacing", "dam break, l0 = %g mm" % (l0 * 1e3), dam,
+                  {"geometry.particle_spacing": l0, "solver.dt": dt, "output.frame_interval": 0.01,
+                   "solver.end_time": 0.3}))
+    surging = "surging_small.json"
+    for stroke in [0.02, 0.05, 0.1, 0.15, 0.2, 0.3]:
+        c.append(("piston stroke", "sinusoidal piston, T = 0.8 s, S = %g cm" % (stroke * 100), surging,
+                  {"piston.kind": "sinusoidal", "piston.period": 0.8, "piston.stroke": stroke}))
+    for period in [0.4, 0.6, 1.0, 1.6, 2.5]:
+        c.append(("piston period", "sinusoidal piston, S = 8 cm, T = %g s" % period, surging,
+                  {"piston.kind": "sinusoidal", "piston.period": period, "piston.stroke": 0.08}))
+    for v in [0.05, 0.25, 0.5, 1.0, 2.0]:
+        c.append(("inflow speed", "ripple channel, inflow %g m/s" % v, "ripple_small.json",
+                  {"recycling.velocity": v, "solver.end_time": 2.0}))
+    c.append(("long run", "still tank, %s steps" % "{:,}".format(long_steps), "still_tank_small.json",
+              {"solver.end_time": long_steps * 0.001, "output.frame_interval": 0.5}))
+    c.append(("long run", "surging (random piston), %s steps" % "{:,}".format(long_steps), surging,
+              {"solver.end_time": long_steps * 0.002, "output.frame_interval": 0.1}))
+    return c
+
+
+def nan_scan(path):
+    """Decodes every frame with the Python reader; returns (frames, non-finite values)."""
+    c = swell_cache.Cache(path)
+    bad = 0
+    for i in range(len(c)):
+        s, sp = c.frame(i)
+        a = np.array([v for p in s for v in p] + [v for p in sp for v in p], dtype=float)
+        bad += int((~np.isfinite(a)).sum())
+    return len(c), bad
+
+
+def run_bake(case, timeout, log):
+    sweep, label, sc, sets = case
+    cache = os.path.join(OUT, "case.swell")
+    if os.path.exists(cache):
+        os.remove(cache)
+    args = [bl.exe("swell-bake"), scene(sc), "-o", cache, "--threads", "1", "--json", "-q"]
+    for k, v in sets.items():
+        args += ["--set", "%s=%s" % (k, v)]
+    r = bl.run(args, timeout=timeout, log=log)
+    row = {"sweep": sweep, "case": label, "scene": sc,
+           "overrides": " ".join("%s=%s" % kv for kv in sets.items()), "wall_s": round(r.wall, 1),
+           "command": "swell-bake scenes/%s -o C %s" % (sc, " ".join("--set %s=%s" % kv for kv in sets.items()))}
+    warnings = [l for l in r.err.splitlines() if "warning" in l]
+    row["warning"] = "breaks (Miche)" if any("breaks" in w for w in warnings) else ""
+    if r.timed_out:
+        row.update(outcome="FAIL: hang (no end within %d s)" % timeout, ok=False)
+    elif r.rc == 0:
+        j = r.json or {}
+        v = bl.run([bl.exe("swell-cache"), "verify", cache, "--json"], timeout=300, nice=0)
+        frames, bad = nan_scan(cache)
+        cons = j.get("conservation", {})
+        s0, s1 = cons.get("start", {}), cons.get("end", {})
+        row.update(particles="%d + %d" % (j.get("particles_water", 0), j.get("particles_wall", 0)),
+                   steps=j.get("steps"), frames=frames, nonfinite=bad, max_courant=j.get("max_courant"),
+                   water_start=s0.get("water"), water_end=s1.get("water"), in_tank_end=s1.get("in_tank"),
+                   volume_change=cons.get("volume_change"), energy_drift=cons.get("energy_drift"),
+                   kinetic_energy_end=s1.get("kinetic_energy"), ms_per_step=j.get("ms_per_step"),
+                   recycled=j.get("recycled"))
+        if v.rc != 0 or bad:
+            row.update(outcome="FAIL: cache %s" % (v.last_err_line() or "holds %d non-finite values" % bad),
+                       ok=False)
+        else:
+            row.update(outcome="stable", ok=True)
+    elif r.rc == 3:
+        msg = r.last_err_line().replace("swell-bake: ", "")
+        left = os.path.exists(cache)
+        row.update(outcome="stopped: " + msg, ok=not left)
+        if left:
+            row["outcome"] = "FAIL: diverged but left a cache: " + msg
+    else:
+        row.update(outcome="FAIL: exit %s: %s" % (r.rc, r.last_err_line()), ok=False)
+    if os.path.exists(cache):
+        os.remove(cache)
+    return row
+
+
+def replay_cases(bake_cache, synth):
+    c = []
+    b = bake_cache
+    small = ["--frames", 20, "--warmup", 2, "--error-frames", 2, "--cpu-frames", 1]
+    big = ["--frames", 3, "--warmup", 1, "--error-frames", 1, "--cpu-frames", 0]
+    c += [("F at its bound (1)", b, ["-F", 1] + small, "ok"),
+          ("F above its bound (1.0001)", b, ["-F", 1.0001] + small, "error"),
+          ("F = 0", b, ["-F", 0] + small, "ok"),
+          ("beta 0", b, ["--beta", 0] + small, "ok"),
+          ("beta 4", b, ["--beta", 4] + small, "ok"),
+          ("K = 1", b, ["--slices", 1] + small, "error"),
+          ("K = 2", b, ["--slices", 2] + small, "ok"),
+          ("K = 4096", b, ["--slices", 4096] + small, "ok"),
+          ("K = 16384 (the bound)", b, ["--slices", 16384] + big, "ok"),
+          ("1 x 1 cells", b, ["--res", "1x1"] + small, "ok"),
+          ("4096 x 1 cells", b, ["--res", "4096x1"] + small, "ok"),
+          ("1 x 4096 cells, K = 64", b, ["--res", "1x4096", "--slices", 64] + small, "ok"),
+          ("4096 x 4096 cells", b, ["--res", "4096x4096"] + big, "ok"),
+          ("0 x 16 cells", b, ["--res", "0x16"] + small, "error"),
+          ("sigma 0.1 cells", b, ["--sigma", 0.1] + small, "error"),
+          ("sigma 0.25 cells (the bound)", b, ["--sigma", 0.25] + small, "ok"),
+          ("sigma 64 cells", b, ["--sigma", 64] + small, "ok")]
+    for name, path in synth.items():
+        for mode in ["surging", "ripple", "whirlpool"]:
+            for pol in ["loop", "clamp"]:
+                c.append(("%s, %s, %s" % (name, mode, pol), path,
+                          ["--mode", mode, "--policy", pol, "--res", "64x64"] + small, "ok"))
+    return c
+
+
+def run_replay(case, timeout, log):
+    label, cache, args, expect = case
+    r = bl.run([bl.exe("swell-play"), "bench", cache, "--json"] + args, timeout=timeout, log=log)
+    row = {"case": label, "expect": expect, "wall_s": round(r.wall, 1),
+           "command": "swell-play bench %s %s" % (os.path.basename(cache), " ".join(str(a) for a in args))}
+    j = r.json or {}
+    if r.timed_out:
+        row.update(outcome="FAIL: hang", ok=False)
+    elif r.rc == 0:
+        err = j.get("max_abs_error")
+        finite = err is not None and math.isfinite(err) and j.get("rms_error") is not None
+        good = finite and err <= 1e-4 * j.get("water_depth", 1) and j.get("frames_exact")
+        row.update(fps=j.get("fps"), max_abs_error=err, rms_error=j.get("rms_error"),
+                   outcome="ok" if good else "FAIL: error %s" % err, ok=bool(good) and expect == "ok")
+        if good and expect != "ok":
+            row["outcome"] = "FAIL: accepted, expected a clear error"
+    elif r.rc == 1 and len([l for l in r.err.splitlines() if l.strip()]) == 1 and not r.out.strip():
+        row.update(outcome="clear error: " + r.last_err_line().replace("swell-play: ", ""),
+                   ok=expect == "error")
+    else:
+        row.update(outcome="FAIL: exit %s: %s" % (r.rc, r.last_err_line()), ok=False)
+    return row
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--long-steps", type=int, default=100000, help="steps of the long runs")
+    ap.add_argument("--timeout", type=int, default=600, help="per-run limit (s), long runs get 5x")
+    ap.add_argument("--only", default="", help="bake,replay")
+    ap.add_argument("--no-docs", action="store_true")
+    args = ap.parse_args()
+    only = set(filter(None, args.only.split(",")))
+    os.makedirs(OUT, exist_ok=True)
+    log = open(os.path.join(OUT, "commands.log"), "w")
+    t0 = time.monotonic()
+    loads = [("start", bl.load_average(), time.strftime("%H:%M:%S"))]
+    print("tools/stress: load average %s; log out/stress/commands.log" % loads[0][1], flush=True)
+    bake_rows, replay_rows = [], []
+    if not only or "bake" in only:
+        for case in bake_cases(args.long_steps):
+            limit = args.timeout * (5 if case[0] == "long run" else 1)
+            row = run_bake(case, limit, log)
+            row["load"] = bl.load_average()
+            bake_rows.append(row)
+            print("  %-14s %-44s %s (%.0f s)" % (row["sweep"], row["case"], row["outcome"][:90], row["wall_s"]),
+                  flush=True)
+        bl.write_csv(os.path.join(OUT, "bake.csv"), bake_rows)
+    loads.append(("after bake", bl.load_average(), time.strftime("%H:%M:%S")))
+    if not only or "replay" in only:
+        cache = os.path.join(OUT, "surging_small.swell")
+        r = bl.run([bl.exe("swell-bake"), scene("surging_small.json"), "-o", cache, "--threads", "1", "-q"],
+                   timeout=1800, log=log)
+        if r.rc != 0:
+            raise SystemExit("tools/stress: baking surging_small failed: " + r.last_err_line())
+        synth = {}
+        for name, a in [("one-frame cache", ["--frames", 1, "--surface", 200]),
+                        ("zero surface particles (40 frames)", ["--frames", 40, "--surface", 0, "--splash", 0]),
+                        ("one frame, zero particles", ["--frames", 1, "--surface", 0, "--splash", 0])]:
+            p = os.path.join(OUT, "synth_%d.swell" % len(synth))
+            bl.run([bl.exe("swell-cache"), "synth", p] + a, timeout=60, log=log)
+            synth[name] = p
+        for case in replay_cases(cache, synth):
+            row = run_replay(case, args.timeout, log)
+            replay_rows.append(row)
+            print("  %-44s %s (%.0f s)" % (row["case"], row["outcome"][:90], row["wall_s"]), flush=True)
+        # The other subcommands on a cache without surface particles: finite files, no crash.
+        p = synth["zero surface particles (40 frames)"]
+        for label, cmd in [("heights, zero surface particles",
+                            ["heights", p, "--out", os.path.join(OUT, "h"), "--res", "16x16", "--seconds", "0.2"]),
+                           ("render, zero surface particles",
+                            ["render", p, "--out", os.path.join(OUT, "r"), "--size", "160x90", "--seconds",
+                             "0.2"])]:
+            r = bl.run([bl.exe("swell-play")] + cmd + ["--json"], timeout=args.timeout, log=log)
+            ok = r.rc == 0 and r.json is not None
+            replay_rows.append({"case": label, "expect": "ok", "wall_s": round(r.wall, 1),
+                                "outcome": "ok" if ok else "FAIL: exit %s: %s" % (r.rc, r.last_err_line()),
+                                "ok": ok, "command": "swell-play " + " ".join(os.path.basename(c) if "/" in c
+                                                                              else c for c in cmd)})
+            print("  %-44s %s" % (label, replay_rows[-1]["outcome"]), flush=True)
+        bl.write_csv(os.path.join(OUT, "replay.csv"), replay_rows)
+    loads.append(("end", bl.load_average(), time.strftime("%H:%M:%S")))
+    minutes = (time.monotonic() - t0) / 60
+    m = bl.machine()
+    m.update(total_minutes=round(minutes, 1), loads=loads)
+    with open(os.path.join(OUT, "machine.json"), "w") as f:
+        json.dump(m, f, indent=1)
+    fails = [r for r in bake_rows + replay_rows if not r["ok"]]
+    if not args.no_docs:
+        docs(bake_rows, replay_rows, m, args.long_steps)
+    print("tools/stress: %d cases, %d failed, %.1f min; out/stress/" % (
+        len(bake_rows) + len(replay_rows), len(fails), minutes), flush=True)
+    for r in fails:
+        print("  FAILED: %s: %s" % (r["case"], r["outcome"]))
+    sys.exit(1 if fails else 0)
+
+
+def docs(bake_rows, replay_rows, m, long_steps):
+    head = ("Generated by `tools/stress` on %s: %s, %d cores; commit %s; load average %s (%s). "
+            "%.1f min in all. Per-run limit 600 s (long runs 3,000 s); a run past it would be "
+            "reported as a hang. CSV: `out/stress/`." % (
+                m["date"], m["cpu"], m["cores"], m["commit"], m["loads"][0][1],
+                "; ".join("%s %s" % (w, l) for w, l, _ in m["loads"][1:]), m["total_minutes"]))
+    t = [head, ""]
+    if bake_rows:
+        t += ["**Bake** (`swell-bake SCENE -o C --threads 1 --json --set ...`; then `swell-cache verify` "
+              "and a NaN scan of every frame with `tools/swell_cache.py`). Conservation: water count at "
+              "start -> end (and inside the tank at the end), volume from the mean number density of "
+              "the interior water (end / start - 1), energy drift = (kinetic + potential) end / start - 1 "
+              "(it includes the piston's and inflow's work and viscous losses; only the still tank "
+              "should keep it).", "",
+              bl.md_table(bake_rows, [
+                  ("sweep", "sweep"), ("case", "case"), ("scene", lambda r: "`%s`" % r["scene"]),
+                  ("particles", lambda r: r.get("particles", "-")), ("steps", lambda r: r.get("steps")),
+                  ("outcome", lambda r: r["outcome"]),
+                  ("water start -> end (in tank)", lambda r: "%s -> %s (%s)" % (
+                      r["water_start"], r["water_end"], r["in_tank_end"]) if r.get("water_start") else "-"),
+                  ("volume change", lambda r: r.get("volume_change")),
+                  ("energy drift", lambda r: r.get("energy_drift")),
+                  ("max Courant", lambda r: r.get("max_courant")),
+                  ("NaN in cache", lambda r: r.get("nonfinite")),
+                  ("Miche warning", lambda r: r.get("warning") or "-"),
+                  ("wall s", "wall_s")]), ""]
+    if replay_rows:
+        t += ["**Replay** (`swell-play bench CACHE --json ...` on the surging_small bake and on "
+              "`swell-cache synth` caches of one frame and of frames without surface particles; ok = "
+              "exit 0, finite, within 1e-4 of the depth of the double-precision CPU reference and the "
+              "same frame choice; clear error = exit 1 with one stderr line). The quick cases are also "
+              "ctest tests (`PlayStress.*`, tests/runtime/play_stress_test.cpp).", "",
+              bl.md_table(replay_rows, [
+                  ("case", "case"), ("expected", "expect"), ("outcome", "outcome"),
+                  ("max error (m)", lambda r: r.get("max_abs_error")), ("fps", lambda r: r.get("fps")),
+                  ("wall s", "wall_s"), ("command", lambda r: "`%s`" % r["command"])])]
+    bl.replace_section(DOC, "stress", "\n".join(t))
+
+
+if __name__ == "__main__":
+    main()
