@@ -104,6 +104,9 @@ MpsSolver::MpsSolver(const PhysicsParams& physics, const SolverParams& solver, P
     m_reL = m_par.reLaplacian * m_l0;
     m_collide = m_par.collisionDistance * m_l0;
     m_reList = std::max({m_reN, m_reL, m_collide}) + m_par.neighborSkin * m_l0;
+    // The number-density kernel (density, gradient, p_min) and the collisions reach only
+    // re_N: they scan a short sub-list, half as long as the full one at the textbook radii.
+    m_reShort = std::min(m_reList, std::max(m_reN, m_collide) + m_par.neighborSkin * m_l0);
     m_latN = latticeConstants(m_l0, m_reN);
     m_latL = latticeConstants(m_l0, m_reL);
     m_grid.configure(m_domain, m_reList, n, m_par.maxNeighbors);
@@ -219,7 +222,7 @@ void MpsSolver::rebuildNeighbors(const std::vector<double>& x, const std::vector
                                 m_domain.y1));
         }
     }
-    if (!m_grid.build(x, y, m_reList)) {
+    if (!m_grid.build(x, y, m_reList, m_reShort)) {
         fail(m_grid.overflowParticle(),
              fmt::format("more than {} neighbours within {:.3g} l0 (particles clumping; raise solver.max_neighbors "
                          "only if this is expected)", m_par.maxNeighbors, m_reList / m_l0));
@@ -331,7 +334,7 @@ void MpsSolver::explicitPhase(double dt) {
         m_uC[i] = m_uStar[i];
         m_vC[i] = m_vStar[i];
         if (isFixed(m_p.kind[i])) continue;
-        for (std::uint32_t j : m_grid.neighbors(i)) {
+        for (std::uint32_t j : m_grid.shortNeighbors(i)) {
             const double dx = m_xStar[j] - m_xStar[i];
             const double dy = m_yStar[j] - m_yStar[i];
             const double r2 = dx * dx + dy * dy;
@@ -369,7 +372,7 @@ void MpsSolver::densityPhase(double /*dt*/) {
     for (std::size_t i = 0; i < n; ++i) {
         double s = 0.0;
         double div = 0.0;
-        for (std::uint32_t j : m_grid.neighbors(i)) {
+        for (std::uint32_t j : m_grid.shortNeighbors(i)) {
             const double dx = m_xStar[j] - m_xStar[i];
             const double dy = m_yStar[j] - m_yStar[i];
             const double r2 = dx * dx + dy * dy;
@@ -760,7 +763,7 @@ void MpsSolver::correctionPhase(double dt) {
         // p_i^min for stability); the symmetric pair term does not need it.
         double pm = m_p.p[i];
         if (!sym) {
-            for (std::uint32_t j : m_grid.neighbors(i)) {
+            for (std::uint32_t j : m_grid.shortNeighbors(i)) {
                 if (m_p.kind[j] == ParticleKind::Dummy) continue;
                 const double dx = m_xStar[j] - m_xStar[i];
                 const double dy = m_yStar[j] - m_yStar[i];
@@ -768,7 +771,7 @@ void MpsSolver::correctionPhase(double dt) {
             }
         }
         double gx = 0.0, gy = 0.0;
-        for (std::uint32_t j : m_grid.neighbors(i)) {
+        for (std::uint32_t j : m_grid.shortNeighbors(i)) {
             if (m_p.kind[j] == ParticleKind::Dummy) continue;
             const double dx = m_xStar[j] - m_xStar[i];
             const double dy = m_yStar[j] - m_yStar[i];
@@ -782,7 +785,7 @@ void MpsSolver::correctionPhase(double dt) {
         if (gc) {
             // Khayyer & Gotoh (2011) corrective matrix: C_i = (d/n0 sum w r_ij r_ij^T / r^2)^-1.
             double cxx = 0.0, cxy = 0.0, cyy = 0.0;
-            for (std::uint32_t j : m_grid.neighbors(i)) {
+            for (std::uint32_t j : m_grid.shortNeighbors(i)) {
                 if (m_p.kind[j] == ParticleKind::Dummy) continue;
                 const double dx = m_xStar[j] - m_xStar[i];
                 const double dy = m_yStar[j] - m_yStar[i];

@@ -30,6 +30,8 @@ void NeighborGrid::configure(const Box& domain, double cellSize, std::size_t cap
     m_rank.assign(capacity, 0);
     m_list.assign(capacity * m_stride, 0);
     m_listCount.assign(capacity, 0);
+    m_shortList.assign(capacity * m_stride, 0);
+    m_shortCount.assign(capacity, 0);
     m_count = 0;
 }
 
@@ -39,13 +41,16 @@ int NeighborGrid::cellOf(double x, double y) const {
     return cy * m_nx + cx;
 }
 
-bool NeighborGrid::build(std::span<const double> x, std::span<const double> y, double radius) {
+bool NeighborGrid::build(std::span<const double> x, std::span<const double> y, double radius, double shortRadius) {
     const std::size_t count = x.size();
     if (count > m_cellOf.size() || y.size() != count) {
         throw std::invalid_argument("NeighborGrid::build: more particles than configured");
     }
     if (radius > m_cell * (1.0 + 1e-12)) {
         throw std::invalid_argument("NeighborGrid::build: radius larger than the cell size");
+    }
+    if (shortRadius < 0.0 || shortRadius > radius) {
+        throw std::invalid_argument("NeighborGrid::build: short radius outside [0, radius]");
     }
     m_count = count;
     // Counting sort: histogram, prefix sum, scatter (stable in particle index).
@@ -75,6 +80,7 @@ bool NeighborGrid::build(std::span<const double> x, std::span<const double> y, d
     // increasing index and particles within a cell in increasing rank, so each list is
     // sorted by rank.
     const double r2max = radius * radius;
+    const double r2short = shortRadius * shortRadius;
     std::size_t overflow = count;
 #pragma omp parallel for schedule(static) reduction(min : overflow) if(count >= 4096)
     for (std::size_t i = 0; i < count; ++i) {
@@ -82,7 +88,9 @@ bool NeighborGrid::build(std::span<const double> x, std::span<const double> y, d
         const int cx = c % m_nx;
         const int cy = c / m_nx;
         std::uint32_t* out = m_list.data() + i * m_stride;
+        std::uint32_t* outShort = m_shortList.data() + i * m_stride;
         std::size_t found = 0;
+        std::size_t foundShort = 0;
         bool full = false;
         for (int jy = std::max(0, cy - 1); jy <= std::min(m_ny - 1, cy + 1); ++jy) {
             const int rowStart = jy * m_nx;
@@ -93,16 +101,19 @@ bool NeighborGrid::build(std::span<const double> x, std::span<const double> y, d
                 if (j == i) continue;
                 const double dx = x[j] - x[i];
                 const double dy = y[j] - y[i];
-                if (dx * dx + dy * dy < r2max) {
+                const double r2 = dx * dx + dy * dy;
+                if (r2 < r2max) {
                     if (found == m_stride) {
                         full = true;
                         break;
                     }
                     out[found++] = j;
+                    if (r2 < r2short) outShort[foundShort++] = j;
                 }
             }
         }
         m_listCount[i] = static_cast<std::uint32_t>(found);
+        m_shortCount[i] = static_cast<std::uint32_t>(foundShort);
         if (full) overflow = std::min(overflow, i);
     }
     m_overflow = overflow;

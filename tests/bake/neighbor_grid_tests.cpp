@@ -49,6 +49,33 @@ TEST(NeighborGrid, ListsEqualBruteForce) {
     }
 }
 
+TEST(NeighborGrid, ShortListsAreTheFullListsCutAtTheShortRadiusInTheSameOrder) {
+    const Box domain{0.0, 0.0, 1.0, 0.5};
+    const Cloud c = randomCloud(2000, domain, 13);
+    const double radius = 0.035;
+    const double shortRadius = 0.025;
+    NeighborGrid grid;
+    grid.configure(domain, radius, c.x.size(), 128);
+    ASSERT_TRUE(grid.build(c.x, c.y, radius, shortRadius));
+    std::size_t shortTotal = 0, fullTotal = 0;
+    for (std::size_t i = 0; i < c.x.size(); ++i) {
+        std::vector<std::uint32_t> expected;
+        for (std::uint32_t j : grid.neighbors(i)) {
+            const double dx = c.x[j] - c.x[i], dy = c.y[j] - c.y[i];
+            if (dx * dx + dy * dy < shortRadius * shortRadius) expected.push_back(j);
+        }
+        const auto got = grid.shortNeighbors(i);
+        ASSERT_EQ(std::vector<std::uint32_t>(got.begin(), got.end()), expected) << "particle " << i;
+        shortTotal += got.size();
+        fullTotal += grid.neighbors(i).size();
+    }
+    EXPECT_GT(shortTotal, 0U);
+    EXPECT_LT(shortTotal, fullTotal);
+    EXPECT_THROW(grid.build(c.x, c.y, radius, 2.0 * radius), std::invalid_argument);
+    ASSERT_TRUE(grid.build(c.x, c.y, radius)); // no short radius: empty short lists
+    for (std::size_t i = 0; i < c.x.size(); ++i) EXPECT_TRUE(grid.shortNeighbors(i).empty());
+}
+
 TEST(NeighborGrid, SortedOrderGroupsCellsAndListsAreRankOrdered) {
     const Box domain{-1.0, -1.0, 1.0, 1.0};
     const Cloud c = randomCloud(1500, domain, 11);

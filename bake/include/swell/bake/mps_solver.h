@@ -111,7 +111,7 @@ private:
     Box m_domain;
     LatticeConstants m_latN;
     LatticeConstants m_latL;
-    double m_reN, m_reL, m_reList, m_collide;
+    double m_reN, m_reL, m_reList, m_reShort, m_collide;
     double m_time = 0.0;
     long m_step = 0;
     StepStats m_stats;

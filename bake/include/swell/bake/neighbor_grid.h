@@ -18,11 +18,12 @@ public:
     void configure(const Box& domain, double cellSize, std::size_t capacity, int maxNeighbors);
 
     /// Counting sort of particles 0..count-1 into cells, then for each particle the list
-    /// of others within `radius` (m), ordered by their position in the sorted order.
+    /// of others within `radius` (m), ordered by their position in the sorted order, and
+    /// the sub-list of those within `shortRadius` (m, <= radius; 0: none) in the same order.
     /// Returns false (lists incomplete) if some particle has more than maxNeighbors
     /// neighbours; overflowParticle() names it. Throws std::out_of_range for a particle
     /// outside the domain (the solver checks the domain first, so that is a bug).
-    bool build(std::span<const double> x, std::span<const double> y, double radius);
+    bool build(std::span<const double> x, std::span<const double> y, double radius, double shortRadius = 0.0);
 
     std::size_t count() const { return m_count; }
     /// Particle indices in cell order (a space-filling order, good for locality).
@@ -32,6 +33,10 @@ public:
     /// Neighbours of particle i (indices, excluding i), in increasing rank.
     std::span<const std::uint32_t> neighbors(std::size_t i) const {
         return {m_list.data() + i * m_stride, m_listCount[i]};
+    }
+    /// Neighbours of particle i within the short radius of the last build, in list order.
+    std::span<const std::uint32_t> shortNeighbors(std::size_t i) const {
+        return {m_shortList.data() + i * m_stride, m_shortCount[i]};
     }
     std::size_t overflowParticle() const { return m_overflow; }
     /// Cell of particle i at the last build.
@@ -55,6 +60,8 @@ private:
     std::vector<std::uint32_t> m_rank;
     std::vector<std::uint32_t> m_list;      // count x stride
     std::vector<std::uint32_t> m_listCount;
+    std::vector<std::uint32_t> m_shortList; // count x stride: the sub-lists within shortRadius
+    std::vector<std::uint32_t> m_shortCount;
 };
 
 } // namespace swell::bake
