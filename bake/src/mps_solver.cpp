@@ -90,9 +90,7 @@ MpsSolver::MpsSolver(const PhysicsParams& physics, const SolverParams& solver, P
     require(m_par.courantLimit > 0.0 && m_par.courantTarget > 0.0, "Courant numbers must be positive");
     const std::size_t n = m_p.size();
     require(n > 0 && m_p.count(ParticleKind::Water) > 0, "no water particles");
-    require(m_p.y.size() == n && m_p.vx.size() == n && m_p.vy.size() == n && m_p.p.size() == n &&
-                m_p.n.size() == n && m_p.kind.size() == n,
-            "particle arrays differ in length");
+    require(m_p.consistent(), "particle arrays differ in length");
     for (std::size_t i = 0; i < n; ++i) {
         if (!m_domain.contains(m_p.x[i], m_p.y[i])) {
             throw std::invalid_argument(fmt::format("MpsSolver: particle {} at ({}, {}) is outside the domain", i,
@@ -125,7 +123,6 @@ MpsSolver::MpsSolver(const PhysicsParams& physics, const SolverParams& solver, P
     m_rowParticle.assign(n, 0);
     const std::size_t cap = n * (static_cast<std::size_t>(m_par.maxNeighbors) + 1);
     m_rowPtr.assign(n + 1, 0);
-    m_rowEnd.assign(n, 0);
     m_rowNnz.assign(n, 0);
     m_col.assign(cap, 0);
     m_val.assign(cap, 0.0);
@@ -414,7 +411,7 @@ void MpsSolver::assemblePpe(double dt) {
     m_rows = static_cast<std::size_t>(rows);
     const double reL2 = m_reL * m_reL;
     // Each row gets room for its whole neighbour list plus the diagonal, so one pass fills it;
-    // m_rowEnd marks the used part (sparse rows with small gaps, Eigen's uncompressed layout).
+    // m_rowNnz says how much of it is used (sparse rows with small gaps, Eigen's uncompressed layout).
     m_rowPtr[0] = 0;
     for (int r = 0; r < rows; ++r) {
         const std::uint32_t i = m_rowParticle[static_cast<std::size_t>(r)];
@@ -457,7 +454,6 @@ void MpsSolver::assemblePpe(double dt) {
             ++pos;
         }
         if (diag < 0) diag = pos++;
-        m_rowEnd[static_cast<std::size_t>(r)] = pos;
         m_rowNnz[static_cast<std::size_t>(r)] = pos - begin;
         m_col[static_cast<std::size_t>(diag)] = r;
         m_val[static_cast<std::size_t>(diag)] = diagValue;
@@ -477,7 +473,7 @@ double MpsSolver::matVec(const double* v, double* out) const {
     double vAv = 0.0;
 #pragma omp parallel for schedule(static) reduction(+ : vAv) if(static_cast<std::size_t>(rows) >= kParallelMin)
     for (int r = 0; r < rows; ++r) {
-        const int end = m_rowEnd[static_cast<std::size_t>(r)];
+        const int end = rowEnd(r);
         double s = 0.0;
         for (int k = m_rowPtr[static_cast<std::size_t>(r)]; k < end; ++k) {
             s += m_val[static_cast<std::size_t>(k)] * v[m_col[static_cast<std::size_t>(k)]];
@@ -558,7 +554,7 @@ void MpsSolver::setupTwoLevel() {
     int bw = 0;
     for (int r = 0; r < rows; ++r) {
         const int I = m_aggOf[static_cast<std::size_t>(r)];
-        for (int k = m_rowPtr[static_cast<std::size_t>(r)]; k < m_rowEnd[static_cast<std::size_t>(r)]; ++k) {
+        for (int k = m_rowPtr[static_cast<std::size_t>(r)]; k < rowEnd(r); ++k) {
             bw = std::max(bw, I - m_aggOf[static_cast<std::size_t>(m_col[static_cast<std::size_t>(k)])]);
         }
     }
@@ -573,7 +569,7 @@ void MpsSolver::setupTwoLevel() {
     for (int r = 0; r < rows; ++r) {
         const int I = m_aggOf[static_cast<std::size_t>(r)];
         double* rowI = band + static_cast<std::size_t>(I) * width;
-        for (int k = m_rowPtr[static_cast<std::size_t>(r)]; k < m_rowEnd[static_cast<std::size_t>(r)]; ++k) {
+        for (int k = m_rowPtr[static_cast<std::size_t>(r)]; k < rowEnd(r); ++k) {
             const int J = m_aggOf[static_cast<std::size_t>(m_col[static_cast<std::size_t>(k)])];
             if (J <= I) rowI[I - J] += m_val[static_cast<std::size_t>(k)];
         }
@@ -644,7 +640,7 @@ void MpsSolver::applyPreconditioner(const double* r, double* z) const {
         for (int i = rows - 1; i >= 0; --i) {
             double s = 0.0;
             const int dpos = m_diagPos[static_cast<std::size_t>(i)];
-            for (int k = dpos + 1; k < m_rowEnd[static_cast<std::size_t>(i)]; ++k) {
+            for (int k = dpos + 1; k < rowEnd(i); ++k) {
                 s += m_val[static_cast<std::size_t>(k)] * z[m_col[static_cast<std::size_t>(k)]];
             }
             z[i] -= s * m_invDiag[static_cast<std::size_t>(i)];

@@ -99,6 +99,10 @@ private:
     void setupTwoLevel();
     void applyPreconditioner(const double* r, double* z) const;
     double matVec(const double* v, double* out) const; ///< out = A v; returns v.out
+    /// One past the last used entry of PPE row r.
+    int rowEnd(int r) const {
+        return m_rowPtr[static_cast<std::size_t>(r)] + m_rowNnz[static_cast<std::size_t>(r)];
+    }
     void correctionPhase(double dt);
     void checkState(double dt);
     double chooseDt() const;
@@ -136,7 +140,7 @@ private:
     // PPE in sparse rows with room for each particle's neighbour list (rows in neighbour-grid
     // order; Eigen's uncompressed layout), viewed by Eigen as a SparseMatrix map. Our own PCG
     // runs on it so a step allocates nothing.
-    std::vector<int> m_rowPtr, m_rowEnd, m_rowNnz, m_col; // row starts, ends (used part), lengths
+    std::vector<int> m_rowPtr, m_rowNnz, m_col; // row starts, used lengths, columns
     std::vector<double> m_val;
     std::vector<int> m_diagPos;        // position of the diagonal entry in each row
     std::vector<double> m_b, m_x, m_r, m_z, m_d, m_q, m_invDiag;
