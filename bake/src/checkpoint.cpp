@@ -115,11 +115,7 @@ Particles getParticles(In& in) {
     p.p = in.vec<double>();
     p.n = in.vec<double>();
     p.kind = in.vec<ParticleKind>();
-    const std::size_t n = p.x.size();
-    if (p.y.size() != n || p.vx.size() != n || p.vy.size() != n || p.p.size() != n || p.n.size() != n ||
-        p.kind.size() != n) {
-        in.damaged("particle arrays differ in length");
-    }
+    if (!p.consistent()) in.damaged("particle arrays differ in length");
     for (ParticleKind k : p.kind) {
         if (k != ParticleKind::Water && k != ParticleKind::Wall && k != ParticleKind::Dummy) {
             in.damaged("unknown particle kind");

@@ -27,8 +27,7 @@ void MpsSolver::importState(const MpsState& s) {
         throw std::invalid_argument("MpsSolver::importState: " + what);
     };
     const Particles& q = s.particles;
-    if (q.size() != n || q.y.size() != n || q.vx.size() != n || q.vy.size() != n || q.p.size() != n ||
-        q.n.size() != n || q.kind.size() != n) {
+    if (q.size() != n || !q.consistent()) {
         bad(fmt::format("state of {} particles, solver has {}", q.size(), n));
     }
     for (std::size_t i = 0; i < n; ++i) {

@@ -33,6 +33,11 @@ void Particles::reserve(std::size_t count) {
     kind.reserve(count);
 }
 
+bool Particles::consistent() const {
+    const std::size_t s = size();
+    return y.size() == s && vx.size() == s && vy.size() == s && p.size() == s && n.size() == s && kind.size() == s;
+}
+
 std::size_t Particles::count(ParticleKind k) const {
     return static_cast<std::size_t>(std::count(kind.begin(), kind.end(), k));
 }

@@ -29,6 +29,8 @@ struct Particles {
     /// Reserves room for `count` particles in every array.
     void reserve(std::size_t count);
     std::size_t count(ParticleKind k) const;
+    /// Whether every array has size() entries.
+    bool consistent() const;
 };
 
 } // namespace swell::bake
