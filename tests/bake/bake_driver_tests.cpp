@@ -7,6 +7,7 @@
 #include <iterator>
 #include <string>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 #include <unistd.h>
@@ -36,13 +37,11 @@ protected:
     }
     void TearDown() override { fs::remove_all(m_dir); }
 
-    /// surging_small, shortened to `endTime` seconds.
-    static Scene smallSurging(double endTime) {
-        std::ifstream in(kScenes / "surging_small.json");
-        json j = json::parse(in);
-        j["solver"]["end_time"] = endTime;
-        return parseScene(j);
+    /// A shipped scene shortened to `endTime` seconds.
+    static Scene shortened(const char* file, double endTime) {
+        return loadScene(kScenes / file, {fmt::format("solver.end_time={}", endTime)});
     }
+    static Scene smallSurging(double endTime) { return shortened("surging_small.json", endTime); }
     static std::string bytes(const fs::path& p) {
         std::ifstream in(p, std::ios::binary);
         return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
@@ -225,10 +224,7 @@ TEST(BakeWarnings, SteepPistonWaveIsReported) {
 // Paper Sec. 3.3.2: the ripple channel recycles water from the outflow to the inflow and
 // keeps the particle count.
 TEST_F(BakeDriver, RippleChannelRecyclesWaterAndConservesTheCount) {
-    std::ifstream in(kScenes / "ripple_small.json");
-    json j = json::parse(in);
-    j["solver"]["end_time"] = 1.0;
-    const Scene scene = parseScene(j);
+    const Scene scene = shortened("ripple_small.json", 1.0);
     BakeOptions opt;
     opt.output = m_dir / "r.swell";
     const BakeSummary s = runBake(scene, opt);
@@ -293,10 +289,7 @@ TEST_F(BakeDriver, ResumedBakeIsByteIdenticalToAnUninterruptedOne) {
 }
 
 TEST_F(BakeDriver, ResumedRippleBakeWithRecyclingIsByteIdentical) {
-    std::ifstream in(kScenes / "ripple_small.json");
-    json j = json::parse(in);
-    j["solver"]["end_time"] = 0.8;
-    const Scene scene = parseScene(j);
+    const Scene scene = shortened("ripple_small.json", 0.8);
     BakeOptions ref;
     ref.output = m_dir / "ref.swell";
     const BakeSummary whole = runBake(scene, ref);
@@ -388,10 +381,7 @@ TEST_F(BakeDriver, DamagedCheckpointIsRefusedNamingTheFile) {
 // volume (from the mean number density) and, starting at rest, its energy can only drop
 // (viscosity, collisions) or grow by the solver's own error: both stay small in a short run.
 TEST_F(BakeDriver, SummaryReportsConservationOfCountVolumeAndEnergy) {
-    std::ifstream in(kScenes / "still_tank_small.json");
-    json j = json::parse(in);
-    j["solver"]["end_time"] = 0.5;
-    const Scene scene = parseScene(j);
+    const Scene scene = shortened("still_tank_small.json", 0.5);
     BakeOptions opt;
     opt.output = m_dir / "still.swell";
     const BakeSummary s = runBake(scene, opt);

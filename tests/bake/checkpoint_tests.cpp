@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <unistd.h>
 
+#include "expect_same_particles.h"
 #include "swell/bake/checkpoint.h"
 
 using namespace swell::bake;
@@ -94,14 +95,7 @@ TEST_F(CheckpointFile, EveryFieldRoundTrips) {
     EXPECT_EQ(r.solver.step, 150);
     EXPECT_EQ(r.solver.time, 0.3);
     EXPECT_EQ(r.solver.lastMaxSpeed, 0.25);
-    const Particles &a = r.solver.particles, &b = c.solver.particles;
-    EXPECT_EQ(a.x, b.x);
-    EXPECT_EQ(a.y, b.y);
-    EXPECT_EQ(a.vx, b.vx);
-    EXPECT_EQ(a.vy, b.vy);
-    EXPECT_EQ(a.p, b.p);
-    EXPECT_EQ(a.n, b.n);
-    EXPECT_EQ(a.kind, b.kind);
+    expectSameParticles(r.solver.particles, c.solver.particles);
     EXPECT_EQ(r.solver.neighborX, c.solver.neighborX);
     ASSERT_EQ(r.solver.neighborY.size(), 3u);
     EXPECT_TRUE(std::isnan(r.solver.neighborY[1])); // a stale neighbour reference survives

@@ -2,38 +2,21 @@
 // as the solver that exported it (piston wall, a particle moved between steps), and a
 // state of other particles is refused.
 #include <filesystem>
-#include <fstream>
 #include <string>
 
 #include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
 
+#include "expect_same_particles.h"
 #include "swell/bake/mps_solver.h"
 #include "swell/bake/scene.h"
 
 using namespace swell::bake;
-using nlohmann::json;
 
 namespace {
 
 const std::filesystem::path kScenes = SWELL_SCENES_DIR;
 
-Scene sceneFile(const char* name) {
-    std::ifstream in(kScenes / name);
-    return parseScene(json::parse(in));
-}
-
-void expectSameParticles(const Particles& a, const Particles& b) {
-    ASSERT_EQ(a.size(), b.size());
-    // Bit-for-bit: the same operations in the same order give the same doubles.
-    EXPECT_EQ(a.x, b.x);
-    EXPECT_EQ(a.y, b.y);
-    EXPECT_EQ(a.vx, b.vx);
-    EXPECT_EQ(a.vy, b.vy);
-    EXPECT_EQ(a.p, b.p);
-    EXPECT_EQ(a.n, b.n);
-    EXPECT_EQ(a.kind, b.kind);
-}
+Scene sceneFile(const char* name) { return loadScene(kScenes / name); }
 
 } // namespace
 
