@@ -79,13 +79,12 @@ class Bench:
                     rows.append({
                         "resolution": "a/%d" % per, "l0_m": l0, "dt_s": dt, "variant": vname,
                         "ppe_tolerance": tol, "particles": parts, "water": j.get("water"),
-                        "steps": steps, "outcome": j.get("outcome", "exit %s: %s" % (r.rc, r.last_err_line())),
+                        "steps": steps, "outcome": validate_outcome(r, j),
                         "front_error_mean_a": j.get("front_error_mean"),
                         "front_error_max_a": j.get("front_error_max"),
                         "ppe_iterations_mean": j.get("ppe_iterations_mean"),
                         "wall_s": j.get("wall_seconds", r.wall),
-                        "us_per_particle_step": (1e6 * j["solver_seconds"] / steps / parts
-                                                 if steps and parts else None),
+                        "us_per_particle_step": us_per_particle_step(j, steps, parts),
                     })
         return rows
 
@@ -118,82 +117,47 @@ class Bench:
                 rows.append({
                     "resolution": "H/%d" % per, "l0_m": l0, "variant": variant_name(vname),
                     "particles": parts, "water": j.get("water"), "steps": n,
-                    "outcome": j.get("outcome", "exit %s: %s" % (r.rc, r.last_err_line())),
+                    "outcome": validate_outcome(r, j),
                     "bed_pressure_ratio": ratio,
                     "pressure_error": abs(ratio - 1.0) if ratio is not None else None,
                     "max_speed_over_sqrt_gH": j.get("max_speed_over_sqrt_gH"),
                     "escaped": j.get("escaped"),
                     "wall_s": j.get("wall_seconds", r.wall),
-                    "us_per_particle_step": (1e6 * j["solver_seconds"] / n / parts
-                                             if n and parts else None),
+                    "us_per_particle_step": us_per_particle_step(j, n, parts),
                 })
         return rows
 
     # ---------------------------------------------------------------- bake: regular waves
     def regular_wave(self):
         self.note_load("regular wave")
-        has_validate = "regular-wave" in self.run([bl.exe("swell-validate"), "--help"], 60).out
         spacings = [0.04, 0.02, 0.2 / 15] if self.quick else [0.04, 0.02, 0.2 / 15, 0.01]
         rows = []
         with open(scene("regular_wave_small.json")) as f:
             sc = json.load(f)
         S, T = sc["piston"]["stroke"], sc["piston"]["period"]
         h = sc["geometry"]["water"][0]["y1"] - sc["geometry"]["water"][0]["y0"]
-        theory = biesel(S, T, h)
         for l0 in spacings:
             dt = 0.004 if l0 >= 0.04 else 0.002 if l0 >= 0.02 else 0.001  # frames every 20 ms
             s = {"geometry.particle_spacing": repr(l0), "solver.dt": repr(dt)}
-            row = {"resolution": "h/%d" % round(h / l0), "l0_m": l0, "dt_s": dt,
-                   "theory_H_m": theory["H"], "theory_L_m": theory["L"]}
-            if has_validate:
-                r = self.run([bl.exe("swell-validate"), "--json", "--threads", "1"] + sets(s) +
-                             ["regular-wave", scene("regular_wave_small.json")], 3600)
-                j = r.json or {}
-                hs, he = j.get("heights") or [None], j.get("height_errors") or [None]
-                win = j.get("window")
-                row.update({"particles": (j.get("water") or 0) + (j.get("fixed") or 0) or None,
-                            "water": j.get("water"), "steps": j.get("steps"),
-                            "outcome": j.get("outcome", "exit %s: %s" % (r.rc, r.last_err_line())),
-                            "window_s": "%.1f-%.1f" % tuple(win) if win else None,
-                            "H_m": hs[0], "height_error": he[0], "theory_H_m": j.get("height_theory", theory["H"]),
-                            "L_m": j.get("wavelength"), "wavelength_error": j.get("wavelength_error"),
-                            "theory_L_m": j.get("wavelength_theory", theory["L"]),
-                            "wall_s": j.get("wall_seconds", r.wall),
-                            "us_per_particle_step": j.get("us_per_particle_step"),
-                            "source": "swell-validate regular-wave"})
-                rows.append(row)
-                continue
-            cache = os.path.join(OUT, "rw_%g.swell" % l0)
-            probes = os.path.join(OUT, "rw_%g.probes.csv" % l0)
-            r = self.run([bl.exe("swell-bake"), scene("regular_wave_small.json"), "-o", cache,
-                          "--probes", probes, "--threads", "1", "--json", "-q"] + sets(s), 3600)
+            r = self.run([bl.exe("swell-validate"), "--json", "--threads", "1"] + sets(s) +
+                         ["regular-wave", scene("regular_wave_small.json")], 3600)
             j = r.json or {}
-            row.update({"particles": (j.get("particles_water") or 0) + (j.get("particles_wall") or 0) or None,
-                        "water": j.get("particles_water"), "steps": j.get("steps"),
-                        "outcome": "stable" if r.rc == 0 else "exit %s: %s" % (r.rc, r.last_err_line()),
-                        "wall_s": j.get("wall_seconds", r.wall), "us_per_particle_step": None,
-                        "source": "swell-bake --probes, fit by tools/bench"})
-            if j.get("steps") and row["particles"]:
-                row["us_per_particle_step"] = 1e3 * j["ms_per_step"] / row["particles"]
-            if r.rc == 0:
-                t0 = max(sc["piston"].get("ramp_time", 1.0) + 1.4, 3.0)
-                fit = fit_gauges(probes, T, t0, sc["solver"]["end_time"])
-                row.update(fit)
-                if "H_m" in fit:
-                    row["height_error"] = fit["H_m"] / theory["H"] - 1.0
-                if "L_m" in fit:
-                    row["wavelength_error"] = fit["L_m"] / theory["L"] - 1.0
-            rows.append(row)
-            if os.path.exists(cache):
-                os.remove(cache)
-        if has_validate:
-            note = ("`swell-validate --json --threads 1 --set geometry.particle_spacing=L0 --set solver.dt=DT "
-                    "regular-wave scenes/regular_wave_small.json`: its default fit window (after the ramp "
-                    "and the wave's arrival, before reflections)")
-        else:
-            note = ("`swell-validate regular-wave` is not in this build: computed here from `swell-bake "
-                    "--probes` gauge records (least-squares harmonic fit over t = 3-6 s, as "
-                    "docs/validation.md section 5)")
+            hs, he = j.get("heights") or [None], j.get("height_errors") or [None]
+            win = j.get("window")
+            rows.append({"resolution": "h/%d" % round(h / l0), "l0_m": l0, "dt_s": dt,
+                         "particles": (j.get("water") or 0) + (j.get("fixed") or 0) or None,
+                         "water": j.get("water"), "steps": j.get("steps"),
+                         "outcome": validate_outcome(r, j),
+                         "window_s": "%.1f-%.1f" % tuple(win) if win else None,
+                         "H_m": hs[0], "height_error": he[0], "theory_H_m": j.get("height_theory"),
+                         "L_m": j.get("wavelength"), "wavelength_error": j.get("wavelength_error"),
+                         "theory_L_m": j.get("wavelength_theory"),
+                         "wall_s": j.get("wall_seconds", r.wall),
+                         "us_per_particle_step": j.get("us_per_particle_step"),
+                         "source": "swell-validate regular-wave"})
+        note = ("`swell-validate --json --threads 1 --set geometry.particle_spacing=L0 --set solver.dt=DT "
+                "regular-wave scenes/regular_wave_small.json`: its default fit window (after the ramp "
+                "and the wave's arrival, before reflections)")
         note = ("h = %g m, T = %g s, S = %g cm; %s" % (h, T, 100 * S, note))
         return rows, note
 
@@ -449,6 +413,16 @@ class Bench:
         return rows
 
 
+def validate_outcome(r, j):
+    """The outcome a swell-validate run reports, or its exit status and last error line."""
+    return j.get("outcome", "exit %s: %s" % (r.rc, r.last_err_line()))
+
+
+def us_per_particle_step(j, steps, particles):
+    """Solver time per step and particle (us) of a swell-validate run, None if it did not run."""
+    return 1e6 * j["solver_seconds"] / steps / particles if steps and particles else None
+
+
 def variant_name(v):
     return v
 
@@ -488,51 +462,6 @@ def load_note():
 def save_note(note):
     with open(os.path.join(OUT, "regular_wave.note"), "w") as f:
         f.write(note)
-
-
-def biesel(S, T, h, g=9.81):
-    """Linear piston wave: wavelength from w^2 = g k tanh(kh), H = S 2(cosh 2kh - 1)/(sinh 2kh + 2kh)."""
-    w = 2 * math.pi / T
-    k = w * w / g
-    for _ in range(100):
-        f = g * k * math.tanh(k * h) - w * w
-        df = g * math.tanh(k * h) + g * k * h / math.cosh(k * h) ** 2
-        k -= f / df
-    kh = k * h
-    ratio = 2 * (math.cosh(2 * kh) - 1) / (math.sinh(2 * kh) + 2 * kh)
-    return {"H": S * ratio, "L": 2 * math.pi / k, "kh": kh}
-
-
-def fit_gauges(path, T, t0, t1):
-    """Least-squares a cos wt + b sin wt + c per gauge over [t0, t1]: H = 2 sqrt(a^2 + b^2) at the
-    first gauge, L from the phase lag between the first two gauges."""
-    import csv
-    with open(path) as f:
-        rows = list(csv.DictReader(f))
-    gauges = [k for k in rows[0] if k.startswith("gauge_")]
-    t = np.array([float(r["time"]) for r in rows])
-    w = 2 * math.pi / T
-    sel = (t >= t0) & (t <= t1)
-    out = {"window_s": "%.1f-%.1f" % (t0, t1)}
-    phases, xs = [], []
-    for gi, g in enumerate(gauges):
-        y = np.array([float(r[g]) for r in rows])
-        m = sel & np.isfinite(y)
-        if m.sum() < 10:
-            continue
-        A = np.stack([np.cos(w * t[m]), np.sin(w * t[m]), np.ones(m.sum())], axis=1)
-        (a, b, c), *_ = np.linalg.lstsq(A, y[m], rcond=None)
-        amp = math.hypot(a, b)
-        if gi == 0:
-            out["H_m"] = 2 * amp
-            out["gauge_x_m"] = float(g.split("_", 1)[1])
-        phases.append(math.atan2(b, a))
-        xs.append(float(g.split("_", 1)[1]))
-    if len(phases) >= 2:
-        lag = (phases[1] - phases[0]) % (2 * math.pi)
-        if lag > 0:
-            out["L_m"] = 2 * math.pi * (xs[1] - xs[0]) / lag
-    return out
 
 
 def main():
