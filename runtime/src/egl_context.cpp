@@ -7,8 +7,12 @@
 #include <EGL/eglext.h>
 #include <GL/glcorearb.h>
 
+#include <algorithm>
+#include <cstdlib>
 #include <cstring>
 #include <fmt/format.h>
+#include <string>
+#include <thread>
 #include <vector>
 
 namespace swell::runtime {
@@ -96,7 +100,17 @@ EglContext::EglContext() {
             fmt::format("cannot make the GL context current (EGL error 0x{:x})", error));
     }
     m_renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+    if (const char* threads = std::getenv("LP_NUM_THREADS"))
+        m_llvmpipeThreads = std::atoi(threads);
     m_version = reinterpret_cast<const char*>(glGetString(GL_VERSION));
+}
+
+int preferLlvmpipeThreads() {
+    if (const char* set = std::getenv("LP_NUM_THREADS"))
+        return std::atoi(set);
+    const int threads = static_cast<int>(std::max(std::thread::hardware_concurrency(), 1u)) + 1;
+    ::setenv("LP_NUM_THREADS", std::to_string(threads).c_str(), 0);
+    return threads;
 }
 
 EglContext::~EglContext() {

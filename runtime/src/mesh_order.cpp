@@ -37,4 +37,12 @@ std::vector<std::uint32_t> frontToBackIndices(const MeshLayout& mesh, const Vec3
     return indices;
 }
 
+std::array<bool, 4> visibleSides(const MeshLayout& mesh, double bedY, const Vec3& eye) {
+    if (!(eye[1] > bedY))
+        return {true, true, true, true};
+    const double x1 = mesh.x0 + (mesh.verticesX - 1) * mesh.dx;
+    const double z1 = mesh.z0 + (mesh.verticesZ - 1) * mesh.dz;
+    return {eye[2] < mesh.z0, eye[2] > z1, eye[0] < mesh.x0, eye[0] > x1};
+}
+
 } // namespace swell::runtime

@@ -1,20 +1,19 @@
 #include "swell/runtime/splash_culling.h"
 
+#include "swell/runtime/parallel_chunks.h"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
 namespace swell::runtime {
 
-std::size_t cullSubmergedSplashes(std::span<const SplashSprite> sprites,
-                                  std::span<const float> heights, const Grid& grid,
-                                  const SpriteFootprint& footprint,
-                                  std::vector<SplashSprite>& out) {
+namespace {
+
+std::size_t cullRange(std::span<const SplashSprite> sprites, std::span<const float> heights,
+                      const Grid& grid, const SpriteFootprint& footprint,
+                      std::vector<SplashSprite>& out) {
     const int N = grid.cellsX, M = grid.cellsZ;
-    if (N < 4 || M < 4 ||
-        heights.size() != static_cast<std::size_t>(N) * static_cast<std::size_t>(M))
-        throw std::invalid_argument(
-            "cullSubmergedSplashes: heights must hold N x M >= 4 x 4 values");
     const double cell = std::min(grid.dx, grid.dz);
     const double pixelRadius = 0.71 / footprint.pixelsPerMetre; // per metre of distance
     const double ox = grid.x0 + 0.5 * grid.dx, oz = 0.5 * grid.dz;
@@ -44,6 +43,34 @@ std::size_t cullSubmergedSplashes(std::span<const SplashSprite> sprites,
             out.push_back(s);
     }
     return dropped;
+}
+
+} // namespace
+
+std::size_t cullSubmergedSplashes(std::span<const SplashSprite> sprites,
+                                  std::span<const float> heights, const Grid& grid,
+                                  const SpriteFootprint& footprint,
+                                  std::vector<SplashSprite>& out) {
+    const int N = grid.cellsX, M = grid.cellsZ;
+    if (N < 4 || M < 4 ||
+        heights.size() != static_cast<std::size_t>(N) * static_cast<std::size_t>(M))
+        throw std::invalid_argument(
+            "cullSubmergedSplashes: heights must hold N x M >= 4 x 4 values");
+    // Consecutive ranges culled in parallel, each into its own list, joined in order.
+    const std::size_t chunks = chunkCount(sprites.size(), 8192);
+    std::vector<std::vector<SplashSprite>> kept(chunks);
+    std::vector<std::size_t> dropped(chunks, 0);
+    forEachChunk(sprites.size(), chunks, [&](std::size_t c, std::size_t begin, std::size_t end) {
+        kept[c].reserve(end - begin);
+        dropped[c] = cullRange(sprites.subspan(begin, end - begin), heights, grid, footprint,
+                               kept[c]);
+    });
+    std::size_t total = 0;
+    for (std::size_t c = 0; c < chunks; ++c) {
+        out.insert(out.end(), kept[c].begin(), kept[c].end());
+        total += dropped[c];
+    }
+    return total;
 }
 
 } // namespace swell::runtime

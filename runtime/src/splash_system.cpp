@@ -1,5 +1,6 @@
 #include "swell/runtime/splash_system.h"
 
+#include "swell/runtime/parallel_chunks.h"
 #include "swell/runtime/split_mix64.h"
 
 #include <algorithm>
@@ -98,28 +99,48 @@ std::vector<SplashSprite> SplashSystem::sprites(std::span<const std::uint32_t> s
         throw std::logic_error("SplashSystem::sprites: one frame per slice expected");
     }
     const SplashParams& q = m_params;
+    // The real splashes in order (slice, particle); each gives 1 + artificialPerReal sprites at
+    // a fixed place in `out`, so the chunks below fill it in parallel, deterministically.
+    struct Real {
+        const float* p; // x, y, vx, vy
+        int j;          // slice
+        std::size_t i;  // particle in its frame
+        double z;       // the slice's z, metres
+    };
+    std::vector<Real> reals;
     for (int j = 0; j < m_grid.sliceCount(); j += 2 * q.sliceStride) {
         const cache::Frame* frame = m_frames.find(sliceFrames[static_cast<std::size_t>(j)]);
         if (frame == nullptr)
             continue; // not held: nothing to show (like the replay's yMin)
         const double z = m_grid.sliceZCells(j) * m_grid.dz;
-        for (std::size_t i = 0; i < frame->splashCount(); ++i) {
-            const float* p = &frame->splash[4 * i];
-            out.push_back({p[0], p[1], static_cast<float>(z), 1.0f});
+        for (std::size_t i = 0; i < frame->splashCount(); ++i)
+            reals.push_back({&frame->splash[4 * i], j, i, z});
+    }
+    const auto per = static_cast<std::size_t>(1 + q.artificialPerReal);
+    out.resize(reals.size() * per);
+    const auto fill = [&](std::size_t, std::size_t begin, std::size_t end) {
+        for (std::size_t r = begin; r < end; ++r) {
+            const Real& real = reals[r];
+            const float* p = real.p;
+            const double z = real.z;
+            SplashSprite* o = &out[r * per];
+            *o++ = {p[0], p[1], static_cast<float>(z), 1.0f};
             for (int a = 0; a < q.artificialPerReal; ++a) {
-                const ArtificialSplash s = artificial(p, j, i, a);
+                const ArtificialSplash s = artificial(p, real.j, real.i, a);
                 // Ballistic motion from the start point; age cycles through the lifetime.
                 double life = seconds / s.lifetime + s.phase;
                 life -= std::floor(life);
                 const double t = life * s.lifetime;
-                out.push_back({static_cast<float>(p[0] + s.offset[0] + s.velocity[0] * t),
-                               static_cast<float>(p[1] + s.offset[1] + s.velocity[1] * t -
-                                                  0.5 * q.gravity * t * t),
-                               static_cast<float>(z + s.offset[2] + s.velocity[2] * t),
-                               static_cast<float>(1.0 - life)});
+                *o++ = {static_cast<float>(p[0] + s.offset[0] + s.velocity[0] * t),
+                        static_cast<float>(p[1] + s.offset[1] + s.velocity[1] * t -
+                                           0.5 * q.gravity * t * t),
+                        static_cast<float>(z + s.offset[2] + s.velocity[2] * t),
+                        static_cast<float>(1.0 - life)};
             }
         }
-    }
+    };
+    // At least a few thousand sprites per thread: below that a thread costs more than it saves.
+    forEachChunk(reals.size(), chunkCount(out.size(), 4096), fill);
     return out;
 }
 

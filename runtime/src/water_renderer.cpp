@@ -9,6 +9,7 @@
 #include <GL/glcorearb.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <fmt/format.h>
@@ -23,7 +24,7 @@ namespace {
 constexpr GLint kViewProj = 0, kCells = 1, kOrigin = 2, kSpacing = 3, kEye = 4, kSunDir = 5,
                 kBedY = 6, kAbsorption = 7, kScatter = 8, kBed = 9, kEta = 10, kF0 = 11, kSun = 12,
                 kSunColour = 13, kEdge = 14, kPixelsPerMetre = 15, kRadius = 16, kSplashColour = 17,
-                kReflectionLod = 18, kAmbient = 19, kDropLight = 20;
+                kReflectionLod = 18, kAmbient = 19, kDropLight = 20, kSideLight = 21;
 
 void setVec3(GLuint program, GLint loc, const Vec3& v) {
     glProgramUniform3f(program, loc, static_cast<float>(v[0]), static_cast<float>(v[1]),
@@ -153,12 +154,12 @@ WaterRenderer::WaterRenderer(const Grid& grid, const cache::Domain& domain,
         glProgramUniform2f(p, kOrigin, static_cast<float>(grid.x0 + 0.5 * grid.dx),
                            static_cast<float>(0.5 * grid.dz));
         glProgramUniform2f(p, kSpacing, static_cast<float>(grid.dx), static_cast<float>(grid.dz));
-        setVec3(p, kSunDir, sun);
         glProgramUniform1f(p, kBedY, bedY);
         setVec3(p, kAbsorption, shading.absorption);
         setVec3(p, kScatter, shading.scatterColour);
     }
     const GLuint v = m_surfaceProgram.get();
+    setVec3(v, kSunDir, sun);
     setVec3(v, kBed, shading.bedColour);
     glProgramUniform1f(v, kEta, eta);
     glProgramUniform1f(v, kF0, f0);
@@ -170,7 +171,12 @@ WaterRenderer::WaterRenderer(const Grid& grid, const cache::Domain& domain,
                        static_cast<float>(shading.sunIntensity));
     setVec3(w, kSunColour, shading.sunColour);
     const Vec3 ambient = zenithRadiance(sky);
-    setVec3(m_skirtProgram.get(), kAmbient, ambient);
+    // Light from above entering a side: the sky straight up and the sun, tinted by the water.
+    const double sideLight = 0.6 * (0.35 + 0.65 * std::max(sun[1], 0.0));
+    const Vec3 sideTint{0.55, 0.85, 0.9};
+    setVec3(m_skirtProgram.get(), kSideLight,
+            {ambient[0] * sideLight * sideTint[0], ambient[1] * sideLight * sideTint[1],
+             ambient[2] * sideLight * sideTint[2]});
     setVec3(m_splashProgram.get(), kAmbient, ambient);
     Vec3 dropLight{sun[0], sun[1], sun[2] + 0.5};
     const double dropNorm = std::hypot(dropLight[0], dropLight[1], dropLight[2]);
@@ -205,12 +211,21 @@ void WaterRenderer::stamp(const GlQuery& query) const {
 
 void WaterRenderer::draw(GlName heightBuffer, const Camera& camera,
                          std::span<const SplashSprite> splashes, double splashRadius) {
+    drawSurface(heightBuffer, camera, !splashes.empty());
+    drawSplashes(splashes, splashRadius);
+}
+
+void WaterRenderer::drawSurface(GlName heightBuffer, const Camera& camera, bool splashesFollow) {
     camera.validate();
     const int W = m_shading.width, H = m_shading.height;
     const double aspect = static_cast<double>(W) / H;
     const Mat4 viewProj = multiply(projectionMatrix(camera, aspect), viewMatrix(camera));
     const Mat4 invViewProj = inverse(viewProj);
     const auto& eye = camera.position;
+    m_frameViewProj = viewProj;
+    m_frameEye = eye;
+    m_framePixelsPerMetre =
+        H / (2.0 * std::tan(0.5 * camera.fovYDegrees * std::numbers::pi / 180.0));
 
     const bool sameCamera = m_backgroundValid && m_backgroundCamera.position == camera.position &&
                             m_backgroundCamera.target == camera.target &&
@@ -220,22 +235,17 @@ void WaterRenderer::draw(GlName heightBuffer, const Camera& camera,
     if (!m_indexValid || m_indexEye != eye)
         updateMeshOrder(eye);
 
-    m_lastSplashes = splashes.size();
-    m_lastCulled = 0;
-    const double pixelsPerMetre =
-        H / (2.0 * std::tan(0.5 * camera.fovYDegrees * std::numbers::pi / 180.0));
-    if (!splashes.empty()) {
-        // Drops under the (opaque) surface are invisible: skip their vertex and set-up work.
-        // The heights are read before anything is drawn: once a draw reading them (the sides)
-        // is in flight, llvmpipe would wait for it to be rasterised before mapping the buffer.
+    m_heightsValid = false;
+    if (splashesFollow) {
+        // For culling the drops under the surface (drawSplashes). The heights are read before
+        // anything is drawn: once a draw reading them (the sides) is in flight, llvmpipe would
+        // wait for it to be rasterised before mapping the buffer.
         m_heights.resize(static_cast<std::size_t>(m_grid.cellsX) * m_grid.cellsZ);
         glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
         glGetNamedBufferSubData(heightBuffer, 0,
                                 static_cast<GLsizeiptr>(m_heights.size() * sizeof(float)),
                                 m_heights.data());
-        m_visibleSprites.clear();
-        m_lastCulled = cullSubmergedSplashes(splashes, m_heights, m_grid,
-                                             {splashRadius, eye, pixelsPerMetre}, m_visibleSprites);
+        m_heightsValid = true;
     }
     // 1. Environment: the cached sky pass, copied (a texel-fetch pass when multisampled: a copy
     //    or a framebuffer blit cannot write a multisampled target).
@@ -282,18 +292,45 @@ void WaterRenderer::draw(GlName heightBuffer, const Camera& camera,
     glBindVertexArray(m_vertexArray);
     if (m_shading.sides) {
         glUseProgram(m_skirtProgram.get());
+        const std::array<bool, 4> sides = visibleSides(meshLayout(), m_domain.yMin, eye);
         for (int edge = 0; edge < 4; ++edge) {
+            if (!sides[static_cast<std::size_t>(edge)])
+                continue;
             glProgramUniform1i(m_skirtProgram.get(), kEdge, edge);
             glDrawArrays(GL_TRIANGLE_STRIP, 0, 2 * (edge < 2 ? m_grid.cellsX : m_grid.cellsZ));
         }
     }
     // Hand the sky and water to llvmpipe's rasteriser threads now: they shade them while this
-    // thread sets up the splash sprites (vertex processing and binning run on one thread).
+    // thread goes on (the caller builds the splash sprites; their vertex processing and set-up
+    // run on this thread).
     glFlush();
     stamp(m_queries[2]);
+    m_surfaceDrawn = true;
+    checkGl("drawing the water");
+}
 
+void WaterRenderer::drawSplashes(std::span<const SplashSprite> splashes, double splashRadius) {
+    if (!m_surfaceDrawn)
+        throw std::logic_error("WaterRenderer::drawSplashes without drawSurface");
+    m_surfaceDrawn = false;
+    const int W = m_shading.width, H = m_shading.height;
+    m_lastSplashes = splashes.size();
+    m_lastCulled = 0;
+    m_visibleSprites.clear();
+    if (!splashes.empty()) {
+        if (!m_heightsValid) {
+            throw std::logic_error(
+                "WaterRenderer::drawSplashes: drawSurface was told no splashes follow");
+        }
+        // Drops under the (opaque) surface are invisible: skip their vertex and set-up work.
+        m_lastCulled =
+            cullSubmergedSplashes(splashes, m_heights, m_grid,
+                                  {splashRadius, m_frameEye, m_framePixelsPerMetre},
+                                  m_visibleSprites);
+    }
     // 3. Splash point sprites (Sec. 5), blended over the water, depth tested, not written.
-    if (!splashes.empty() && !m_visibleSprites.empty()) {
+    glBindFramebuffer(GL_FRAMEBUFFER, m_msFramebuffer);
+    if (!m_visibleSprites.empty()) {
         const std::span<const SplashSprite> visible(m_visibleSprites);
         const auto bytes = static_cast<GLsizeiptr>(visible.size_bytes());
         if (visible.size() > m_splashCapacity) {
@@ -305,8 +342,8 @@ void WaterRenderer::draw(GlName heightBuffer, const Camera& camera,
         glNamedBufferSubData(m_splashBuffer.get(), 0, bytes, visible.data());
         glVertexArrayVertexBuffer(m_splashArray, 0, m_splashBuffer.get(), 0, sizeof(SplashSprite));
         const GLuint p = m_splashProgram.get();
-        glProgramUniformMatrix4fv(p, kViewProj, 1, GL_FALSE, viewProj.data());
-        glProgramUniform1f(p, kPixelsPerMetre, static_cast<float>(pixelsPerMetre));
+        glProgramUniformMatrix4fv(p, kViewProj, 1, GL_FALSE, m_frameViewProj.data());
+        glProgramUniform1f(p, kPixelsPerMetre, static_cast<float>(m_framePixelsPerMetre));
         glProgramUniform1f(p, kRadius, static_cast<float>(splashRadius));
         glEnable(GL_PROGRAM_POINT_SIZE);
         glEnable(GL_BLEND);
@@ -331,17 +368,20 @@ void WaterRenderer::draw(GlName heightBuffer, const Camera& camera,
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     m_timed = m_timing;
     m_splashTimed = !splashes.empty();
-    checkGl("drawing the water");
+    checkGl("drawing the splashes");
+}
+
+MeshLayout WaterRenderer::meshLayout() const {
+    return {.verticesX = m_grid.cellsX,
+            .verticesZ = m_grid.cellsZ,
+            .x0 = m_grid.x0 + 0.5 * m_grid.dx,
+            .z0 = 0.5 * m_grid.dz,
+            .dx = m_grid.dx,
+            .dz = m_grid.dz};
 }
 
 void WaterRenderer::updateMeshOrder(const Vec3& eye) {
-    const MeshLayout mesh{.verticesX = m_grid.cellsX,
-                          .verticesZ = m_grid.cellsZ,
-                          .x0 = m_grid.x0 + 0.5 * m_grid.dx,
-                          .z0 = 0.5 * m_grid.dz,
-                          .dx = m_grid.dx,
-                          .dz = m_grid.dz};
-    const std::vector<std::uint32_t> indices = frontToBackIndices(mesh, eye);
+    const std::vector<std::uint32_t> indices = frontToBackIndices(meshLayout(), eye);
     glNamedBufferSubData(m_indices.get(), 0,
                          static_cast<GLsizeiptr>(indices.size() * sizeof(std::uint32_t)),
                          indices.data());

@@ -56,5 +56,21 @@ TEST(MeshOrder, TooSmallMeshThrows) {
                  std::invalid_argument);
 }
 
+TEST(MeshOrder, OnlyTheSidesTheEyeIsOutsideOfShow) {
+    // kMesh spans x in [x0, x1], z in [z0, z1]; sides: 0 z = z0, 1 z = z1, 2 x = x0, 3 x = x1.
+    const double x1 = kMesh.x0 + (kMesh.verticesX - 1) * kMesh.dx;
+    const double z1 = kMesh.z0 + (kMesh.verticesZ - 1) * kMesh.dz;
+    const double xm = 0.5 * (kMesh.x0 + x1), zm = 0.5 * (kMesh.z0 + z1);
+    const double bed = -1.0;
+    using Sides = std::array<bool, 4>;
+    EXPECT_EQ(visibleSides(kMesh, bed, {xm, 2.0, z1 + 3.0}), (Sides{false, true, false, false}));
+    EXPECT_EQ(visibleSides(kMesh, bed, {kMesh.x0 - 1.0, 2.0, kMesh.z0 - 1.0}),
+              (Sides{true, false, true, false}));
+    EXPECT_EQ(visibleSides(kMesh, bed, {x1 + 2.0, 0.5, zm}), (Sides{false, false, false, true}));
+    // Straight above the water: none; from below the bed, through the open bottom: all four.
+    EXPECT_EQ(visibleSides(kMesh, bed, {xm, 2.0, zm}), (Sides{false, false, false, false}));
+    EXPECT_EQ(visibleSides(kMesh, bed, {xm, -3.0, z1 + 3.0}), (Sides{true, true, true, true}));
+}
+
 } // namespace
 } // namespace swell::runtime

@@ -54,6 +54,32 @@ TEST(SplashCulling, DropsOnlySpritesWhollyUnderTheSurfaceAndKeepsTheOrder) {
     }
 }
 
+TEST(SplashCulling, ManySpritesAreCulledInParallelAsOneAtATimeAndAppended) {
+    // Enough sprites to be split over threads: the result is the sprites kept one at a time,
+    // in order, appended after what `out` held.
+    std::vector<SplashSprite> sprites;
+    for (int k = 0; k < 40000; ++k) {
+        const float x = 0.15f + 0.7f * static_cast<float>((k * 37) % 101) / 100.0f;
+        const float z = 0.15f + 0.5f * static_cast<float>((k * 53) % 89) / 88.0f;
+        const float y = 0.3f + 0.4f * static_cast<float>((k * 29) % 97) / 96.0f;
+        sprites.push_back({x, y, z, static_cast<float>(k)});
+    }
+    std::vector<SplashSprite> expected{{9.0f, 9.0f, 9.0f, -1.0f}};
+    std::size_t expectedDropped = 0;
+    for (const SplashSprite& s : sprites)
+        expectedDropped += cullSubmergedSplashes(std::span(&s, 1), testHeights(), testGrid(),
+                                                 kFootprint, expected);
+    std::vector<SplashSprite> out{{9.0f, 9.0f, 9.0f, -1.0f}};
+    const std::size_t dropped =
+        cullSubmergedSplashes(sprites, testHeights(), testGrid(), kFootprint, out);
+    EXPECT_EQ(dropped, expectedDropped);
+    EXPECT_GT(dropped, 5000u);
+    EXPECT_LT(dropped, 35000u);
+    ASSERT_EQ(out.size(), expected.size());
+    for (std::size_t k = 0; k < out.size(); ++k)
+        ASSERT_EQ(out[k].alpha, expected[k].alpha) << k;
+}
+
 TEST(SplashCulling, TheLowestVertexAroundDecides) {
     // Under the flat 0.5 m but above a dip at a neighbouring vertex: kept.
     std::vector<float> h = testHeights();

@@ -117,6 +117,44 @@ TEST(SplashSystem, SpritesMoveBallisticallyAndFadeOverTheirLife) {
     }
 }
 
+TEST(SplashSystem, ManySplashesAreBuiltInParallelInTheOrderOfOneAtATime) {
+    // 8 real slices x 3 particles x 1001 sprites: enough to be split over threads. Every sprite
+    // is where the serial formula puts it: slice by slice, particle by particle.
+    const Fixture fx;
+    SplashParams params;
+    params.artificialPerReal = 1000;
+    const SplashSystem s(fx.set, fx.grid, params, 5);
+    const double t = 0.8;
+    auto frames = fx.allFrame(4);
+    frames[6] = 2; // real slice k = 3 shows another frame
+    const auto sprites = s.sprites(frames, t);
+    ASSERT_EQ(sprites.size(), 8u * 3u * 1001u);
+    std::size_t checked = 0;
+    for (int k = 0; k < 8; ++k) {
+        const int j = 2 * k;
+        const cache::Frame& f = *fx.set.find(frames[static_cast<std::size_t>(j)]);
+        const double z = fx.grid.sliceZCells(j) * fx.grid.dz;
+        for (std::size_t i = 0; i < 3; ++i) {
+            const SplashSprite* o = &sprites[(static_cast<std::size_t>(k) * 3 + i) * 1001];
+            EXPECT_EQ(o[0].x, f.splash[4 * i]);
+            EXPECT_EQ(o[0].z, static_cast<float>(z));
+            for (int a = 0; a < 1000; a += 97) {
+                const ArtificialSplash p = s.artificial(&f.splash[4 * i], j, i, a);
+                double life = t / p.lifetime + p.phase;
+                life -= std::floor(life);
+                const double age = life * p.lifetime;
+                const SplashSprite& sp = o[1 + a];
+                EXPECT_EQ(sp.x, static_cast<float>(f.splash[4 * i] + p.offset[0] +
+                                                   p.velocity[0] * age));
+                EXPECT_EQ(sp.z, static_cast<float>(z + p.offset[2] + p.velocity[2] * age));
+                EXPECT_EQ(sp.alpha, static_cast<float>(1.0 - life));
+                ++checked;
+            }
+        }
+    }
+    EXPECT_EQ(checked, 8u * 3u * 11u);
+}
+
 TEST(SplashSystem, SameSeedSameSpritesOtherSeedOthers) {
     const Fixture fx;
     const SplashParams params;

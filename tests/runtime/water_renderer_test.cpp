@@ -143,6 +143,37 @@ TEST(WaterRenderer, SplashesAreDrawnOnlyWhenThereAreAny) {
     EXPECT_LT(d.meanAbs, 5.0); // ... in a small part of the picture
 }
 
+TEST(WaterRenderer, DrawingInTwoPartsGivesTheSamePictureAsOne) {
+    // drawSurface, then (after the caller built the sprites) drawSplashes: the same frame as
+    // draw(), which is the two in a row.
+    const EglContext context;
+    const Grid grid = testGrid();
+    SkyParams sky;
+    sky.faceSize = 64;
+    ShadingParams shading;
+    shading.width = 160;
+    shading.height = 90;
+    const std::vector<float> h = waveHeights(grid, 0.3);
+    GlBuffer buffer = makeStorageBuffer(h.size() * sizeof(float), h.data());
+    WaterRenderer r(grid, kDomain, shading, proceduralSky(sky), sunDirection(sky));
+    const Camera cam = defaultCamera(grid, kDomain, 0.5, 160.0 / 90.0);
+    const std::vector<SplashSprite> splashes = fixedSplashes();
+    r.draw(buffer.get(), cam, splashes, 0.02);
+    const Image one = r.readPixels();
+    r.drawSurface(buffer.get(), cam, true);
+    r.drawSplashes(splashes, 0.02);
+    const Image two = r.readPixels();
+    EXPECT_EQ(compareImages(one, two).maxAbs, 0);
+    EXPECT_EQ(r.lastSplashCount(), 40u);
+    // Out of order: splashes with no surface drawn, or after being told none would follow.
+    EXPECT_THROW(r.drawSplashes(splashes, 0.02), std::logic_error);
+    r.drawSurface(buffer.get(), cam, false);
+    EXPECT_THROW(r.drawSplashes(splashes, 0.02), std::logic_error);
+    r.drawSurface(buffer.get(), cam, false);
+    r.drawSplashes({}, 0.02);
+    EXPECT_EQ(r.lastSplashCount(), 0u);
+}
+
 TEST(WaterRenderer, MultisamplingSmoothsButDoesNotChangeThePicture) {
     const EglContext context;
     Scene one(160, 90, 1), four(160, 90, 4);

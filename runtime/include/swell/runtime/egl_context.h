@@ -24,6 +24,8 @@ public:
     const std::string& platform() const { return m_platform; }
     /// Makes this context current on the calling thread.
     void makeCurrent() const;
+    /// llvmpipe's rasteriser threads (LP_NUM_THREADS) when the context was made, 0 if unset.
+    int llvmpipeThreads() const { return m_llvmpipeThreads; }
 
 private:
     void* m_display = nullptr;
@@ -31,6 +33,15 @@ private:
     std::string m_renderer;
     std::string m_version;
     std::string m_platform;
+    int m_llvmpipeThreads = 0;
 };
+
+/// Mesa's llvmpipe (the software rasteriser used where there is no GPU) sets up each draw on
+/// the calling thread and rasterises it in 64 x 64 pixel tiles on LP_NUM_THREADS threads, by
+/// default one per core. With one thread more than cores, a core whose thread has run out of
+/// tiles picks up the extra thread's, and a frame at 1280 x 720 measured 7-18 % faster on 2
+/// cores (docs/BENCHMARKS.md). Sets LP_NUM_THREADS to cores + 1 unless it is already set; call
+/// it before the first EglContext (Mesa reads it once). Returns the value in effect.
+int preferLlvmpipeThreads();
 
 } // namespace swell::runtime

@@ -7,6 +7,7 @@
 
 #include "swell/runtime/camera.h"
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -27,5 +28,12 @@ struct MeshLayout {
 /// centre to `eye` (ties: lower index first). Throws std::invalid_argument for fewer than
 /// 2 x 2 vertices.
 std::vector<std::uint32_t> frontToBackIndices(const MeshLayout& mesh, const Vec3& eye);
+
+/// Which of the block's four sides (walls from the mesh's edge rows down to the bed at `bedY`)
+/// can be seen from `eye`: 0: z = z0 (row 0), 1: the last row, 2: x = x0 (column 0), 3: the last
+/// column. A side is a plane: from above the bed the eye sees it only from outside, as the
+/// others face away behind the water and the near sides (the block is closed but for its
+/// bottom). From the bed or below, through the open bottom, all four may show.
+std::array<bool, 4> visibleSides(const MeshLayout& mesh, double bedY, const Vec3& eye);
 
 } // namespace swell::runtime

@@ -9,6 +9,7 @@
 #include "swell/runtime/camera.h"
 #include "swell/runtime/gl_objects.h"
 #include "swell/runtime/image_io.h"
+#include "swell/runtime/mesh_order.h"
 #include "swell/runtime/replay_params.h"
 #include "swell/runtime/sky_cubemap.h"
 #include "swell/runtime/splash_system.h"
@@ -61,9 +62,17 @@ public:
     /// Draws one frame: sky (rendered once per camera, then copied), the height field in
     /// `heightBuffer` (an SSBO of N x M floats, [m * N + n], metres), the sides and, if `splashes`
     /// is not empty, the splash sprites of radius `splashRadius` metres. Returns without waiting
-    /// for the GPU.
+    /// for the GPU. The same as drawSurface then drawSplashes.
     void draw(GlName heightBuffer, const Camera& camera, std::span<const SplashSprite> splashes,
               double splashRadius);
+    /// The first part of draw(): sky, height field and sides, handed to the GPU (flushed) so
+    /// that the caller can build the splash sprites while they are drawn. `splashesFollow`: the
+    /// heights are read back for culling the drops under the surface (drawSplashes).
+    void drawSurface(GlName heightBuffer, const Camera& camera, bool splashesFollow);
+    /// The second part: the splash sprites over the surface of the last drawSurface (none: no
+    /// splash pass), and the resolve. Throws std::logic_error without a drawSurface first, or
+    /// with sprites after drawSurface(..., splashesFollow = false).
+    void drawSplashes(std::span<const SplashSprite> splashes, double splashRadius);
     /// Resolves and reads the last frame back (blocks): 8-bit RGB, row 0 at the top.
     Image readPixels() const;
     /// Puts GL timestamp queries around each stage of draw(), each after a glFinish (so a timed
@@ -82,6 +91,7 @@ private:
     void renderBackground(const Camera& camera, const Mat4& invViewProj);
     void updateMeshOrder(const Vec3& eye);
     void stamp(const GlQuery& query) const;
+    MeshLayout meshLayout() const;
 
     Grid m_grid;
     cache::Domain m_domain;
@@ -95,6 +105,11 @@ private:
     std::size_t m_splashCapacity = 0;
     std::size_t m_lastCulled = 0;
     std::vector<float> m_heights;               // read back for the splash culling
+    bool m_heightsValid = false;                // m_heights are this frame's
+    bool m_surfaceDrawn = false;                // drawSurface ran, drawSplashes has not
+    Mat4 m_frameViewProj{};                     // this frame's camera, for drawSplashes
+    Vec3 m_frameEye{0.0, 0.0, 0.0};
+    double m_framePixelsPerMetre = 1.0;
     std::vector<SplashSprite> m_visibleSprites; // the sprites drawn
 
     GlProgram m_skyProgram;
