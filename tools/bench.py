@@ -10,6 +10,7 @@ import argparse
 import json
 import math
 import os
+import statistics
 import sys
 import time
 
@@ -198,6 +199,59 @@ class Bench:
                          "cpu_reference_fps": j.get("cpu_reference_fps"),
                          "outcome": "ok" if r.rc == 0 else "exit %s: %s" % (r.rc, r.last_err_line())})
         return rows, renderer
+
+    # ---------------------------------------------------------------- render (issue 7)
+    def render(self, cache):
+        """Shaded frames per second (swell-play render, Sec. 5) with the cost of each stage: the
+        synthetic stress cache (20 real splash particles per frame, 35,840 sprites before
+        culling) with and without splashes at 1280 x 720 and 640 x 360, and the surging_small
+        bake (its own few splashes). Runs interleaved, rep by rep, so drift hits every case."""
+        self.note_load("render")
+        synth = os.path.join(OUT, "render_synth.swell")
+        r = self.run([bl.exe("swell-cache"), "synth", synth, "--frames", 120, "--surface", 400,
+                      "--splash", 20], 300)
+        if r.rc != 0:
+            raise SystemExit("tools/bench: swell-cache synth failed: " + r.last_err_line())
+        reps = 2 if self.quick else 5
+        rdir = os.path.join(OUT, "render_frames")
+        cases = [("synthetic, 20 splash particles/frame", synth, "1280x720", []),
+                 ("synthetic", synth, "1280x720", ["--no-splashes"]),
+                 ("synthetic, 20 splash particles/frame", synth, "640x360", []),
+                 ("synthetic", synth, "640x360", ["--no-splashes"]),
+                 ("surging_small bake", cache, "1280x720", [])]
+        runs = [[] for _ in cases]
+        errors = [None for _ in cases]
+        for _ in range(reps):
+            for i, (_, c, size, extra) in enumerate(cases):
+                r = self.run([bl.exe("swell-play"), "render", c, "--out", rdir, "--size", size,
+                              "--seconds", 4, "--json"] + extra, 600)
+                if r.rc == 0 and r.json:
+                    runs[i].append(r.json)
+                else:
+                    errors[i] = "exit %s: %s" % (r.rc, r.last_err_line())
+        rows = []
+        for (label, _, size, extra), js, err in zip(cases, runs, errors):
+            med = lambda f: statistics.median(f(j) for j in js) if js else None
+            stage = lambda k: med(lambda j: j["stage_gpu_ms"][k])
+            timing = lambda k: med(lambda j: j["timing_ms_per_frame"][k])
+            fps = [j["shaded_fps"] for j in js]
+            rows.append({
+                "cache": label, "size": size.replace("x", " x "),
+                "splashes": "no" if extra else "yes", "runs": len(js),
+                "fps_median": med(lambda j: j["shaded_fps"]),
+                "fps_min": min(fps) if fps else None, "fps_max": max(fps) if fps else None,
+                "frame_ms": timing("draw_synced"), "cpu_ms": timing("draw_cpu"),
+                "sky_ms": stage("sky"), "water_ms": stage("water"), "splash_ms": stage("splashes"),
+                "replay_ms": med(lambda j: j["stage_gpu_ms"]["slice_lookup"] +
+                                 j["stage_gpu_ms"]["reconstruct"]),
+                "sprites_cpu_ms": timing("splash_sprites_cpu"),
+                "sprites_drawn": med(lambda j: j["splash"]["sprites_mean"] -
+                                     j["splash"]["culled_under_water_mean"]),
+                "readback_ms": timing("readback"), "png_ms": timing("png_write"),
+                "llvmpipe_threads": js[0].get("llvmpipe_threads") if js else None,
+                "outcome": err or "ok"})
+        os.remove(synth)
+        return rows
 
     # ---------------------------------------------------------------- compression
     def compression(self, cache):
@@ -469,7 +523,7 @@ def main():
     ap.add_argument("--quick", action="store_true", help="fewer, shorter runs (< 10 min)")
     ap.add_argument("--only", default="",
                     help="comma list of sections: bake (or dam_break, still_tank, regular_wave), replay, "
-                         "compression, skips")
+                         "compression, skips, render")
     ap.add_argument("--no-docs", action="store_true", help="do not rewrite docs/BENCHMARKS.md")
     args = ap.parse_args()
     only = set(filter(None, args.only.split(",")))
@@ -514,6 +568,9 @@ def main():
     if want("skips"):
         print("== skips", flush=True)
         results["skips"] = b.skips(cache, bake_summary)
+    if want("render"):
+        print("== render", flush=True)
+        results["render"] = b.render(cache)
     b.note_load("end")
     if renderer is None:
         r = bl.run([bl.exe("swell-play"), "bench", cache, "--frames", 5, "--warmup", 0, "--error-frames", 1,
@@ -669,6 +726,29 @@ def docs(res, m, rw_note):
                                         ("without", "without"), ("saves", "saves"),
                                         ("command", lambda r: "`%s`" % r["command"])])]
         bl.replace_section(DOC, "skips", "\n".join(t))
+    if "render" in res:
+        rng = lambda r: "**%s** (%s-%s)" % (bl.fmt(r["fps_median"]), bl.fmt(r["fps_min"]),
+                                             bl.fmt(r["fps_max"]))
+        t = [head, "",
+             "Command per row (the synthetic cache: `swell-cache synth F --frames 120 --surface 400 "
+             "--splash 20`; the bake: `scenes/surging_small.json`): `swell-play render CACHE --out DIR "
+             "--size WxH --seconds 4 --json [--no-splashes]`, %d runs per row, interleaved. "
+             "**shaded fps** = 1000 / frame ms: replay update, drawing, building the splash sprites "
+             "and a glFinish, over the frames without timer queries (readback and PNG writing are "
+             "output, listed apart). Stage columns: GL timestamp queries on every 8th frame, each "
+             "stage serialised (the splash stage includes building the sprites, which an untimed "
+             "frame overlaps with the surface's rasterisation); CPU ms = process CPU time, all "
+             "threads, per frame. Medians; target: at least 30 shaded fps at 1280 x 720 on llvmpipe."
+             % (max(r["runs"] for r in res["render"]) if res["render"] else 0), "",
+             bl.md_table(res["render"], [
+                 ("cache", "cache"), ("size", "size"), ("splashes", "splashes"),
+                 ("shaded fps (range)", rng), ("frame ms", "frame_ms"), ("CPU ms", "cpu_ms"),
+                 ("sky", "sky_ms"), ("water + sides", "water_ms"), ("splashes", "splash_ms"),
+                 ("lookup + reconstruct", "replay_ms"), ("sprites drawn", "sprites_drawn"),
+                 ("sprites built (CPU ms)", "sprites_cpu_ms"), ("readback ms", "readback_ms"),
+                 ("PNG ms", "png_ms"), ("llvmpipe threads", "llvmpipe_threads"),
+                 ("outcome", "outcome")])]
+        bl.replace_section(DOC, "render", "\n".join(t))
 
 
 if __name__ == "__main__":
