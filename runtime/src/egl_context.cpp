@@ -100,9 +100,10 @@ EglContext::EglContext() {
             fmt::format("cannot make the GL context current (EGL error 0x{:x})", error));
     }
     m_renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
-    if (const char* threads = std::getenv("LP_NUM_THREADS"))
-        m_llvmpipeThreads = std::atoi(threads);
     m_version = reinterpret_cast<const char*>(glGetString(GL_VERSION));
+    const char* threads = std::getenv("LP_NUM_THREADS");
+    if (threads != nullptr && m_renderer.find("llvmpipe") != std::string::npos)
+        m_llvmpipeThreads = std::atoi(threads);
 }
 
 int preferLlvmpipeThreads() {

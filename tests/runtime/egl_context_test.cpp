@@ -5,6 +5,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstdlib>
+#include <string>
+#include <thread>
+
 namespace swell::runtime {
 
 TEST(EglContext, CreatesHeadlessGl45CoreContext) {
@@ -64,3 +69,27 @@ TEST(EglContext, RendersAComputeResultThatReadsBack) {
 }
 
 } // namespace swell::runtime
+
+TEST(EglContext, LlvmpipeRunsOneRasteriserThreadMoreThanCoresUnlessTold) {
+    const char* before = std::getenv("LP_NUM_THREADS");
+    const std::string saved = before != nullptr ? before : "";
+    const int cores = static_cast<int>(std::max(std::thread::hardware_concurrency(), 1u));
+    ::unsetenv("LP_NUM_THREADS");
+    EXPECT_EQ(swell::runtime::preferLlvmpipeThreads(), cores + 1);
+    EXPECT_EQ(std::string(std::getenv("LP_NUM_THREADS")), std::to_string(cores + 1));
+    // The user's setting wins.
+    ::setenv("LP_NUM_THREADS", "5", 1);
+    EXPECT_EQ(swell::runtime::preferLlvmpipeThreads(), 5);
+    EXPECT_EQ(std::string(std::getenv("LP_NUM_THREADS")), "5");
+    {
+        const swell::runtime::EglContext context;
+        if (context.renderer().find("llvmpipe") != std::string::npos)
+            EXPECT_EQ(context.llvmpipeThreads(), 5);
+        else
+            EXPECT_EQ(context.llvmpipeThreads(), 0);
+    }
+    if (before != nullptr)
+        ::setenv("LP_NUM_THREADS", saved.c_str(), 1);
+    else
+        ::unsetenv("LP_NUM_THREADS");
+}

@@ -24,7 +24,8 @@ public:
     const std::string& platform() const { return m_platform; }
     /// Makes this context current on the calling thread.
     void makeCurrent() const;
-    /// llvmpipe's rasteriser threads (LP_NUM_THREADS) when the context was made, 0 if unset.
+    /// llvmpipe's rasteriser threads (LP_NUM_THREADS) when the context was made; 0 if unset
+    /// (one per core) or the renderer is not llvmpipe.
     int llvmpipeThreads() const { return m_llvmpipeThreads; }
 
 private:
