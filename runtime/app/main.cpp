@@ -862,8 +862,8 @@ int runRender(Options& o, RenderOptions& r) {
         std::cout << fmt::format(
             "swell-play render: {} frames {}x{} ({} samples) in {}, contact sheet {}\n"
             "  {}  ({}, EGL {})\n"
-            "  shaded {:.1f} fps (replay + draw, synced; splash sprites {:.0f} per frame), {:.1f} "
-            "frames/s with readback and PNG writing\n"
+            "  shaded {:.1f} fps (replay + sprites + draw, synced; {:.0f} splash sprites per "
+            "frame), {:.1f} frames/s with readback and PNG writing\n"
             "  GPU ms/frame: slice lookup {:.3f}, reconstruct {:.3f}, sky {:.3f}, water {:.3f}, "
             "splashes {:.3f}, resolve {:.3f}; CPU ms/frame: sprites {:.2f}, readback {:.2f}, PNG "
             "{:.2f}\n"

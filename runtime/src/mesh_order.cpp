@@ -42,7 +42,12 @@ std::array<bool, 4> visibleSides(const MeshLayout& mesh, double bedY, const Vec3
         return {true, true, true, true};
     const double x1 = mesh.x0 + (mesh.verticesX - 1) * mesh.dx;
     const double z1 = mesh.z0 + (mesh.verticesZ - 1) * mesh.dz;
-    return {eye[2] < mesh.z0, eye[2] > z1, eye[0] < mesh.x0, eye[0] > x1};
+    std::array<bool, 4> outside{};
+    outside[0] = eye[2] < mesh.z0;
+    outside[1] = eye[2] > z1;
+    outside[2] = eye[0] < mesh.x0;
+    outside[3] = eye[0] > x1;
+    return outside;
 }
 
 } // namespace swell::runtime

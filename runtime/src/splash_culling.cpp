@@ -62,8 +62,8 @@ std::size_t cullSubmergedSplashes(std::span<const SplashSprite> sprites,
     std::vector<std::size_t> dropped(chunks, 0);
     forEachChunk(sprites.size(), chunks, [&](std::size_t c, std::size_t begin, std::size_t end) {
         kept[c].reserve(end - begin);
-        dropped[c] = cullRange(sprites.subspan(begin, end - begin), heights, grid, footprint,
-                               kept[c]);
+        dropped[c] =
+            cullRange(sprites.subspan(begin, end - begin), heights, grid, footprint, kept[c]);
     });
     std::size_t total = 0;
     for (std::size_t c = 0; c < chunks; ++c) {

@@ -323,10 +323,9 @@ void WaterRenderer::drawSplashes(std::span<const SplashSprite> splashes, double 
                 "WaterRenderer::drawSplashes: drawSurface was told no splashes follow");
         }
         // Drops under the (opaque) surface are invisible: skip their vertex and set-up work.
-        m_lastCulled =
-            cullSubmergedSplashes(splashes, m_heights, m_grid,
-                                  {splashRadius, m_frameEye, m_framePixelsPerMetre},
-                                  m_visibleSprites);
+        m_lastCulled = cullSubmergedSplashes(splashes, m_heights, m_grid,
+                                             {splashRadius, m_frameEye, m_framePixelsPerMetre},
+                                             m_visibleSprites);
     }
     // 3. Splash point sprites (Sec. 5), blended over the water, depth tested, not written.
     glBindFramebuffer(GL_FRAMEBUFFER, m_msFramebuffer);

@@ -144,8 +144,8 @@ TEST(SplashSystem, ManySplashesAreBuiltInParallelInTheOrderOfOneAtATime) {
                 life -= std::floor(life);
                 const double age = life * p.lifetime;
                 const SplashSprite& sp = o[1 + a];
-                EXPECT_EQ(sp.x, static_cast<float>(f.splash[4 * i] + p.offset[0] +
-                                                   p.velocity[0] * age));
+                EXPECT_EQ(sp.x,
+                          static_cast<float>(f.splash[4 * i] + p.offset[0] + p.velocity[0] * age));
                 EXPECT_EQ(sp.z, static_cast<float>(z + p.offset[2] + p.velocity[2] * age));
                 EXPECT_EQ(sp.alpha, static_cast<float>(1.0 - life));
                 ++checked;

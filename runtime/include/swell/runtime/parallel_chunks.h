@@ -14,8 +14,9 @@ namespace swell::runtime {
 /// the others on threads of their own, and returns when all are done. The ranges and their
 /// order do not depend on timing, so results written per range are deterministic. An exception
 /// from any chunk is rethrown (the first by chunk index) after all have finished.
-void forEachChunk(std::size_t n, std::size_t chunks,
-                  const std::function<void(std::size_t chunk, std::size_t begin, std::size_t end)>& f);
+void forEachChunk(
+    std::size_t n, std::size_t chunks,
+    const std::function<void(std::size_t chunk, std::size_t begin, std::size_t end)>& f);
 
 /// How many chunks to split `n` items into: one per hardware thread, but at least
 /// `minPerChunk` items per chunk (and at least one chunk).
