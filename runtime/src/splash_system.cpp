@@ -53,9 +53,25 @@ SplashSystem::SplashSystem(const FrameSet& frames, const Grid& grid, const Splas
         m_active = std::any_of(frames.frames.begin(), frames.frames.end(),
                                [](const cache::Frame& f) { return f.splashCount() > 0; });
     }
+    if (!m_active)
+        return;
+    for (const cache::Frame& f : frames.frames)
+        m_maxSplash = std::max(m_maxSplash, f.splashCount());
+    const auto A = static_cast<std::size_t>(params.artificialPerReal);
+    const auto realSlices = static_cast<std::size_t>(grid.sliceCount() + 1) / 2;
+    const std::size_t count = realSlices * m_maxSplash * A;
+    if (count == 0 || count > params.drawTableBytes / sizeof(Draws))
+        return;
+    m_draws.resize(count);
+    forEachChunk(count, chunkCount(count, 4096), [&](std::size_t, std::size_t b, std::size_t e) {
+        for (std::size_t n = b; n < e; ++n) {
+            const std::size_t a = n % A, i = n / A % m_maxSplash, k = n / A / m_maxSplash;
+            m_draws[n] = draws(static_cast<int>(2 * k), i, static_cast<int>(a));
+        }
+    });
 }
 
-ArtificialSplash SplashSystem::artificial(const float* p, int j, std::size_t i, int a) const {
+SplashSystem::Draws SplashSystem::draws(int j, std::size_t i, int a) const {
     // One generator per artificial splash, keyed by (seed, slice, particle, index): the result
     // does not depend on the order or number of other splashes.
     SplitMix64 keyed(m_seed ^ 0x5e1a5bULL);
@@ -64,30 +80,39 @@ ArtificialSplash SplashSystem::artificial(const float* p, int j, std::size_t i, 
     key ^= SplitMix64(static_cast<std::uint64_t>(i) * 0xc2b2ae3d27d4eb4fULL + 2).next();
     key ^= SplitMix64(static_cast<std::uint64_t>(a) * 0x165667b19e3779f9ULL + 3).next();
     SplitMix64 rng(key);
+    Draws d;
+    unitBall(rng, d.ball);
+    unitBall(rng, d.jitter);
+    d.scale = 0.7 + 0.6 * rng.uniform();
+    d.life = 0.5 + 0.5 * rng.uniform();
+    d.phase = rng.uniform();
+    return d;
+}
 
+ArtificialSplash SplashSystem::fromDraws(const Draws& d, const float* p) const {
     ArtificialSplash s;
     const SplashParams& q = m_params;
     // Sec. 5: initial position random in a sphere around the real splash.
-    double ball[3];
-    unitBall(rng, ball);
     for (int k = 0; k < 3; ++k)
-        s.offset[k] = ball[k] * q.spawnRadius;
+        s.offset[k] = d.ball[k] * q.spawnRadius;
     // Velocity from the real particle's (in the slice plane, z = 0) plus a random part in
     // every direction, proportional to its speed.
     const double vx = p[2], vy = p[3];
     const double speed = std::max(std::sqrt(vx * vx + vy * vy), q.minSpeed);
-    unitBall(rng, ball);
-    const double scale = 0.7 + 0.6 * rng.uniform();
-    s.velocity[0] = vx * scale + ball[0] * q.velocityJitter * speed;
-    s.velocity[1] = vy * scale + ball[1] * q.velocityJitter * speed;
-    s.velocity[2] = ball[2] * q.velocityJitter * speed;
+    s.velocity[0] = vx * d.scale + d.jitter[0] * q.velocityJitter * speed;
+    s.velocity[1] = vy * d.scale + d.jitter[1] * q.velocityJitter * speed;
+    s.velocity[2] = d.jitter[2] * q.velocityJitter * speed;
     // Lifetime from the real particle: the flight time of a drop thrown up at its speed,
     // 2 |v| / g, clamped, times a random factor in [0.5, 1].
     const double flight = q.gravity > 0.0 ? 2.0 * speed / q.gravity : q.maxLifetime;
-    s.lifetime = std::clamp(flight, q.minLifetime, q.maxLifetime) * (0.5 + 0.5 * rng.uniform());
+    s.lifetime = std::clamp(flight, q.minLifetime, q.maxLifetime) * d.life;
     s.lifetime = std::max(s.lifetime, q.minLifetime);
-    s.phase = rng.uniform();
+    s.phase = d.phase;
     return s;
+}
+
+ArtificialSplash SplashSystem::artificial(const float* p, int j, std::size_t i, int a) const {
+    return fromDraws(draws(j, i, a), p);
 }
 
 std::vector<SplashSprite> SplashSystem::sprites(std::span<const std::uint32_t> sliceFrames,
@@ -125,8 +150,14 @@ std::vector<SplashSprite> SplashSystem::sprites(std::span<const std::uint32_t> s
             const double z = real.z;
             SplashSprite* o = &out[r * per];
             *o++ = {p[0], p[1], static_cast<float>(z), 1.0f};
+            const Draws* table =
+                m_draws.empty()
+                    ? nullptr
+                    : &m_draws[(static_cast<std::size_t>(real.j / 2) * m_maxSplash + real.i) *
+                               static_cast<std::size_t>(q.artificialPerReal)];
             for (int a = 0; a < q.artificialPerReal; ++a) {
-                const ArtificialSplash s = artificial(p, real.j, real.i, a);
+                const ArtificialSplash s =
+                    fromDraws(table != nullptr ? table[a] : draws(real.j, real.i, a), p);
                 // Ballistic motion from the start point; age cycles through the lifetime.
                 double life = seconds / s.lifetime + s.phase;
                 life -= std::floor(life);

@@ -164,6 +164,27 @@ TEST(SplashSystem, ManySplashesAreBuiltInParallelInTheOrderOfOneAtATime) {
     EXPECT_EQ(checked, 8u * 3u * 11u);
 }
 
+TEST(SplashSystem, RandomNumbersDrawnOnceOrEveryFrameGiveTheSameSprites) {
+    const Fixture fx;
+    SplashParams once;
+    once.artificialPerReal = 40;
+    SplashParams everyFrame = once;
+    everyFrame.drawTableBytes = 0;
+    const SplashSystem a(fx.set, fx.grid, once, 3), b(fx.set, fx.grid, everyFrame, 3);
+    auto frames = fx.allFrame(4);
+    frames[2] = 9;
+    for (double t : {0.0, 0.45, 2.7}) {
+        const auto sa = a.sprites(frames, t), sb = b.sprites(frames, t);
+        ASSERT_EQ(sa.size(), sb.size());
+        for (std::size_t k = 0; k < sa.size(); ++k) {
+            ASSERT_EQ(sa[k].x, sb[k].x) << k;
+            ASSERT_EQ(sa[k].y, sb[k].y) << k;
+            ASSERT_EQ(sa[k].z, sb[k].z) << k;
+            ASSERT_EQ(sa[k].alpha, sb[k].alpha) << k;
+        }
+    }
+}
+
 TEST(SplashSystem, SameSeedSameSpritesOtherSeedOthers) {
     const Fixture fx;
     const SplashParams params;

@@ -28,6 +28,10 @@ struct SplashParams {
     double maxLifetime = 1.2;  ///< longest lifetime, seconds
     double gravity = 9.81;     ///< downward acceleration of the ballistic motion, m/s^2
     int sliceStride = 1;       ///< use every n-th real slice (1: all K)
+    /// Memory for the artificial splashes' random numbers, drawn once (72 bytes per artificial
+    /// splash a frame can show); when they need more, they are drawn again every frame (the
+    /// same numbers, more CPU). 0: always every frame.
+    std::size_t drawTableBytes = std::size_t{64} << 20;
 
     /// Throws std::invalid_argument naming the field.
     void validate() const;
@@ -78,11 +82,29 @@ public:
     const SplashParams& params() const { return m_params; }
 
 private:
+    /// The random numbers of one artificial splash, from its own generator keyed by
+    /// (seed, j, i, a); artificial() combines them with the real particle's velocity.
+    struct Draws {
+        double ball[3] = {0.0, 0.0, 0.0};   ///< start offset, in the unit ball
+        double jitter[3] = {0.0, 0.0, 0.0}; ///< random velocity part, in the unit ball
+        double scale = 1.0;                 ///< factor on the real velocity, 0.7..1.3
+        double life = 1.0;                  ///< factor on the lifetime, 0.5..1
+        double phase = 0.0;                 ///< 0..1
+    };
+    Draws draws(int j, std::size_t i, int a) const;
+    ArtificialSplash fromDraws(const Draws& d, const float* realPosVel) const;
+
     const FrameSet& m_frames;
     Grid m_grid;
     SplashParams m_params;
     std::uint64_t m_seed;
     bool m_active = false;
+    /// Draws of every artificial splash a frame can show, [((j / 2) M + i) A + a] for real slice
+    /// j, particle i < M (the most splash particles in a held frame) and a < A: they do not
+    /// depend on the frame, so they are drawn once rather than per frame (when they fit in
+    /// SplashParams::drawTableBytes; else per frame).
+    std::vector<Draws> m_draws;
+    std::size_t m_maxSplash = 0;
 };
 
 } // namespace swell::runtime
