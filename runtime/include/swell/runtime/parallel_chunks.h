@@ -1,8 +1,9 @@
 #pragma once
-// CPU work split over the machine's cores, for the per-frame splash sprites: while the CPU builds
-// them, llvmpipe's rasteriser threads are idle (the previous frame is finished), so the cores
-// are free. Plain std::threads rather than OpenMP: OpenMP's idle threads spin after a parallel
-// region and would take the cores from the rasteriser that runs right after.
+// CPU work split over the machine's cores, for the per-frame splash sprites (built and culled
+// while llvmpipe's rasteriser threads shade the surface; on 2 cores the threads take turns, and
+// a core that would wait for the other does work). Plain std::threads rather than OpenMP:
+// OpenMP's idle threads spin after a parallel region and would take the cores from the
+// rasteriser.
 
 #include <cstddef>
 #include <functional>
