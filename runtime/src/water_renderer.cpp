@@ -218,14 +218,10 @@ void WaterRenderer::draw(GlName heightBuffer, const Camera& camera,
 void WaterRenderer::drawSurface(GlName heightBuffer, const Camera& camera, bool splashesFollow) {
     camera.validate();
     const int W = m_shading.width, H = m_shading.height;
-    const double aspect = static_cast<double>(W) / H;
-    const Mat4 viewProj = multiply(projectionMatrix(camera, aspect), viewMatrix(camera));
+    const Mat4 viewProj = viewProjection(camera);
     const Mat4 invViewProj = inverse(viewProj);
     const auto& eye = camera.position;
-    m_frameViewProj = viewProj;
-    m_frameEye = eye;
-    m_framePixelsPerMetre =
-        H / (2.0 * std::tan(0.5 * camera.fovYDegrees * std::numbers::pi / 180.0));
+    m_frameCamera = camera;
 
     const bool sameCamera = m_backgroundValid && m_backgroundCamera.position == camera.position &&
                             m_backgroundCamera.target == camera.target &&
@@ -323,9 +319,10 @@ void WaterRenderer::drawSplashes(std::span<const SplashSprite> splashes, double 
                 "WaterRenderer::drawSplashes: drawSurface was told no splashes follow");
         }
         // Drops under the (opaque) surface are invisible: skip their vertex and set-up work.
-        m_lastCulled = cullSubmergedSplashes(splashes, m_heights, m_grid,
-                                             {splashRadius, m_frameEye, m_framePixelsPerMetre},
-                                             m_visibleSprites);
+        m_lastCulled = cullSubmergedSplashes(
+            splashes, m_heights, m_grid,
+            {splashRadius, m_frameCamera.position, pixelsPerMetre(m_frameCamera)},
+            m_visibleSprites);
     }
     // 3. Splash point sprites (Sec. 5), blended over the water, depth tested, not written.
     glBindFramebuffer(GL_FRAMEBUFFER, m_msFramebuffer);
@@ -341,8 +338,8 @@ void WaterRenderer::drawSplashes(std::span<const SplashSprite> splashes, double 
         glNamedBufferSubData(m_splashBuffer.get(), 0, bytes, visible.data());
         glVertexArrayVertexBuffer(m_splashArray, 0, m_splashBuffer.get(), 0, sizeof(SplashSprite));
         const GLuint p = m_splashProgram.get();
-        glProgramUniformMatrix4fv(p, kViewProj, 1, GL_FALSE, m_frameViewProj.data());
-        glProgramUniform1f(p, kPixelsPerMetre, static_cast<float>(m_framePixelsPerMetre));
+        glProgramUniformMatrix4fv(p, kViewProj, 1, GL_FALSE, viewProjection(m_frameCamera).data());
+        glProgramUniform1f(p, kPixelsPerMetre, static_cast<float>(pixelsPerMetre(m_frameCamera)));
         glProgramUniform1f(p, kRadius, static_cast<float>(splashRadius));
         glEnable(GL_PROGRAM_POINT_SIZE);
         glEnable(GL_BLEND);
@@ -368,6 +365,16 @@ void WaterRenderer::drawSplashes(std::span<const SplashSprite> splashes, double 
     m_timed = m_timing;
     m_splashTimed = !splashes.empty();
     checkGl("drawing the splashes");
+}
+
+Mat4 WaterRenderer::viewProjection(const Camera& camera) const {
+    const double aspect = static_cast<double>(m_shading.width) / m_shading.height;
+    return multiply(projectionMatrix(camera, aspect), viewMatrix(camera));
+}
+
+double WaterRenderer::pixelsPerMetre(const Camera& camera) const {
+    // Pixels per metre at unit distance: height / (2 tan(fov / 2)).
+    return m_shading.height / (2.0 * std::tan(0.5 * camera.fovYDegrees * std::numbers::pi / 180.0));
 }
 
 MeshLayout WaterRenderer::meshLayout() const {

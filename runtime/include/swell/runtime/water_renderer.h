@@ -92,6 +92,8 @@ private:
     void updateMeshOrder(const Vec3& eye);
     void stamp(const GlQuery& query) const;
     MeshLayout meshLayout() const;
+    Mat4 viewProjection(const Camera& camera) const;
+    double pixelsPerMetre(const Camera& camera) const;
 
     Grid m_grid;
     cache::Domain m_domain;
@@ -107,9 +109,7 @@ private:
     std::vector<float> m_heights;               // read back for the splash culling
     bool m_heightsValid = false;                // m_heights are this frame's
     bool m_surfaceDrawn = false;                // drawSurface ran, drawSplashes has not
-    Mat4 m_frameViewProj{};                     // this frame's camera, for drawSplashes
-    Vec3 m_frameEye{0.0, 0.0, 0.0};
-    double m_framePixelsPerMetre = 1.0;
+    Camera m_frameCamera;                       // the last drawSurface's, for drawSplashes
     std::vector<SplashSprite> m_visibleSprites; // the sprites drawn
 
     GlProgram m_skyProgram;
