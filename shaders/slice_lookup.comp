@@ -1,15 +1,16 @@
 #version 450 core
 // Slice lookup, eq. (5)-(6) of the paper: slice j (j = 2k is slice k, j = 2k + 1 the slice
-// inserted between k and k + 1, Sec. 4.2) shows simulation frame
-//     s_j = floor((tau + F * N(tau, j / 2)) * A + 0.5)
+// inserted between k and k + 1, Sec. 4.2) shows timeline entry (runtime/.../timeline.h)
+//     s_j = floor((tau + F * N(tau, j / 2)) * A + 0.5)   (then clamped or wrapped)
 // with N the fBm noise on the T x K grid, linear in time (period T) and, for an inserted
 // slice, the mean of its two neighbours. Computed in double precision with `precise` so the
 // operations match the CPU reference (runtime/src/slice_sampler.cpp) bit for bit.
 layout(local_size_x = 256) in;
 
 layout(std430, binding = 0) readonly buffer Noise { double noise[]; };       // N[i * K + k]
-layout(std430, binding = 1) readonly buffer Resident { uint slotOf[]; };     // cache frame -> slot
+layout(std430, binding = 1) readonly buffer Resident { uint slotOf[]; };     // entry -> column slot
 layout(std430, binding = 2) writeonly buffer Slices { ivec2 slices[]; };     // (frame, slot) per j
+layout(std430, binding = 3) readonly buffer Shown { int shownFrame[]; };     // entry -> cache frame
 
 uniform double u_tau;        // animation time (noise time units)
 uniform double u_F;          // fluctuation F, 0 <= F <= 1 (eq. 6 with max |N| = 1)
@@ -17,8 +18,8 @@ uniform double u_A;          // cache frames per animation time unit
 uniform int u_T;             // noise samples in time
 uniform int u_K;             // real slices
 uniform int u_sliceCount;    // 2K - 1 (real + inserted)
-uniform int u_frameCount;    // frames in the cache
-uniform int u_loop;          // 1: out-of-range frames wrap around; 0: clamped to the ends
+uniform int u_frameCount;    // entries in the timeline
+uniform int u_loop;          // 1: out-of-range entries wrap around; 0: clamped to the ends
 
 double noiseAt(int i0, int i1, double a, int k) {
     precise double v = (1.0LF - a) * noise[i0 * u_K + k] + a * noise[i1 * u_K + k];
@@ -53,5 +54,5 @@ void main() {
     } else {
         s = clamp(s, 0, u_frameCount - 1);
     }
-    slices[j] = ivec2(s, int(slotOf[s]));
+    slices[j] = ivec2(shownFrame[s], int(slotOf[s]));
 }

@@ -1,11 +1,19 @@
 #include "swell/runtime/cpu_reconstruction.h"
 
+#include "swell/runtime/surface_envelope.h"
+
 #include <cmath>
 #include <cstdlib>
 #include <fmt/format.h>
 #include <stdexcept>
 
 namespace swell::runtime {
+
+ColumnSum blendColumns(ColumnSum a, ColumnSum b, double alpha) {
+    const double h = (1.0 - alpha) * a.height() + alpha * b.height();
+    const double W = (1.0 - alpha) * a.W + alpha * b.W;
+    return W > 0.0 ? ColumnSum{h * W, W} : ColumnSum{h, 0.0};
+}
 
 std::vector<int> windowSlices(const Grid& grid, int m) {
     // z_j - P_z in [-dz, dz)  <=>  -2K <= (j + 1) M - (2m + 1) K < 2K  (exact in integers)
@@ -60,6 +68,16 @@ CpuReconstruction::CpuReconstruction(const FrameSet& frames, const ReplayParams&
         }
     }
 
+    if (params.reconstruction == Reconstruction::Envelope) {
+        const double binWidth = envelopeBinWidth(frames.header, m_grid);
+        m_envelope.resize(frames.frames.size());
+        for (std::size_t i = 0; i < frames.frames.size(); ++i) {
+            const SurfaceEnvelope env(frames.frames[i], binWidth);
+            if (!env.empty())
+                m_envelope[i] = sampleEnvelope(env, m_grid.x0, m_grid.dx, N);
+        }
+    }
+
     m_rowSlices.resize(static_cast<std::size_t>(M));
     for (int m = 0; m < M; ++m)
         m_rowSlices[static_cast<std::size_t>(m)] = windowSlices(m_grid, m);
@@ -97,10 +115,15 @@ double CpuReconstruction::fallback(const BinnedFrame& f, int n) const {
     return m_frames.header.domain.yMin; // the frame has no surface particle
 }
 
-double CpuReconstruction::profile(std::uint32_t frame, int n) const {
+ColumnSum CpuReconstruction::column(std::uint32_t frame, int n) const {
     if (n < 0 || n >= m_grid.cellsX)
         throw std::logic_error(fmt::format("profile column {} outside 0 .. {}", n, m_grid.cellsX));
     const BinnedFrame& f = binned(frame);
+    if (m_params.reconstruction == Reconstruction::Envelope) {
+        const auto& eta = m_envelope[static_cast<std::size_t>(&f - m_binned.data())];
+        return eta.empty() ? ColumnSum{m_frames.header.domain.yMin, 0.0}
+                           : ColumnSum{eta[static_cast<std::size_t>(n)], 1.0};
+    }
     const double inv2s2 = 1.0 / (2.0 * m_params.sigma * m_params.sigma);
     const double Px = n + 0.5;
     double sumGh = 0.0;
@@ -112,16 +135,32 @@ double CpuReconstruction::profile(std::uint32_t frame, int n) const {
         sumGh += G * f.h[p];
         sumG += G;
     }
-    return sumG > 0.0 ? sumGh / sumG : fallback(f, n);
+    return sumG > 0.0 ? ColumnSum{sumGh, sumG} : ColumnSum{fallback(f, n), 0.0};
+}
+
+ColumnSum CpuReconstruction::column(const TimelineEntry& e, int n) const {
+    if (!e.blended())
+        return column(e.a, n);
+    return blendColumns(column(e.a, n), column(e.b, n), e.alpha);
 }
 
 HeightField CpuReconstruction::heights(double tau) const {
     const int N = m_grid.cellsX;
     const int M = m_grid.cellsZ;
-    const std::vector<std::uint32_t> slice = m_sampler.frames(tau); // eq. (5), once per slice
-    std::vector<const BinnedFrame*> frameOf(slice.size());
-    for (std::size_t j = 0; j < slice.size(); ++j)
-        frameOf[j] = &binned(slice[j]);
+    const std::vector<std::size_t> slice = m_sampler.entries(tau); // eq. (5), once per slice
+    const Timeline& timeline = m_sampler.timeline();
+    // Slices read straight from their particles (the paper's eq. (7) on one frame); the others
+    // (cross-fades, envelope profiles) through their column sums.
+    const bool direct = m_params.reconstruction == Reconstruction::Paper;
+    std::vector<const BinnedFrame*> frameOf(slice.size(), nullptr);
+    for (std::size_t j = 0; j < slice.size(); ++j) {
+        const TimelineEntry& e = timeline[slice[j]];
+        const BinnedFrame& a = binned(e.a); // throws when a frame is not held
+        if (e.blended())
+            (void)binned(e.b);
+        else if (direct)
+            frameOf[j] = &a;
+    }
 
     const double inv2s2 = 1.0 / (2.0 * m_params.sigma * m_params.sigma);
     HeightField out;
@@ -138,8 +177,17 @@ HeightField CpuReconstruction::heights(double tau) const {
             // and is taken as 1, since far from the slice it underflows to 0 (0 / 0 = NaN).
             const bool single = m_rowSlices[static_cast<std::size_t>(m)].size() == 1;
             for (int j : m_rowSlices[static_cast<std::size_t>(m)]) {
-                const BinnedFrame& f = *frameOf[static_cast<std::size_t>(j)];
                 const double dz = single ? 0.0 : m_grid.sliceZCells(j) - Pz;
+                if (frameOf[static_cast<std::size_t>(j)] == nullptr) {
+                    const ColumnSum c = column(timeline[slice[static_cast<std::size_t>(j)]], n);
+                    const double Gz = std::exp(-dz * dz * inv2s2);
+                    if (c.W > 0.0) {
+                        sumGh += Gz * c.S;
+                        sumG += Gz * c.W;
+                    }
+                    continue;
+                }
+                const BinnedFrame& f = *frameOf[static_cast<std::size_t>(j)];
                 const std::uint32_t first = f.start[static_cast<std::size_t>(n)]; // bin n - 1
                 const std::uint32_t last =
                     f.start[static_cast<std::size_t>(n + 3)]; // bin n + 1 end
@@ -159,7 +207,10 @@ HeightField CpuReconstruction::heights(double tau) const {
                 for (int j : m_rowSlices[static_cast<std::size_t>(m)]) {
                     const double dz = single ? 0.0 : m_grid.sliceZCells(j) - Pz;
                     const double Gz = std::exp(-dz * dz * inv2s2);
-                    sumF += Gz * fallback(*frameOf[static_cast<std::size_t>(j)], n);
+                    const BinnedFrame* f = frameOf[static_cast<std::size_t>(j)];
+                    sumF += Gz * (f != nullptr
+                                      ? fallback(*f, n)
+                                      : column(timeline[slice[static_cast<std::size_t>(j)]], n).S);
                     sumGz += Gz;
                 }
                 h = sumF / sumGz;

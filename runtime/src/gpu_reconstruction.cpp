@@ -1,12 +1,15 @@
 #include "swell/runtime/gpu_reconstruction.h"
 
+#include "swell/runtime/cpu_reconstruction.h"
 #include "swell/runtime/error.h"
+#include "swell/runtime/surface_envelope.h"
 #include "swell/shaders/shaders.h"
 
 #define GL_GLEXT_PROTOTYPES
 #include <GL/glcorearb.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <fmt/format.h>
@@ -28,18 +31,38 @@ GLuint groups(long long count, GLuint size) {
 GpuReplay::GpuReplay(const FrameSet& frames, const ReplayParams& params,
                      const SliceSampler& sampler)
     : m_grid(makeGrid(frames.header, params)), m_A(sampler.A()), m_F(sampler.fluctuation()),
-      m_T(params.noise.timeSamples), m_loop(sampler.policy() == FramePolicy::Loop),
-      m_frameCount(frames.frameCount) {
+      m_T(params.noise.timeSamples), m_loop(sampler.policy() != FramePolicy::Clamp),
+      m_frameCount(sampler.timeline().size()) {
     params.validate();
     frames.validate();
-    if (sampler.frameCount() != frames.frameCount || sampler.sliceCount() != m_grid.sliceCount()) {
+    const Timeline& timeline = sampler.timeline();
+    if (timeline.maxFrame() >= frames.frameCount || sampler.sliceCount() != m_grid.sliceCount()) {
         throw std::logic_error("GpuReplay: sampler and frame set disagree");
     }
     const int N = m_grid.cellsX;
-    const int M = m_grid.cellsZ;
-    const int K = m_grid.slices;
-    const int J = m_grid.sliceCount();
     m_heldFrames = frames.frames.size();
+    // Slots of the column buffer: the held frames, then one per cross-faded timeline entry
+    // whose two frames are both held (timeline.h).
+    std::vector<std::size_t> blendEntries;
+    std::vector<GLuint> slotOf(m_frameCount, 0xffffffffu);
+    std::vector<GLint> shown(m_frameCount, 0);
+    auto heldSlot = [&](std::uint32_t id) -> long long {
+        const cache::Frame* f = frames.find(id);
+        return f == nullptr ? -1 : static_cast<long long>(f - frames.frames.data());
+    };
+    for (std::size_t i = 0; i < m_frameCount; ++i) {
+        const TimelineEntry& e = timeline[i];
+        shown[i] = static_cast<GLint>(e.shown());
+        const long long a = heldSlot(e.a);
+        if (!e.blended()) {
+            if (a >= 0)
+                slotOf[i] = static_cast<GLuint>(a);
+        } else if (a >= 0 && heldSlot(e.b) >= 0) {
+            slotOf[i] = static_cast<GLuint>(m_heldFrames + blendEntries.size());
+            blendEntries.push_back(i);
+        }
+    }
+    m_slots = m_heldFrames + blendEntries.size();
 
     m_lookup = makeEmbeddedProgram("slice_lookup.comp");
     // reconstruct.comp: one work group per row, as few groups as fit the row's column quads.
@@ -51,7 +74,7 @@ GpuReplay::GpuReplay(const FrameSet& frames, const ReplayParams& params,
     source.insert(source.find('\n') + 1,
                   fmt::format("#define SWELL_QUADS_PER_GROUP {}\n", m_quadsPerGroup));
     m_reconstruct = makeComputeProgram("reconstruct.comp", source);
-    GlProgram column = makeEmbeddedProgram("column_pass.comp");
+    const bool envelope = params.reconstruction == Reconstruction::Envelope;
 
     // Heights are uploaded relative to the middle of the domain, which keeps float sums of
     // eq. (7) accurate; it depends on the header only, so the result does not depend on which
@@ -62,13 +85,15 @@ GpuReplay::GpuReplay(const FrameSet& frames, const ReplayParams& params,
     m_missing = static_cast<float>(frames.header.domain.yMin - reference);
 
     // ---- particles sorted by x bin (-1 .. N), one bin index per held frame
-    const std::size_t S = std::max<std::size_t>(m_heldFrames, 1);
+    const std::size_t S = std::max<std::size_t>(m_slots, 1);
     std::vector<float> particles;
     std::vector<GLuint> binStart;
     binStart.reserve(S * static_cast<std::size_t>(N + 3));
     std::vector<int> binOf;
     std::vector<GLuint> fill;
     for (const cache::Frame& f : frames.frames) {
+        if (envelope)
+            break; // the columns are the frames' envelopes: no particles on the GPU
         const std::size_t P = f.surfaceCount();
         binOf.assign(P, 0);
         fill.assign(static_cast<std::size_t>(N + 2), 0);
@@ -99,7 +124,7 @@ GpuReplay::GpuReplay(const FrameSet& frames, const ReplayParams& params,
                 static_cast<float>(static_cast<double>(f.surface[2 * p + 1]) - reference);
         }
     }
-    if (m_heldFrames == 0)
+    if (m_heldFrames == 0 || envelope)
         binStart.assign(static_cast<std::size_t>(N + 3), 0);
     // Driver limits: one shader-storage block per buffer, one work group row per held frame.
     GLint64 maxBlock = 0;
@@ -121,25 +146,86 @@ GpuReplay::GpuReplay(const FrameSet& frames, const ReplayParams& params,
             fmt::format("{} held frames exceed this driver's {} work groups per axis", m_heldFrames,
                         maxGroupsY));
     }
+    const int Nq = (N + 3) / 4; // columns in quads of four (column_pass.comp)
+    std::vector<float> zeros(S * static_cast<std::size_t>(Nq) * 8, 0.0f);
+    auto at = [Nq](std::size_t slot, int n, int c) { // float index of S (c = 0) or W (c = 1)
+        return ((slot * static_cast<std::size_t>(Nq) + static_cast<std::size_t>(n / 4)) * 2 +
+                static_cast<std::size_t>(c)) * 4 + static_cast<std::size_t>(n % 4);
+    };
+    for (GlQuery& q : m_queries)
+        q = makeTimestampQuery();
+    if (envelope) {
+        // Envelope columns (eta(P_x), 1), or (empty-frame height, 0), on the CPU in double.
+        const auto t0 = std::chrono::steady_clock::now();
+        const double binWidth = envelopeBinWidth(frames.header, m_grid);
+        for (std::size_t slot = 0; slot < m_heldFrames; ++slot) {
+            const SurfaceEnvelope env(frames.frames[slot], binWidth);
+            const std::vector<double> eta =
+                env.empty() ? std::vector<double>{} : sampleEnvelope(env, m_grid.x0, m_grid.dx, N);
+            for (int n = 0; n < N; ++n) {
+                zeros[at(slot, n, 0)] =
+                    eta.empty() ? m_missing
+                                : static_cast<float>(eta[static_cast<std::size_t>(n)] - reference);
+                zeros[at(slot, n, 1)] = eta.empty() ? 0.0f : 1.0f;
+            }
+        }
+        m_columnPassMs =
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    }
+    m_columns = makeStorageBuffer(zeros.size() * sizeof(float), zeros.data());
+    if (!envelope)
+        runColumnPass(particles, binStart, params.sigma);
+    if (!blendEntries.empty()) {
+        // Cross-fades of two held frames' columns (blendColumns), once, from the columns above.
+        std::vector<float>& columns = zeros;
+        glGetNamedBufferSubData(m_columns.get(), 0,
+                                static_cast<GLsizeiptr>(m_heldFrames * Nq * 8 * sizeof(float)),
+                                columns.data());
+        for (std::size_t b = 0; b < blendEntries.size(); ++b) {
+            const TimelineEntry& e = timeline[blendEntries[b]];
+            const auto sa = static_cast<std::size_t>(heldSlot(e.a));
+            const auto sb = static_cast<std::size_t>(heldSlot(e.b));
+            const std::size_t slot = m_heldFrames + b;
+            for (int n = 0; n < N; ++n) {
+                const ColumnSum c = blendColumns({columns[at(sa, n, 0)], columns[at(sa, n, 1)]},
+                                                 {columns[at(sb, n, 0)], columns[at(sb, n, 1)]},
+                                                 e.alpha);
+                columns[at(slot, n, 0)] = static_cast<float>(c.S);
+                columns[at(slot, n, 1)] = static_cast<float>(c.W);
+            }
+        }
+        const std::size_t offset = m_heldFrames * static_cast<std::size_t>(Nq) * 8;
+        glNamedBufferSubData(m_columns.get(), static_cast<GLintptr>(offset * sizeof(float)),
+                             static_cast<GLsizeiptr>((columns.size() - offset) * sizeof(float)),
+                             columns.data() + offset);
+        checkGl("uploading the cross-faded columns");
+    }
+    buildLookupAndRows(frames, params, sampler, slotOf, shown);
+    m_uploadedBytes = particles.size() * sizeof(float) + binStart.size() * sizeof(GLuint) +
+                      zeros.size() * sizeof(float) + slotOf.size() * (sizeof(GLuint) + sizeof(GLint)) +
+                      m_lookupBytes;
+    glFinish(); // the particle and bin buffers are released when this returns
+    checkGl("uploading the replay");
+}
+
+void GpuReplay::runColumnPass(const std::vector<float>& particles,
+                              const std::vector<GLuint>& binStart, double sigma) {
+    const int N = m_grid.cellsX;
+    const int Nq = (N + 3) / 4;
+    GlProgram column = makeEmbeddedProgram("column_pass.comp");
     GlBuffer particleBuffer = makeStorageBuffer(particles.size() * sizeof(float), particles.data());
     GlBuffer binBuffer = makeStorageBuffer(binStart.size() * sizeof(GLuint), binStart.data());
-    const int Nq = (N + 3) / 4; // columns in quads of four (column_pass.comp)
-    const std::vector<float> zeros(S * static_cast<std::size_t>(Nq) * 8, 0.0f);
-    m_columns = makeStorageBuffer(zeros.size() * sizeof(float), zeros.data());
-
     // ---- column pass: x half of eq. (7) per held frame and column, once
     glProgramUniform1i(column.get(), uniformLocation(column, "u_N"), N);
     glProgramUniform1i(column.get(), uniformLocation(column, "u_Nq"), Nq);
     glProgramUniform1i(column.get(), uniformLocation(column, "u_slots"),
                        static_cast<GLint>(m_heldFrames));
     glProgramUniform1f(column.get(), uniformLocation(column, "u_sigma"),
-                       static_cast<float>(params.sigma));
+                       static_cast<float>(sigma));
     glProgramUniform1f(column.get(), uniformLocation(column, "u_emptyHeight"), m_missing);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, particleBuffer.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, binBuffer.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, m_columns.get());
-    for (GlQuery& q : m_queries)
-        q = makeTimestampQuery();
     if (m_heldFrames > 0) {
         glUseProgram(column.get());
         glQueryCounter(m_queries[0].get(), GL_TIMESTAMP);
@@ -148,16 +234,25 @@ GpuReplay::GpuReplay(const FrameSet& frames, const ReplayParams& params,
         glQueryCounter(m_queries[1].get(), GL_TIMESTAMP);
         m_columnPassMs = elapsedMs(m_queries[0], m_queries[1]);
     }
+    glFinish();
     checkGl("running the column pass");
+}
 
-    // ---- slice lookup inputs: noise (fp64) and cache frame -> held slot
+void GpuReplay::buildLookupAndRows(const FrameSet& frames, const ReplayParams& params,
+                                   const SliceSampler& sampler, const std::vector<GLuint>& slotOf,
+                                   const std::vector<GLint>& shown) {
+    (void)frames;
+    const int N = m_grid.cellsX;
+    const int M = m_grid.cellsZ;
+    const int K = m_grid.slices;
+    const int J = m_grid.sliceCount();
+    const int Nq = (N + 3) / 4;
+    // ---- slice lookup inputs: noise (fp64), timeline entry -> column slot and shown frame
     const FbmNoise* noise = sampler.noise();
     std::vector<double> noiseValues = noise ? noise->values() : std::vector<double>{0.0};
     m_noise = makeStorageBuffer(noiseValues.size() * sizeof(double), noiseValues.data());
-    std::vector<GLuint> slotOf(m_frameCount, 0xffffffffu);
-    for (std::size_t i = 0; i < frames.ids.size(); ++i)
-        slotOf[frames.ids[i]] = static_cast<GLuint>(i);
     m_slotOf = makeStorageBuffer(slotOf.size() * sizeof(GLuint), slotOf.data());
+    m_shown = makeStorageBuffer(shown.size() * sizeof(GLint), shown.data());
     m_slices = makeStorageBuffer(static_cast<std::size_t>(J) * 2 * sizeof(GLint), nullptr);
     const GLuint lp = m_lookup.get();
     m_lookupTau = uniformLocation(m_lookup, "u_tau");
@@ -238,12 +333,8 @@ GpuReplay::GpuReplay(const FrameSet& frames, const ReplayParams& params,
     glTextureParameteri(tex, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
     glTextureParameteri(tex, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
 
-    m_uploadedBytes = particles.size() * sizeof(float) + binStart.size() * sizeof(GLuint) +
-                      zeros.size() * sizeof(float) + noiseValues.size() * sizeof(double) +
-                      slotOf.size() * sizeof(GLuint) + rows.size() * sizeof(GLint) +
-                      weights.size() * sizeof(float);
-    glFinish(); // the particle and bin buffers are released when this returns
-    checkGl("uploading the replay");
+    m_lookupBytes = noiseValues.size() * sizeof(double) + rows.size() * sizeof(GLint) +
+                    weights.size() * sizeof(float);
 }
 
 void GpuReplay::update(double tau) {
@@ -263,6 +354,7 @@ void GpuReplay::lookupSlices(double tau) {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, m_noise.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, m_slotOf.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, m_slices.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, m_shown.get());
     glUseProgram(m_lookup.get());
     if (m_timing)
         glQueryCounter(m_queries[0].get(), GL_TIMESTAMP);

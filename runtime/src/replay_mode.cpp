@@ -197,6 +197,17 @@ std::vector<SliceSampler> makeSamplers(const ReplayParams& params, const ModePar
     return out;
 }
 
+std::vector<SliceSampler> makeSamplers(const ReplayParams& params, const ModeParams& mode,
+                                       const Timeline& timeline, double A) {
+    mode.validate();
+    std::vector<SliceSampler> out;
+    const int sets = mode.sliceSets();
+    out.reserve(static_cast<std::size_t>(sets));
+    for (int d = 0; d < sets; ++d)
+        out.emplace_back(sliceSetParams(params, d), timeline, A);
+    return out;
+}
+
 std::vector<std::uint32_t> framesUsed(std::span<const SliceSampler> samplers,
                                       std::span<const double> taus) {
     std::vector<std::uint32_t> all;

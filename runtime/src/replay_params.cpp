@@ -1,5 +1,7 @@
 #include "swell/runtime/replay_params.h"
 
+#include "swell/runtime/bake_record.h"
+
 #include <cmath>
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -8,7 +10,15 @@
 namespace swell::runtime {
 
 std::string toString(FramePolicy policy) {
-    return policy == FramePolicy::Clamp ? "clamp" : "loop";
+    switch (policy) {
+    case FramePolicy::Clamp:
+        return "clamp";
+    case FramePolicy::Loop:
+        return "loop";
+    case FramePolicy::Seamless:
+        break;
+    }
+    return "seamless";
 }
 
 FramePolicy framePolicyFromString(const std::string& name) {
@@ -16,7 +26,27 @@ FramePolicy framePolicyFromString(const std::string& name) {
         return FramePolicy::Clamp;
     if (name == "loop")
         return FramePolicy::Loop;
-    throw std::invalid_argument(fmt::format("policy must be clamp or loop, got '{}'", name));
+    if (name == "seamless")
+        return FramePolicy::Seamless;
+    throw std::invalid_argument(
+        fmt::format("policy must be seamless, loop or clamp, got '{}'", name));
+}
+
+std::string toString(ExtentX extent) {
+    return extent == ExtentX::Water ? "water" : extent == ExtentX::Domain ? "domain" : "explicit";
+}
+
+std::string toString(Reconstruction r) {
+    return r == Reconstruction::Paper ? "paper" : "envelope";
+}
+
+Reconstruction reconstructionFromString(const std::string& name) {
+    if (name == "paper")
+        return Reconstruction::Paper;
+    if (name == "envelope")
+        return Reconstruction::Envelope;
+    throw std::invalid_argument(
+        fmt::format("reconstruction must be envelope or paper, got '{}'", name));
 }
 
 void ReplayParams::validate() const {
@@ -49,6 +79,15 @@ void ReplayParams::validate() const {
     }
     if (!std::isfinite(extentZ) || extentZ < 0.0) {
         throw std::invalid_argument(fmt::format("extent_z must be >= 0 m, got {}", extentZ));
+    }
+    if (extentX == ExtentX::Explicit &&
+        !(std::isfinite(extentX0) && std::isfinite(extentX1) && extentX1 > extentX0)) {
+        throw std::invalid_argument(fmt::format(
+            "extent_x must be [x0, x1] with x1 > x0 (metres), got [{}, {}]", extentX0, extentX1));
+    }
+    if (!std::isfinite(crossfadeSeconds) || crossfadeSeconds < 0.0 || crossfadeSeconds > 60.0) {
+        throw std::invalid_argument(fmt::format(
+            "crossfade_seconds must be in [0, 60] s, got {}", crossfadeSeconds));
     }
     noise.validate();
 }
@@ -113,13 +152,20 @@ nlohmann::json toJson(const ReplayParams& p) {
              {{"time_samples", p.noise.timeSamples},
               {"beta", p.noise.beta},
               {"cutoff", p.noise.cutoff},
-              {"filter", filterName(p.noise.filter)}}}};
+              {"filter", filterName(p.noise.filter)}}},
+            {"extent_x", p.extentX == ExtentX::Explicit
+                             ? nlohmann::json::array({p.extentX0, p.extentX1})
+                             : nlohmann::json(toString(p.extentX))},
+            {"reconstruction", toString(p.reconstruction)},
+            {"window", p.steadyWindow ? "steady" : "all"},
+            {"crossfade_seconds", p.crossfadeSeconds}};
 }
 
 ReplayParams replayParamsFromJson(const nlohmann::json& j) {
     rejectUnknown(j,
                   {"cells_x", "cells_z", "slices", "fluctuation", "time_unit_seconds", "policy",
-                   "sigma", "extent_z", "seed", "noise"},
+                   "sigma", "extent_z", "seed", "noise", "extent_x", "reconstruction", "window",
+                   "crossfade_seconds"},
                   "");
     ReplayParams p;
     read(j, "cells_x", "", p.cellsX);
@@ -133,6 +179,29 @@ ReplayParams replayParamsFromJson(const nlohmann::json& j) {
     std::string policy = toString(p.policy);
     read(j, "policy", "", policy);
     p.policy = framePolicyFromString(policy);
+    read(j, "crossfade_seconds", "", p.crossfadeSeconds);
+    std::string reconstruction = toString(p.reconstruction);
+    read(j, "reconstruction", "", reconstruction);
+    p.reconstruction = reconstructionFromString(reconstruction);
+    std::string window = p.steadyWindow ? "steady" : "all";
+    read(j, "window", "", window);
+    if (window != "steady" && window != "all")
+        throw std::invalid_argument(fmt::format("window must be steady or all, got '{}'", window));
+    p.steadyWindow = window == "steady";
+    if (j.contains("extent_x")) {
+        const nlohmann::json& e = j.at("extent_x");
+        if (e.is_string() && (e == "water" || e == "domain")) {
+            p.extentX = e == "water" ? ExtentX::Water : ExtentX::Domain;
+        } else if (e.is_array() && e.size() == 2 && e[0].is_number() && e[1].is_number()) {
+            p.extentX = ExtentX::Explicit;
+            p.extentX0 = e[0].get<double>();
+            p.extentX1 = e[1].get<double>();
+        } else {
+            throw std::invalid_argument(
+                fmt::format("extent_x must be \"water\", \"domain\" or [x0, x1], got {}",
+                            e.dump()));
+        }
+    }
     if (j.contains("noise")) {
         const nlohmann::json& n = j.at("noise");
         rejectUnknown(n, {"time_samples", "beta", "cutoff", "filter"}, "noise.");
@@ -148,16 +217,26 @@ ReplayParams replayParamsFromJson(const nlohmann::json& j) {
 }
 
 Grid makeGrid(const cache::Header& header, const ReplayParams& params) {
-    const double width = static_cast<double>(header.domain.xMax) - header.domain.xMin;
-    if (!(width > 0.0)) {
-        throw std::invalid_argument(fmt::format("cache domain has no width (xMin {}, xMax {})",
-                                                header.domain.xMin, header.domain.xMax));
+    double x0 = header.domain.xMin;
+    double x1 = header.domain.xMax;
+    if (params.extentX == ExtentX::Water) {
+        const BakeRecord record = bakeRecord(header); // the domain when nothing is recorded
+        x0 = record.waterXMin;
+        x1 = record.waterXMax;
+    } else if (params.extentX == ExtentX::Explicit) {
+        x0 = params.extentX0;
+        x1 = params.extentX1;
+    }
+    const double width = x1 - x0;
+    if (!(width > 0.0) || !std::isfinite(width)) {
+        throw std::invalid_argument(
+            fmt::format("the replay's x range [{}, {}] has no width", x0, x1));
     }
     Grid g;
     g.cellsX = params.cellsX;
     g.cellsZ = params.cellsZ;
     g.slices = params.slices;
-    g.x0 = header.domain.xMin;
+    g.x0 = x0;
     g.dx = width / params.cellsX;
     g.extentZ = params.extentZ > 0.0 ? params.extentZ : g.dx * params.cellsZ;
     g.dz = g.extentZ / params.cellsZ;

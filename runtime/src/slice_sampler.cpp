@@ -7,14 +7,31 @@
 
 namespace swell::runtime {
 
-SliceSampler::SliceSampler(const ReplayParams& params, std::size_t frameCount, double A)
-    : m_K(params.slices), m_frameCount(frameCount), m_A(A), m_F(params.fluctuation),
-      m_policy(params.policy) {
-    params.validate();
+namespace {
+
+Timeline wholeCache(const ReplayParams& params, std::size_t frameCount) {
     if (frameCount == 0 || frameCount > 0x7fffffffu) {
         throw std::invalid_argument(
             fmt::format("cache has {} frames; need 1 .. 2^31 - 1", frameCount));
     }
+    if (params.policy == FramePolicy::Seamless) {
+        throw std::invalid_argument(
+            "the seamless policy needs a planned timeline (planTimeline, timeline.h)");
+    }
+    return Timeline::range(0, static_cast<std::uint32_t>(frameCount), params.policy);
+}
+
+} // namespace
+
+SliceSampler::SliceSampler(const ReplayParams& params, std::size_t frameCount, double A)
+    : SliceSampler(params, wholeCache(params, frameCount), A) {}
+
+SliceSampler::SliceSampler(const ReplayParams& params, Timeline timeline, double A)
+    : m_K(params.slices), m_timeline(std::move(timeline)), m_A(A), m_F(params.fluctuation),
+      m_policy(m_timeline.policy()) {
+    params.validate();
+    if (m_timeline.size() == 0)
+        throw std::invalid_argument("the replay's timeline has no frames");
     if (!std::isfinite(A) || A <= 0.0 || A > 1e8) {
         throw std::invalid_argument(
             fmt::format("A = {} cache frames per time unit is out of range", A));
@@ -43,7 +60,7 @@ double SliceSampler::noiseAt(double tau, int j) const {
     return n;
 }
 
-std::uint32_t SliceSampler::frame(double tau, int j) const {
+std::size_t SliceSampler::entry(double tau, int j) const {
     if (j < 0 || j >= sliceCount()) {
         throw std::logic_error(fmt::format("slice {} outside 0 .. {}", j, sliceCount() - 1));
     }
@@ -53,10 +70,18 @@ std::uint32_t SliceSampler::frame(double tau, int j) const {
     }
     const double x = m_F != 0.0 ? tau + m_F * noiseAt(tau, j) : tau;
     const long long s = static_cast<long long>(std::floor(x * m_A + 0.5)); // eq. (5)
-    const long long n = static_cast<long long>(m_frameCount);
-    if (m_policy == FramePolicy::Loop)
-        return static_cast<std::uint32_t>(((s % n) + n) % n);
-    return static_cast<std::uint32_t>(std::clamp(s, 0LL, n - 1));
+    return m_timeline.index(s);
+}
+
+std::uint32_t SliceSampler::frame(double tau, int j) const {
+    return m_timeline[entry(tau, j)].shown();
+}
+
+std::vector<std::size_t> SliceSampler::entries(double tau) const {
+    std::vector<std::size_t> out(static_cast<std::size_t>(sliceCount()));
+    for (int j = 0; j < sliceCount(); ++j)
+        out[static_cast<std::size_t>(j)] = entry(tau, j);
+    return out;
 }
 
 std::vector<std::uint32_t> SliceSampler::frames(double tau) const {
@@ -67,13 +92,17 @@ std::vector<std::uint32_t> SliceSampler::frames(double tau) const {
 }
 
 std::vector<std::uint32_t> SliceSampler::framesUsed(std::span<const double> taus) const {
-    std::vector<bool> used(m_frameCount, false);
+    std::vector<bool> used(static_cast<std::size_t>(m_timeline.maxFrame()) + 1, false);
     for (double tau : taus) {
-        for (int j = 0; j < sliceCount(); ++j)
-            used[frame(tau, j)] = true;
+        for (int j = 0; j < sliceCount(); ++j) {
+            const TimelineEntry& e = m_timeline[entry(tau, j)];
+            used[e.a] = true;
+            if (e.blended())
+                used[e.b] = true;
+        }
     }
     std::vector<std::uint32_t> out;
-    for (std::size_t f = 0; f < m_frameCount; ++f) {
+    for (std::size_t f = 0; f < used.size(); ++f) {
         if (used[f])
             out.push_back(static_cast<std::uint32_t>(f));
     }

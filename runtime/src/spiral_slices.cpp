@@ -77,7 +77,8 @@ HeightField CpuWhirlpool::heights(double tau) const {
     const int N = g.cellsX;
     const int M = g.cellsZ;
     const int J = g.sliceCount();
-    const std::vector<std::uint32_t> frame = m_sampler.frames(tau); // eq. (5), once per slice
+    const std::vector<std::size_t> entry = m_sampler.entries(tau); // eq. (5), once per slice
+    const Timeline& timeline = m_sampler.timeline();
     const double spin = m_geometry.spinSlices(tau);
     HeightField out;
     out.cellsX = N;
@@ -100,7 +101,7 @@ HeightField CpuWhirlpool::heights(double tau) const {
             double beta = 0.0;
             profileTap(p.u, N, n0, n1, beta);
             auto along = [&](int j) { // the spiral's eq. (7) profile at u
-                const std::uint32_t f = frame[static_cast<std::size_t>(j)];
+                const TimelineEntry& f = timeline[entry[static_cast<std::size_t>(j)]];
                 return (1.0 - beta) * m_profiles.profile(f, n0) + beta * m_profiles.profile(f, n1);
             };
             out.heights[static_cast<std::size_t>(m) * N + n] =
@@ -149,7 +150,7 @@ GpuWhirlpool::GpuWhirlpool(const FrameSet& frames, const ReplayParams& params,
 
     // Profiles from the column pass, once: p = S / W, or the fallback S when W = 0
     // (column_pass.comp's layout), stored as pairs (p(n), p(min(n + 1, N - 1))).
-    const std::size_t slots = m_replay.heldFrames();
+    const std::size_t slots = m_replay.slotCount();
     const int Nq = m_replay.columnQuads();
     std::vector<float> columns(std::max<std::size_t>(slots, 1) * static_cast<std::size_t>(Nq) * 8);
     glGetNamedBufferSubData(m_replay.columnBuffer(), 0,

@@ -45,7 +45,8 @@ public:
     void setTiming(bool on) { m_timing = on; }
     /// Stage times of the last timed update(); waits for the GPU.
     StageTimes stageTimes() const;
-    /// GPU time of the one-off column pass at construction (ms, timer query).
+    /// Time of the one-off column pass at construction (ms): GPU timer query (paper), or the
+    /// CPU envelope sampling (envelope).
     double columnPassMs() const { return m_columnPassMs; }
     /// Blocks until every command issued so far has finished (glFinish).
     void finish() const;
@@ -57,7 +58,7 @@ public:
     /// The same heights as an R32F 2D texture (N x M, linear filtering, clamp to edge) for
     /// sampling: copied from heightBuffer() on the first call after each update(), on the GPU.
     GlName heightTexture();
-    /// SSBO of 2K - 1 ivec2: (cache frame, held-frame slot or -1) shown by slice j, at z_j.
+    /// SSBO of 2K - 1 ivec2: (cache frame shown, column slot or -1) of slice j, at z_j.
     GlName sliceBuffer() const { return m_slices.get(); }
     /// Reads the heights back (blocks).
     HeightField readHeights() const;
@@ -76,11 +77,18 @@ public:
 
     const Grid& grid() const { return m_grid; }
     std::size_t heldFrames() const { return m_heldFrames; }
+    /// Slots of columnBuffer(): the held frames, then the cross-faded timeline entries.
+    std::size_t slotCount() const { return m_slots; }
     /// Bytes uploaded at construction (particles, bin index, column sums, tables).
     std::size_t uploadedBytes() const { return m_uploadedBytes; }
 
 private:
     void reconstructHeights();
+    void runColumnPass(const std::vector<float>& particles, const std::vector<unsigned>& binStart,
+                       double sigma);
+    void buildLookupAndRows(const FrameSet& frames, const ReplayParams& params,
+                            const SliceSampler& sampler, const std::vector<unsigned>& slotOf,
+                            const std::vector<int>& shown);
 
     Grid m_grid;
     double m_A;
@@ -89,6 +97,8 @@ private:
     bool m_loop;
     std::size_t m_frameCount;
     std::size_t m_heldFrames = 0;
+    std::size_t m_slots = 0;
+    std::size_t m_lookupBytes = 0;
     std::size_t m_uploadedBytes = 0;
     float m_reference = 0.0f;
     float m_missing = 0.0f;
@@ -102,6 +112,7 @@ private:
     GlProgram m_reconstruct;
     GlBuffer m_noise;
     GlBuffer m_slotOf;
+    GlBuffer m_shown;
     GlBuffer m_slices;
     GlBuffer m_columns;
     GlBuffer m_rows;

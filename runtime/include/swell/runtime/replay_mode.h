@@ -84,6 +84,9 @@ ReplayParams sliceSetParams(const ReplayParams& params, int d);
 /// One SliceSampler per slice set (sliceSets() of them), seeds from sliceSetSeed.
 std::vector<SliceSampler> makeSamplers(const ReplayParams& params, const ModeParams& mode,
                                        std::size_t frameCount, double A);
+/// One SliceSampler per slice set over `timeline` (planTimeline), seeds from sliceSetSeed.
+std::vector<SliceSampler> makeSamplers(const ReplayParams& params, const ModeParams& mode,
+                                       const Timeline& timeline, double A);
 /// Every frame some slice of some set shows at some tau: sorted, unique.
 std::vector<std::uint32_t> framesUsed(std::span<const SliceSampler> samplers,
                                       std::span<const double> taus);

@@ -4,6 +4,7 @@
 
 #include "swell/runtime/fbm_noise.h"
 #include "swell/runtime/replay_params.h"
+#include "swell/runtime/timeline.h"
 
 #include <cstdint>
 #include <optional>
@@ -14,26 +15,33 @@ namespace swell::runtime {
 
 class SliceSampler {
 public:
-    /// Builds the noise (none when F = 0). `frameCount` frames are in the cache, `A` cache
-    /// frames per animation time unit. Throws std::invalid_argument on bad parameters.
+    /// Builds the noise (none when F = 0). The slices show `timeline`'s entries (timeline.h),
+    /// `A` cache frames per animation time unit. Throws std::invalid_argument on bad parameters.
+    SliceSampler(const ReplayParams& params, Timeline timeline, double A);
+    /// Every one of `frameCount` cache frames in order: Timeline::range(0, frameCount,
+    /// params.policy) (the seamless policy needs planTimeline: std::invalid_argument).
     SliceSampler(const ReplayParams& params, std::size_t frameCount, double A);
 
-    /// Frame of slice j (0 .. 2K - 2) at animation time tau (eq. 5):
-    ///   s_j = floor((tau + F N(tau, j/2)) A + 1/2), then the out-of-range policy.
+    /// Timeline entry of slice j (0 .. 2K - 2) at animation time tau (eq. 5):
+    ///   s_j = floor((tau + F N(tau, j/2)) A + 1/2), then the timeline's policy.
     /// N is linear in tau between noise samples (period T); an inserted slice (odd j) takes
     /// the mean of its neighbours' noise, i.e. N at k + 1/2. Throws std::invalid_argument
     /// when |tau| is so large that (|tau| + 1) A leaves the 32-bit frame range.
+    std::size_t entry(double tau, int j) const;
+    /// entry(tau, j) for every slice.
+    std::vector<std::size_t> entries(double tau) const;
+    /// The cache frame slice j shows (its entry's TimelineEntry::shown()).
     std::uint32_t frame(double tau, int j) const;
     /// frame(tau, j) for every slice.
     std::vector<std::uint32_t> frames(double tau) const;
-    /// Every frame some slice shows at some tau of `taus`: sorted, unique. A replay needs
-    /// only these decoded.
+    /// Every cache frame some slice shows or blends at some tau of `taus`: sorted, unique. A
+    /// replay needs only these decoded.
     std::vector<std::uint32_t> framesUsed(std::span<const double> taus) const;
     /// N(tau, j/2) as used by frame() (0 when F = 0).
     double noiseAt(double tau, int j) const;
 
     int sliceCount() const { return 2 * m_K - 1; }
-    std::size_t frameCount() const { return m_frameCount; }
+    const Timeline& timeline() const { return m_timeline; }
     double A() const { return m_A; }
     double fluctuation() const { return m_F; }
     FramePolicy policy() const { return m_policy; }
@@ -42,7 +50,7 @@ public:
 
 private:
     int m_K;
-    std::size_t m_frameCount;
+    Timeline m_timeline;
     double m_A;
     double m_F;
     FramePolicy m_policy;
