@@ -16,6 +16,9 @@
 #include "swell/runtime/splash_system.h"
 #include "swell/runtime/water_renderer.h"
 
+#include "fidelity.h"
+#include "play_common.h"
+
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -38,198 +41,7 @@ namespace {
 
 using namespace swell;
 using namespace swell::runtime;
-using json = nlohmann::json;
-using Clock = std::chrono::steady_clock;
-
-/// CPU time of the whole process (every thread, llvmpipe's included), ms.
-double processCpuMs() {
-    rusage u{};
-    ::getrusage(RUSAGE_SELF, &u);
-    return 1e3 * (static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec)) +
-           1e-3 * static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
-}
-
-double msSince(Clock::time_point t0) {
-    return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
-
-/// Options shared by every subcommand.
-struct Options {
-    std::string cache;            ///< input .swell file
-    std::string res = "128x128";  ///< N x M base-mesh cells
-    std::string policy = "loop";  ///< frames outside the cache: clamp or loop
-    std::string filter = "low";   ///< noise band: low, high or none
-    std::string mode = "surging"; ///< slice layout: surging, ripple or whirlpool
-    double playbackFps = 30.0;    ///< output frames per simulated second
-    double start = 0.0;           ///< simulated second of the first output frame
-    bool json = false;            ///< one JSON object on stdout
-    ReplayParams params;          ///< the replay itself (paper defaults)
-    ModeParams modeParams;        ///< ripple directions, whirlpool spirals
-    /// Options whose default depends on --mode (Table 4): given explicitly when count() > 0.
-    std::vector<std::pair<CLI::Option*, void (*)(ReplayParams&, const ReplayParams&)>> modal;
-};
-
-void addCommon(CLI::App* cmd, Options& o) {
-    cmd->add_option("CACHE", o.cache, "input .swell cache")->required();
-    cmd->add_option("--mode", o.mode,
-                    "slice layout: surging (Sec. 4.2), ripple (4.4) or whirlpool (4.5); sets the "
-                    "Table 4 defaults of --slices, -F, --beta, --cutoff")
-        ->capture_default_str()
-        ->check(CLI::IsMember({"surging", "ripple", "whirlpool"}));
-    cmd->add_option("--angles", o.modeParams.ripple.anglesDegrees,
-                    "ripple: direction angles in degrees from +x towards +z")
-        ->capture_default_str();
-    cmd->add_option("--weights", o.modeParams.ripple.weights,
-                    "ripple: eq. (8) weight per direction (default: the mean)");
-    cmd->add_option("--spiral-a", o.modeParams.whirlpool.innerRadiusCells,
-                    "whirlpool: inner radius a in cells of dx (paper 15)")
-        ->capture_default_str();
-    cmd->add_option("--spiral-b", o.modeParams.whirlpool.growth,
-                    "whirlpool: growth b per radian (paper 25 dz = 25/128)")
-        ->capture_default_str();
-    cmd->add_option("--spin", o.modeParams.whirlpool.turnsPerTimeUnit,
-                    "whirlpool: turns per animation time unit")
-        ->capture_default_str();
-    cmd->add_option("--res", o.res, "base mesh N x M cells (x = propagation, z = transverse)")
-        ->capture_default_str();
-    auto modal = [&](CLI::Option* opt, void (*copy)(ReplayParams&, const ReplayParams&)) {
-        o.modal.emplace_back(opt, copy);
-    };
-    modal(cmd->add_option("--slices", o.params.slices,
-                          "K slices (K - 1 more are inserted); default by --mode: 256, 256, 128")
-              ->capture_default_str(),
-          [](ReplayParams& p, const ReplayParams& d) { p.slices = d.slices; });
-    cmd->add_option("--seed", o.params.seed, "noise seed")->capture_default_str();
-    modal(cmd->add_option("--fluctuation,-F", o.params.fluctuation,
-                          "F of eq. (5), 0..1; default by --mode: 0.3, 0.4, 0.4")
-              ->capture_default_str(),
-          [](ReplayParams& p, const ReplayParams& d) { p.fluctuation = d.fluctuation; });
-    modal(cmd->add_option("--beta", o.params.noise.beta,
-                          "noise spectral exponent; default by --mode: 2.0, 2.5, 2.5")
-              ->capture_default_str(),
-          [](ReplayParams& p, const ReplayParams& d) { p.noise.beta = d.noise.beta; });
-    modal(cmd->add_option("--cutoff", o.params.noise.cutoff,
-                          "noise filter cut-off c (wavenumbers); default by --mode: 128, 128, 64")
-              ->capture_default_str(),
-          [](ReplayParams& p, const ReplayParams& d) { p.noise.cutoff = d.noise.cutoff; });
-    cmd->add_option("--filter", o.filter, "noise band kept: low, high or none")
-        ->capture_default_str();
-    cmd->add_option("--noise-time", o.params.noise.timeSamples, "T noise samples in time")
-        ->capture_default_str();
-    cmd->add_option("--time-unit", o.params.timeUnitSeconds,
-                    "simulated seconds per animation time unit (A = this / frame time)")
-        ->capture_default_str();
-    cmd->add_option("--policy", o.policy, "frames outside the cache: clamp or loop")
-        ->capture_default_str();
-    cmd->add_option("--sigma", o.params.sigma, "Gaussian sigma of eq. (7), cells")
-        ->capture_default_str();
-    cmd->add_option("--fps", o.playbackFps, "output frames per simulated second")
-        ->capture_default_str();
-    cmd->add_option("--start", o.start, "simulated second of the first frame")
-        ->capture_default_str();
-    cmd->add_flag("--json", o.json, "print one JSON object on stdout");
-}
-
-/// Resolves the string options into o.params and validates everything.
-void finishOptions(Options& o) {
-    int n = 0, m = 0;
-    char x = 0, extra = 0;
-    if (std::sscanf(o.res.c_str(), "%d%c%d%c", &n, &x, &m, &extra) != 3 || (x != 'x' && x != 'X')) {
-        throw std::invalid_argument(fmt::format("--res must look like 128x128, got '{}'", o.res));
-    }
-    o.params.cellsX = n;
-    o.params.cellsZ = m;
-    o.modeParams.mode = replayModeFromString(o.mode);
-    const ReplayParams table4 = paperDefaults(o.modeParams.mode);
-    for (const auto& [option, copy] : o.modal) {
-        if (option->count() == 0)
-            copy(o.params, table4); // not given: the mode's Table 4 value
-    }
-    o.params.policy = framePolicyFromString(o.policy);
-    if (o.filter == "low") {
-        o.params.noise.filter = NoiseFilter::LowPass;
-    } else if (o.filter == "high") {
-        o.params.noise.filter = NoiseFilter::HighPass;
-    } else if (o.filter == "none") {
-        o.params.noise.filter = NoiseFilter::None;
-    } else {
-        throw std::invalid_argument(
-            fmt::format("--filter must be low, high or none, got '{}'", o.filter));
-    }
-    if (!(o.playbackFps > 0.0) || !std::isfinite(o.playbackFps)) {
-        throw std::invalid_argument(fmt::format("--fps must be > 0, got {}", o.playbackFps));
-    }
-    if (!std::isfinite(o.start))
-        throw std::invalid_argument("--start must be finite");
-    o.params.validate();
-    o.modeParams.validate();
-}
-
-/// Animation time of output frame i: simulated time / time unit (eq. 5's tau).
-double tauOf(const Options& o, std::size_t i) {
-    return (o.start + static_cast<double>(i) / o.playbackFps) / o.params.timeUnitSeconds;
-}
-
-/// The frames that `taus` select, decoded from the cache (no other frame is read).
-FrameSet loadUsed(const cache::Reader& reader, std::span<const SliceSampler> samplers,
-                  const std::vector<double>& taus) {
-    FrameSet set;
-    set.header = reader.header();
-    set.frameCount = reader.frameCount();
-    set.ids = framesUsed(samplers, taus);
-    set.frames.reserve(set.ids.size());
-    for (std::uint32_t id : set.ids)
-        set.frames.push_back(reader.readFrame(id));
-    return set;
-}
-
-/// Mean water depth of the held frames: mean surface height above the domain's bottom.
-double waterDepth(const FrameSet& set) {
-    double sum = 0.0;
-    std::size_t count = 0;
-    for (const cache::Frame& f : set.frames) {
-        for (std::size_t p = 1; p < f.surface.size(); p += 2)
-            sum += f.surface[p];
-        count += f.surfaceCount();
-    }
-    const double bottom = set.header.domain.yMin;
-    return count > 0 ? sum / static_cast<double>(count) - bottom
-                     : static_cast<double>(set.header.domain.yMax) - bottom;
-}
-
-json paramsJson(const Options& o, const FrameSet& set, double A) {
-    const ReplayParams& p = o.params;
-    return {{"mode", o.mode},
-            {"mode_params", toJson(o.modeParams)},
-            {"cache", o.cache},
-            {"params", toJson(p)},
-            {"res", {p.cellsX, p.cellsZ}},
-            {"slices", p.slices},
-            {"slices_total", 2 * p.slices - 1},
-            {"seed", p.seed},
-            {"fluctuation", p.fluctuation},
-            {"beta", p.noise.beta},
-            {"cutoff", p.noise.cutoff},
-            {"filter", o.filter},
-            {"noise_time_samples", p.noise.timeSamples},
-            {"sigma_cells", p.sigma},
-            {"window_cells", {3, 2}},
-            {"policy", o.policy},
-            {"time_unit_seconds", p.timeUnitSeconds},
-            {"A_frames_per_time_unit", A},
-            {"playback_fps", o.playbackFps},
-            {"start_seconds", o.start},
-            {"frames_in_cache", set.frameCount},
-            {"frames_decoded", set.ids.size()}};
-}
-
-double percentile(std::vector<double> v, double q) {
-    std::sort(v.begin(), v.end());
-    const double pos = q * static_cast<double>(v.size() - 1);
-    const auto lo = static_cast<std::size_t>(std::floor(pos));
-    const auto hi = std::min(lo + 1, v.size() - 1);
-    return v[lo] + (pos - static_cast<double>(lo)) * (v[hi] - v[lo]);
-}
+using namespace swell::play;
 
 int runBench(Options& o, int frames, int warmup, int errorFrames, int cpuFrames,
              const std::string& referenceCache) {
@@ -237,16 +49,14 @@ int runBench(Options& o, int frames, int warmup, int errorFrames, int cpuFrames,
     if (frames < 1)
         throw std::invalid_argument("--frames must be >= 1");
     const cache::Reader reader(o.cache);
-    const double A = framesPerTimeUnit(reader.header(), o.params);
-    const std::vector<SliceSampler> samplers =
-        makeSamplers(o.params, o.modeParams, reader.frameCount(), A);
-
     std::vector<double> taus(static_cast<std::size_t>(warmup + frames));
     for (std::size_t i = 0; i < taus.size(); ++i)
         taus[i] = tauOf(o, i);
     auto t0 = Clock::now();
-    const FrameSet set = loadUsed(reader, samplers, taus);
+    const ReplaySetup setup = prepareReplay(o, reader, taus);
     const double decodeMs = msSince(t0);
+    const FrameSet& set = setup.set;
+    const std::vector<SliceSampler>& samplers = setup.samplers;
 
     const EglContext context;
     t0 = Clock::now();
@@ -330,7 +140,7 @@ int runBench(Options& o, int frames, int warmup, int errorFrames, int cpuFrames,
     }
 
     const double meanMs = totalMs / frames;
-    json out = paramsJson(o, set, A);
+    json out = paramsJson(o, setup);
     out.update({{"renderer", context.renderer()},
                 {"llvmpipe_threads", context.llvmpipeThreads()},
                 {"gl_version", context.version()},
@@ -400,14 +210,13 @@ int runHeights(Options& o, const std::string& outDir, double seconds) {
         throw std::invalid_argument(fmt::format("--seconds must be > 0, got {}", seconds));
     }
     const cache::Reader reader(o.cache);
-    const double A = framesPerTimeUnit(reader.header(), o.params);
-    const std::vector<SliceSampler> samplers =
-        makeSamplers(o.params, o.modeParams, reader.frameCount(), A);
     const auto count = static_cast<std::size_t>(std::max(1.0, std::round(seconds * o.playbackFps)));
     std::vector<double> taus(count);
     for (std::size_t i = 0; i < count; ++i)
         taus[i] = tauOf(o, i);
-    const FrameSet set = loadUsed(reader, samplers, taus);
+    const ReplaySetup setup = prepareReplay(o, reader, taus);
+    const FrameSet& set = setup.set;
+    const std::vector<SliceSampler>& samplers = setup.samplers;
 
     std::filesystem::create_directories(outDir);
     const EglContext context;
@@ -433,7 +242,7 @@ int runHeights(Options& o, const std::string& outDir, double seconds) {
     }
     if (progress)
         std::cerr << "\n";
-    json meta = paramsJson(o, set, A);
+    json meta = paramsJson(o, setup);
     meta.update({{"renderer", context.renderer()},
                  {"format", "16-bit greyscale PNG; height_m = offset + value * scale"},
                  {"scale", {{"offset", scale.offset}, {"scale", scale.scale}, {"units", "m"}}},
@@ -568,15 +377,14 @@ int runRender(Options& o, RenderOptions& r) {
     }
 
     const cache::Reader reader(o.cache);
-    const double A = framesPerTimeUnit(reader.header(), o.params);
-    const std::vector<SliceSampler> samplers =
-        makeSamplers(o.params, o.modeParams, reader.frameCount(), A);
     const auto count =
         static_cast<std::size_t>(std::max(1.0, std::round(r.seconds * o.playbackFps)));
     std::vector<double> taus(count);
     for (std::size_t i = 0; i < count; ++i)
         taus[i] = tauOf(o, i);
-    const FrameSet set = loadUsed(reader, samplers, taus);
+    const ReplaySetup setup = prepareReplay(o, reader, taus);
+    const FrameSet& set = setup.set;
+    const std::vector<SliceSampler>& samplers = setup.samplers;
     const CubeFaces faces = r.skyDir.empty() ? proceduralSky(r.sky) : loadSkyImages(r.skyDir);
 
     const std::filesystem::path out(r.outDir);
@@ -756,7 +564,7 @@ int runRender(Options& o, RenderOptions& r) {
     // has only the first frame timed apart from them (its first draw includes shader set-up).
     const double untimed = n - nt;
     const double drawMsPerFrame = untimed > 0 ? drawMs / untimed : timedDrawMs / nt;
-    json meta = paramsJson(o, set, A);
+    json meta = paramsJson(o, setup);
     meta.update({{"renderer", context.renderer()},
                  {"llvmpipe_threads", context.llvmpipeThreads()},
                  {"gl_version", context.version()},
@@ -840,7 +648,7 @@ int runRender(Options& o, RenderOptions& r) {
                  {"tau", f["tau"]},
                  {"seconds", f["seconds"]}});
         }
-        json heightsMeta = paramsJson(o, set, A);
+        json heightsMeta = paramsJson(o, setup);
         heightsMeta.update(
             {{"renderer", context.renderer()},
              {"format", "16-bit greyscale PNG; height_m = offset + value * scale"},
@@ -974,6 +782,14 @@ int main(int argc, char** argv) {
         ->capture_default_str()
         ->check(CLI::Range(0, 9));
 
+    Options fidelity;
+    FidelityOptions fidelityOpts;
+    auto* fidelityCmd = app.add_subcommand(
+        "fidelity", "measure the replay against the simulated surface (F = 0 and F > 0) and the "
+                    "continuity of a long replay");
+    addCommon(fidelityCmd, fidelity);
+    addFidelityOptions(fidelityCmd, fidelityOpts);
+
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
@@ -990,6 +806,8 @@ int main(int argc, char** argv) {
             return runBench(bench, frames, warmup, errorFrames, cpuFrames, referenceCache);
         if (*renderCmd)
             return runRender(render, renderOpts);
+        if (*fidelityCmd)
+            return runFidelity(fidelity, fidelityOpts);
         return runHeights(heights, outDir, seconds);
     } catch (const cache::CacheError& e) {
         std::cerr << "swell-play: " << e.what() << "\n";

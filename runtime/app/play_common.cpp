@@ -1,0 +1,261 @@
+#include "play_common.h"
+
+#include "swell/runtime/bake_record.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fmt/format.h>
+#include <iostream>
+#include <sys/resource.h>
+
+namespace swell::play {
+
+using namespace swell::runtime;
+
+double processCpuMs() {
+    rusage u{};
+    ::getrusage(RUSAGE_SELF, &u);
+    return 1e3 * (static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec)) +
+           1e-3 * static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
+
+double msSince(Clock::time_point t0) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+
+void addCommon(CLI::App* cmd, Options& o) {
+    cmd->add_option("CACHE", o.cache, "input .swell cache")->required();
+    cmd->add_option("--mode", o.mode,
+                    "slice layout: surging (Sec. 4.2), ripple (4.4) or whirlpool (4.5); sets the "
+                    "Table 4 defaults of --slices, -F, --beta, --cutoff")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"surging", "ripple", "whirlpool"}));
+    cmd->add_option("--angles", o.modeParams.ripple.anglesDegrees,
+                    "ripple: direction angles in degrees from +x towards +z")
+        ->capture_default_str();
+    cmd->add_option("--weights", o.modeParams.ripple.weights,
+                    "ripple: eq. (8) weight per direction (default: the mean)");
+    cmd->add_option("--spiral-a", o.modeParams.whirlpool.innerRadiusCells,
+                    "whirlpool: inner radius a in cells of dx (paper 15)")
+        ->capture_default_str();
+    cmd->add_option("--spiral-b", o.modeParams.whirlpool.growth,
+                    "whirlpool: growth b per radian (paper 25 dz = 25/128)")
+        ->capture_default_str();
+    cmd->add_option("--spin", o.modeParams.whirlpool.turnsPerTimeUnit,
+                    "whirlpool: turns per animation time unit")
+        ->capture_default_str();
+    cmd->add_option("--res", o.res, "base mesh N x M cells (x = propagation, z = transverse)")
+        ->capture_default_str();
+    auto modal = [&](CLI::Option* opt, void (*copy)(ReplayParams&, const ReplayParams&)) {
+        o.modal.emplace_back(opt, copy);
+    };
+    modal(cmd->add_option("--slices", o.params.slices,
+                          "K slices (K - 1 more are inserted); default by --mode: 256, 256, 128")
+              ->capture_default_str(),
+          [](ReplayParams& p, const ReplayParams& d) { p.slices = d.slices; });
+    cmd->add_option("--seed", o.params.seed, "noise seed")->capture_default_str();
+    modal(cmd->add_option("--fluctuation,-F", o.params.fluctuation,
+                          "F of eq. (5), 0..1; default by --mode: 0.3, 0.4, 0.4")
+              ->capture_default_str(),
+          [](ReplayParams& p, const ReplayParams& d) { p.fluctuation = d.fluctuation; });
+    modal(cmd->add_option("--beta", o.params.noise.beta,
+                          "noise spectral exponent; default by --mode: 2.0, 2.5, 2.5")
+              ->capture_default_str(),
+          [](ReplayParams& p, const ReplayParams& d) { p.noise.beta = d.noise.beta; });
+    modal(cmd->add_option("--cutoff", o.params.noise.cutoff,
+                          "noise filter cut-off c (wavenumbers); default by --mode: 128, 128, 64")
+              ->capture_default_str(),
+          [](ReplayParams& p, const ReplayParams& d) { p.noise.cutoff = d.noise.cutoff; });
+    cmd->add_option("--filter", o.filter, "noise band kept: low, high or none")
+        ->capture_default_str();
+    cmd->add_option("--noise-time", o.params.noise.timeSamples, "T noise samples in time")
+        ->capture_default_str();
+    cmd->add_option("--time-unit", o.params.timeUnitSeconds,
+                    "simulated seconds per animation time unit (A = this / frame time)")
+        ->capture_default_str();
+    cmd->add_option("--policy", o.policy,
+                    "frames past the window's ends: seamless (loop between the two most alike "
+                    "frames with a cross-fade), loop (jump back) or clamp")
+        ->capture_default_str();
+    cmd->add_option("--window", o.window,
+                    "frames replayed: steady (from the bake's recorded steady start) or all")
+        ->capture_default_str();
+    cmd->add_option("--crossfade", o.params.crossfadeSeconds,
+                    "seamless loop: cross-fade length, simulated seconds")
+        ->capture_default_str();
+    cmd->add_option("--extent", o.extent,
+                    "x range of the grid: water (the bake's recorded water extent), domain (the "
+                    "whole cache domain) or X0:X1 in metres")
+        ->capture_default_str();
+    cmd->add_option("--reconstruction", o.reconstruction,
+                    "column profiles: envelope (the frame's free surface) or paper (eq. 7's "
+                    "Gaussian mean of the surface particles in [3 dx))")
+        ->capture_default_str();
+    cmd->add_option("--sigma", o.params.sigma, "Gaussian sigma of eq. (7), cells")
+        ->capture_default_str();
+    cmd->add_option("--fps", o.playbackFps, "output frames per simulated second")
+        ->capture_default_str();
+    cmd->add_option("--start", o.start,
+                    "simulated second of the first frame, counted from the steady start (the "
+                    "loop's in-frame with --policy seamless)")
+        ->capture_default_str();
+    cmd->add_flag("--json", o.json, "print one JSON object on stdout");
+}
+
+/// Resolves the string options into o.params and validates everything.
+void finishOptions(Options& o) {
+    int n = 0, m = 0;
+    char x = 0, extra = 0;
+    if (std::sscanf(o.res.c_str(), "%d%c%d%c", &n, &x, &m, &extra) != 3 || (x != 'x' && x != 'X')) {
+        throw std::invalid_argument(fmt::format("--res must look like 128x128, got '{}'", o.res));
+    }
+    o.params.cellsX = n;
+    o.params.cellsZ = m;
+    o.modeParams.mode = replayModeFromString(o.mode);
+    const ReplayParams table4 = paperDefaults(o.modeParams.mode);
+    for (const auto& [option, copy] : o.modal) {
+        if (option->count() == 0)
+            copy(o.params, table4); // not given: the mode's Table 4 value
+    }
+    o.params.policy = framePolicyFromString(o.policy);
+    if (o.window != "steady" && o.window != "all")
+        throw std::invalid_argument(fmt::format("--window must be steady or all, got '{}'", o.window));
+    o.params.steadyWindow = o.window == "steady";
+    o.params.reconstruction = reconstructionFromString(o.reconstruction);
+    if (o.extent == "water") {
+        o.params.extentX = ExtentX::Water;
+    } else if (o.extent == "domain") {
+        o.params.extentX = ExtentX::Domain;
+    } else {
+        double x0 = 0.0, x1 = 0.0;
+        char colon = 0, extra2 = 0;
+        if (std::sscanf(o.extent.c_str(), "%lf%c%lf%c", &x0, &colon, &x1, &extra2) != 3 ||
+            colon != ':') {
+            throw std::invalid_argument(fmt::format(
+                "--extent must be water, domain or X0:X1 (metres), got '{}'", o.extent));
+        }
+        o.params.extentX = ExtentX::Explicit;
+        o.params.extentX0 = x0;
+        o.params.extentX1 = x1;
+    }
+    if (o.filter == "low") {
+        o.params.noise.filter = NoiseFilter::LowPass;
+    } else if (o.filter == "high") {
+        o.params.noise.filter = NoiseFilter::HighPass;
+    } else if (o.filter == "none") {
+        o.params.noise.filter = NoiseFilter::None;
+    } else {
+        throw std::invalid_argument(
+            fmt::format("--filter must be low, high or none, got '{}'", o.filter));
+    }
+    if (!(o.playbackFps > 0.0) || !std::isfinite(o.playbackFps)) {
+        throw std::invalid_argument(fmt::format("--fps must be > 0, got {}", o.playbackFps));
+    }
+    if (!std::isfinite(o.start))
+        throw std::invalid_argument("--start must be finite");
+    o.params.validate();
+    o.modeParams.validate();
+}
+
+/// Animation time of output frame i: simulated time / time unit (eq. 5's tau).
+double tauOf(const Options& o, std::size_t i) {
+    return (o.start + static_cast<double>(i) / o.playbackFps) / o.params.timeUnitSeconds;
+}
+
+FrameSet loadUsed(const cache::Reader& reader, std::span<const SliceSampler> samplers,
+                  const std::vector<double>& taus) {
+    FrameSet set;
+    set.header = reader.header();
+    set.frameCount = reader.frameCount();
+    set.ids = framesUsed(samplers, taus);
+    set.frames.reserve(set.ids.size());
+    for (std::uint32_t id : set.ids)
+        set.frames.push_back(reader.readFrame(id));
+    return set;
+}
+
+/// Mean water depth of the held frames: mean surface height above the domain's bottom.
+double waterDepth(const FrameSet& set) {
+    double sum = 0.0;
+    std::size_t count = 0;
+    for (const cache::Frame& f : set.frames) {
+        for (std::size_t p = 1; p < f.surface.size(); p += 2)
+            sum += f.surface[p];
+        count += f.surfaceCount();
+    }
+    const double bottom = set.header.domain.yMin;
+    return count > 0 ? sum / static_cast<double>(count) - bottom
+                     : static_cast<double>(set.header.domain.yMax) - bottom;
+}
+
+ReplaySetup prepareReplay(const Options& o, const cache::Reader& reader,
+                          const std::vector<double>& taus) {
+    ReplaySetup s;
+    try {
+        s.plan = planTimeline(reader.header(), reader.frameCount(), o.params,
+                              [&](std::uint32_t id) { return reader.readFrame(id); });
+    } catch (const std::invalid_argument& e) {
+        throw std::invalid_argument(fmt::format("{}: {}", o.cache, e.what()));
+    }
+    if (!s.plan.record.note.empty() && !o.json)
+        std::cerr << "swell-play: note: " << o.cache << ": " << s.plan.record.note << "\n";
+    s.A = framesPerTimeUnit(reader.header(), o.params);
+    s.samplers = makeSamplers(o.params, o.modeParams, s.plan.timeline, s.A);
+    s.set = loadUsed(reader, s.samplers, taus);
+    return s;
+}
+
+json paramsJson(const Options& o, const ReplaySetup& setup) {
+    const FrameSet& set = setup.set;
+    const double A = setup.A;
+    const ReplayParams& p = o.params;
+    const Grid grid = makeGrid(set.header, p);
+    const BakeRecord& rec = setup.plan.record;
+    return {{"mode", o.mode},
+            {"mode_params", toJson(o.modeParams)},
+            {"cache", o.cache},
+            {"params", toJson(p)},
+            {"res", {p.cellsX, p.cellsZ}},
+            {"slices", p.slices},
+            {"slices_total", 2 * p.slices - 1},
+            {"seed", p.seed},
+            {"fluctuation", p.fluctuation},
+            {"beta", p.noise.beta},
+            {"cutoff", p.noise.cutoff},
+            {"filter", o.filter},
+            {"noise_time_samples", p.noise.timeSamples},
+            {"sigma_cells", p.sigma},
+            {"window_cells", {3, 2}},
+            {"policy", o.policy},
+            {"time_unit_seconds", p.timeUnitSeconds},
+            {"A_frames_per_time_unit", A},
+            {"playback_fps", o.playbackFps},
+            {"start_seconds", o.start},
+            {"frames_in_cache", set.frameCount},
+            {"frames_decoded", set.ids.size()},
+            {"reconstruction", o.reconstruction},
+            {"grid_x", {{"x0", grid.x0}, {"x1", grid.x0 + grid.cellsX * grid.dx}, {"dx", grid.dx},
+                        {"extent", o.extent}}},
+            {"bake_record",
+             {{"recorded", rec.recorded},
+              {"water_x", {rec.waterXMin, rec.waterXMax}},
+              {"still_water_level", std::isfinite(rec.stillWaterLevel) ? json(rec.stillWaterLevel)
+                                                                      : json(nullptr)},
+              {"particle_spacing", rec.particleSpacing},
+              {"steady_start_s", rec.steadyStartSeconds},
+              {"note", rec.note}}},
+            {"timeline", toJson(setup.plan)}};
+}
+
+double percentile(std::vector<double> v, double q) {
+    std::sort(v.begin(), v.end());
+    const double pos = q * static_cast<double>(v.size() - 1);
+    const auto lo = static_cast<std::size_t>(std::floor(pos));
+    const auto hi = std::min(lo + 1, v.size() - 1);
+    return v[lo] + (pos - static_cast<double>(lo)) * (v[hi] - v[lo]);
+}
+
+
+} // namespace swell::play

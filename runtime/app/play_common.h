@@ -1,0 +1,80 @@
+#pragma once
+// What every swell-play subcommand shares: the common options, the replay set-up (timeline,
+// samplers, decoded frames) and the parameter record written next to every output.
+
+#include "swell/cache/reader.h"
+#include "swell/runtime/frame_set.h"
+#include "swell/runtime/replay_mode.h"
+#include "swell/runtime/replay_params.h"
+#include "swell/runtime/slice_sampler.h"
+#include "swell/runtime/timeline.h"
+
+#include <CLI/CLI.hpp>
+#include <chrono>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace swell::play {
+
+using json = nlohmann::json;
+using Clock = std::chrono::steady_clock;
+
+/// CPU time of the whole process (every thread, llvmpipe's included), ms.
+double processCpuMs();
+double msSince(Clock::time_point t0);
+
+/// Options shared by every subcommand.
+struct Options {
+    std::string cache;               ///< input .swell file
+    std::string res = "128x128";     ///< N x M base-mesh cells
+    std::string policy = "seamless"; ///< frames outside the window: seamless, loop or clamp
+    std::string window = "steady";   ///< frames replayed: steady (the bake's record) or all
+    std::string extent = "water";    ///< x range of the grid: water, domain or X0:X1
+    std::string reconstruction = "envelope"; ///< column profiles: envelope or paper (eq. 7)
+    std::string filter = "low";      ///< noise band: low, high or none
+    std::string mode = "surging";    ///< slice layout: surging, ripple or whirlpool
+    double playbackFps = 30.0;       ///< output frames per simulated second
+    double start = 0.0;              ///< simulated second of the first frame, from tau = 0
+    bool json = false;               ///< one JSON object on stdout
+    runtime::ReplayParams params;    ///< the replay itself (paper defaults)
+    runtime::ModeParams modeParams;  ///< ripple directions, whirlpool spirals
+    /// Options whose default depends on --mode (Table 4): given explicitly when count() > 0.
+    std::vector<std::pair<CLI::Option*, void (*)(runtime::ReplayParams&,
+                                                 const runtime::ReplayParams&)>>
+        modal;
+};
+
+void addCommon(CLI::App* cmd, Options& o);
+/// Resolves the string options into o.params and validates everything.
+void finishOptions(Options& o);
+/// Animation time of output frame i: (start + i / fps) / time unit (eq. 5's tau); tau = 0 is
+/// the timeline's first entry (the steady window's first frame, or the loop's in-frame).
+double tauOf(const Options& o, std::size_t i);
+
+/// A replay ready to run: its timeline, one sampler per slice set and the decoded frames.
+struct ReplaySetup {
+    runtime::TimelinePlan plan;
+    double A = 0.0; ///< cache frames per animation time unit
+    std::vector<runtime::SliceSampler> samplers;
+    runtime::FrameSet set;
+};
+
+/// Plans the timeline over `reader`'s cache (a note on stderr when the cache records no water
+/// extent or steady window), builds the samplers and decodes the frames `taus` select (no
+/// other frame is kept). Errors name the cache file.
+ReplaySetup prepareReplay(const Options& o, const cache::Reader& reader,
+                          const std::vector<double>& taus);
+/// The frames `taus` select from `reader`, for `samplers`.
+runtime::FrameSet loadUsed(const cache::Reader& reader,
+                           std::span<const runtime::SliceSampler> samplers,
+                           const std::vector<double>& taus);
+
+/// Mean water depth of the held frames: mean surface height above the domain's bottom.
+double waterDepth(const runtime::FrameSet& set);
+/// Every parameter, the seed, the grid and the timeline (window, loop points) of a replay.
+json paramsJson(const Options& o, const ReplaySetup& setup);
+double percentile(std::vector<double> v, double q);
+
+} // namespace swell::play
