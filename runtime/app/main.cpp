@@ -802,13 +802,18 @@ int main(int argc, char** argv) {
     }
     try {
         preferLlvmpipeThreads();
+        int rc = 0;
         if (*benchCmd)
-            return runBench(bench, frames, warmup, errorFrames, cpuFrames, referenceCache);
-        if (*renderCmd)
-            return runRender(render, renderOpts);
-        if (*fidelityCmd)
-            return runFidelity(fidelity, fidelityOpts);
-        return runHeights(heights, outDir, seconds);
+            rc = runBench(bench, frames, warmup, errorFrames, cpuFrames, referenceCache);
+        else if (*renderCmd)
+            rc = runRender(render, renderOpts);
+        else if (*fidelityCmd)
+            rc = runFidelity(fidelity, fidelityOpts);
+        else
+            rc = runHeights(heights, outDir, seconds);
+        for (const std::string& note : pendingNotes())
+            std::cerr << "swell-play: note: " << note << "\n";
+        return rc;
     } catch (const cache::CacheError& e) {
         std::cerr << "swell-play: " << e.what() << "\n";
     } catch (const RuntimeError& e) {

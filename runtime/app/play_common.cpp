@@ -190,6 +190,11 @@ double waterDepth(const FrameSet& set) {
                      : static_cast<double>(set.header.domain.yMax) - bottom;
 }
 
+std::vector<std::string>& pendingNotes() {
+    static std::vector<std::string> notes;
+    return notes;
+}
+
 ReplaySetup prepareReplay(const Options& o, const cache::Reader& reader,
                           const std::vector<double>& taus) {
     ReplaySetup s;
@@ -199,8 +204,11 @@ ReplaySetup prepareReplay(const Options& o, const cache::Reader& reader,
     } catch (const std::invalid_argument& e) {
         throw std::invalid_argument(fmt::format("{}: {}", o.cache, e.what()));
     }
-    if (!s.plan.record.note.empty() && !o.json)
-        std::cerr << "swell-play: note: " << o.cache << ": " << s.plan.record.note << "\n";
+    if (!s.plan.record.note.empty()) {
+        const std::string note = fmt::format("{}: {}", o.cache, s.plan.record.note);
+        if (std::find(pendingNotes().begin(), pendingNotes().end(), note) == pendingNotes().end())
+            pendingNotes().push_back(note);
+    }
     s.A = framesPerTimeUnit(reader.header(), o.params);
     s.samplers = makeSamplers(o.params, o.modeParams, s.plan.timeline, s.A);
     s.set = loadUsed(reader, s.samplers, taus);

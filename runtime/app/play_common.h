@@ -61,11 +61,14 @@ struct ReplaySetup {
     runtime::FrameSet set;
 };
 
-/// Plans the timeline over `reader`'s cache (a note on stderr when the cache records no water
+/// Plans the timeline over `reader`'s cache (a pending note when the cache records no water
 /// extent or steady window), builds the samplers and decodes the frames `taus` select (no
 /// other frame is kept). Errors name the cache file.
 ReplaySetup prepareReplay(const Options& o, const cache::Reader& reader,
                           const std::vector<double>& taus);
+/// Notes for the user collected while setting up (e.g. a cache without the bake's water record),
+/// printed on stderr once the command has succeeded (an error stays one line).
+std::vector<std::string>& pendingNotes();
 /// The frames `taus` select from `reader`, for `samplers`.
 runtime::FrameSet loadUsed(const cache::Reader& reader,
                            std::span<const runtime::SliceSampler> samplers,
