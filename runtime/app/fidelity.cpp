@@ -38,18 +38,6 @@ std::vector<double> row(const HeightField& h, int m) {
     return {first, first + h.cellsX};
 }
 
-/// Standard deviation of one row (m).
-double rowSpread(const HeightField& h, int m) {
-    double s = 0.0, s2 = 0.0;
-    for (int n = 0; n < h.cellsX; ++n) {
-        const double v = h.at(n, m);
-        s += v;
-        s2 += v * v;
-    }
-    const double mean = s / h.cellsX;
-    return std::sqrt(std::max(0.0, s2 / h.cellsX - mean * mean));
-}
-
 double maxChange(const HeightField& a, const HeightField& b) {
     double d = 0.0;
     for (std::size_t i = 0; i < a.heights.size(); ++i)
@@ -68,7 +56,6 @@ struct Truths {
     }
 };
 
-constexpr double kFlatRowMetres = 0.005; ///< a row whose heights spread less than this is flat
 
 } // namespace
 
@@ -124,12 +111,14 @@ int runFidelity(Options& o, const FidelityOptions& f) {
     Truths truth{envelopeBinWidth(reader.header(), grid), {}};
     const std::optional<cache::SyntheticWave> wave = syntheticWave(reader.header());
     FidelityStats f0, analytic;
+    double spreadSum = 0.0;
     const int mid = grid.cellsZ / 2;
     for (double tau : taus0) {
         gpu0.update(tau);
         const HeightField h = gpu0.readHeights();
         const std::uint32_t frame = s0.samplers[0].frame(tau, 0);
         const std::vector<double> r = row(h, mid);
+        spreadSum += rowSpread(h, mid);
         f0.add(compareRow(r, grid, truth.of(s0.set, frame), step));
         if (wave) {
             const double t = frame * reader.header().frameTime();
@@ -139,6 +128,8 @@ int runFidelity(Options& o, const FidelityOptions& f) {
         }
     }
     out["f0"] = toJson(f0, l0);
+    // How much wave the steady bake shows: the mean height spread of its frames' profiles.
+    out["steady_spread_m"] = taus0.empty() ? 0.0 : spreadSum / static_cast<double>(taus0.size());
     if (wave)
         out["f0_analytic"] = toJson(analytic, l0);
 
@@ -204,15 +195,13 @@ int runFidelity(Options& o, const FidelityOptions& f) {
         const ReplaySetup s = prepareReplay(o, reader, t);
         ModeReplay g(s.set, o.params, o.modeParams, s.samplers);
         HeightField prev;
-        std::size_t flatFrames = 0, flatRows = 0;
+        std::size_t flatFrames = 0, flatRowCount = 0;
         double largest = 0.0, largestAt = 0.0;
         for (std::size_t i = 0; i < count; ++i) {
             g.update(t[i]);
             HeightField h = g.readHeights();
-            std::size_t flat = 0;
-            for (int m = 0; m < h.cellsZ; ++m)
-                flat += rowSpread(h, m) < kFlatRowMetres ? 1 : 0;
-            flatRows += flat;
+            const auto flat = static_cast<std::size_t>(flatRows(h));
+            flatRowCount += flat;
             flatFrames += flat > 0 ? 1 : 0;
             if (i > 0) {
                 const double d = maxChange(prev, h);
@@ -227,7 +216,7 @@ int runFidelity(Options& o, const FidelityOptions& f) {
                              {"frames", count},
                              {"flat_row_threshold_m", kFlatRowMetres},
                              {"frames_with_flat_rows", flatFrames},
-                             {"flat_rows", flatRows},
+                             {"flat_rows", flatRowCount},
                              {"largest_change_m", largest},
                              {"largest_change_at_s", largestAt},
                              {"steady_f0_change_p999_m", p999},
@@ -257,7 +246,7 @@ int runFidelity(Options& o, const FidelityOptions& f) {
     std::cout << line("F = 0 vs the frames' envelopes", f0);
     if (wave)
         std::cout << line("F = 0 vs the analytic wave", analytic);
-    if (o.params.fluctuation > 0.0)
+    if (o.params.fluctuation > 0.0 && f.mixTimes > 0)
         std::cout << line(fmt::format("F = {} slice rows vs their frames", o.params.fluctuation).c_str(),
                           mixing);
     if (const auto& l = setup.plan.timeline.loop()) {

@@ -8,6 +8,7 @@
 #include "swell/runtime/egl_context.h"
 #include "swell/runtime/error.h"
 #include "swell/runtime/exporters.h"
+#include "swell/runtime/fidelity.h"
 #include "swell/runtime/gpu_reconstruction.h"
 #include "swell/runtime/height_png.h"
 #include "swell/runtime/mode_replay.h"
@@ -501,8 +502,11 @@ int runRender(Options& o, RenderOptions& r) {
                    {"seconds", seconds},
                    {"splash_sprites", sprites.size()},
                    {"splash_sprites_culled", renderer.lastCulledSplashCount()}};
-        if (exportHeights || exportMesh) {
+        {
             const HeightField field = gpu.readHeights();
+            // How much wave the frame shows (tools/check_demo holds the demo to it).
+            entry["height_spread_m"] = fieldSpread(field);
+            entry["flat_rows"] = flatRows(field);
             if (exportHeights) {
                 const std::string h = fmt::format("heights/height_{:05d}.png", i);
                 writeHeightPng(out / h, field, scale);

@@ -28,7 +28,7 @@ double msSince(Clock::time_point t0);
 /// Options shared by every subcommand.
 struct Options {
     std::string cache;               ///< input .swell file
-    std::string res = "128x128";     ///< N x M base-mesh cells
+    std::string res = "256x256";     ///< N x M base-mesh cells (docs/runtime.md, "Fidelity")
     std::string policy = "seamless"; ///< frames outside the window: seamless, loop or clamp
     std::string window = "steady";   ///< frames replayed: steady (the bake's record) or all
     std::string extent = "water";    ///< x range of the grid: water, domain or X0:X1

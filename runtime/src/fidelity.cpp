@@ -56,6 +56,36 @@ RowFidelity compareRow(std::span<const double> row, const Grid& grid,
         row, grid, [&](double x) { return eta.at(x); }, eta.xFirst(), eta.xLast(), step);
 }
 
+double rowSpread(const HeightField& h, int m) {
+    double s = 0.0, s2 = 0.0;
+    for (int n = 0; n < h.cellsX; ++n) {
+        const double v = h.at(n, m) - h.at(0, m); // shifted: no cancellation
+        s += v;
+        s2 += v * v;
+    }
+    const double mean = s / h.cellsX;
+    return std::sqrt(std::max(0.0, s2 / h.cellsX - mean * mean));
+}
+
+double fieldSpread(const HeightField& h) {
+    if (h.heights.empty())
+        return 0.0;
+    double s = 0.0, s2 = 0.0;
+    for (double v : h.heights) {
+        s += v - h.heights[0];
+        s2 += (v - h.heights[0]) * (v - h.heights[0]);
+    }
+    const double n = static_cast<double>(h.heights.size());
+    return std::sqrt(std::max(0.0, s2 / n - (s / n) * (s / n)));
+}
+
+int flatRows(const HeightField& h) {
+    int flat = 0;
+    for (int m = 0; m < h.cellsZ; ++m)
+        flat += rowSpread(h, m) < kFlatRowMetres ? 1 : 0;
+    return flat;
+}
+
 void FidelityStats::add(const RowFidelity& r) {
     if (r.samples == 0)
         return;

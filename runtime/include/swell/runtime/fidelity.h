@@ -4,6 +4,7 @@
 // against a frame's free surface eta(x) (the upper envelope of its surface particles,
 // surface_envelope.h, or an analytic surface), sampled every `step` metres.
 
+#include "swell/runtime/height_field.h"
 #include "swell/runtime/replay_params.h"
 #include "swell/runtime/surface_envelope.h"
 
@@ -51,6 +52,15 @@ struct FidelityStats {
         return rows ? sumCrestLoss / static_cast<double>(rows) : 0.0;
     }
 };
+
+/// Standard deviation of row m's heights (m).
+double rowSpread(const HeightField& h, int m);
+/// Standard deviation of every cell's height (m): how much wave a frame shows.
+double fieldSpread(const HeightField& h);
+/// A row whose heights spread less than this is flat (no wave on it), metres.
+inline constexpr double kFlatRowMetres = 0.005;
+/// Rows with rowSpread below kFlatRowMetres.
+int flatRows(const HeightField& h);
 
 /// {"rows", "samples", "rms_m", "max_m", "mean_row_max_m", "crest_loss_mean",
 ///  "crest_loss_max"} and, when l0 > 0, the same lengths in l0 ("rms_l0", ...).
