@@ -17,6 +17,7 @@
 #include "swell/bake/classification.h"
 #include "swell/bake/error.h"
 #include "swell/bake/probes.h"
+#include "swell/bake/replay_window.h"
 #include "swell/bake/wave_theory.h"
 #include "swell/cache/writer.h"
 
@@ -223,7 +224,7 @@ json toJson(const BakeSummary& s) {
                 {"resumed_from_step", s.resumedFromStep}, {"checkpoints", s.checkpoints},
                 {"checkpoint_bytes", s.checkpointBytes}, {"checkpoint_seconds", s.checkpointSeconds},
                 {"compression_ratio", s.cacheBytes ? static_cast<double>(s.rawBytes) / s.cacheBytes : 0.0},
-                {"warnings", s.warnings}};
+                {"replay", toJson(s.replay)}, {"warnings", s.warnings}};
 }
 
 BakeSummary runBake(const Scene& scene, const BakeOptions& opt) {
@@ -234,6 +235,7 @@ BakeSummary runBake(const Scene& scene, const BakeOptions& opt) {
     sum.steps = steps;
     sum.frameIntervalSteps = interval;
     sum.warnings = sceneWarnings(scene);
+    sum.replay = replayWindow(scene);
 
     MpsSolver solver = makeSolver(scene);
     const Particles& P = solver.particles();
@@ -272,7 +274,9 @@ BakeSummary runBake(const Scene& scene, const BakeOptions& opt) {
                     {"n0", n0},
                     {"still_water_level", stillWaterLevel(scene)},
                     {"particles_water", sum.particlesWater},
-                    {"particles_wall", sum.particlesWall}};
+                    {"particles_wall", sum.particlesWall},
+                    // What the runtime cannot guess: water extent and steady start (replay_window.h).
+                    {"replay", toJson(sum.replay)}};
     header.metadataJson = meta.dump();
 
     // Checkpoints (issue 4): what a resume must match is everything the cache records, plus

@@ -38,12 +38,10 @@ LinearPistonWave theoryOf(const Scene& scene, double& depth) {
 
 WaveWindow regularWaveWindow(const Scene& scene) {
     double h = 0.0;
-    const LinearPistonWave w = theoryOf(scene, h);
+    (void)theoryOf(scene, h); // validates the scene, sets the still-water depth h
     const PistonParams& p = *scene.piston;
     // Group velocity of linear theory: c_g = c / 2 (1 + 2kh / sinh 2kh), c = omega / k.
-    const double omega = 2.0 * std::numbers::pi / p.period;
-    const double c = omega / w.wavenumber;
-    const double cg = 0.5 * c * (1.0 + 2.0 * w.kh / std::sinh(2.0 * w.kh));
+    const double cg = groupVelocity(2.0 * std::numbers::pi / p.period, h, scene.physics.gravity);
     const auto [gMin, gMax] = std::minmax_element(scene.output.gauges.begin(), scene.output.gauges.end());
     const Box& tank = *scene.geometry.tank;
     WaveWindow win;

@@ -24,6 +24,14 @@ double dispersionWavenumber(double omega, double depth, double gravity) {
     return x / depth;
 }
 
+double groupVelocity(double omega, double depth, double gravity) {
+    const double k = dispersionWavenumber(omega, depth, gravity);
+    const double kh2 = 2.0 * k * depth;
+    // 2kh / sinh 2kh -> 1 as kh -> 0; above 700, sinh overflows to inf and the ratio is 0.
+    const double ratio = kh2 < 1e-8 ? 1.0 : kh2 / std::sinh(kh2);
+    return 0.5 * (omega / k) * (1.0 + ratio);
+}
+
 double bieselHeightOverStroke(double kh) {
     const double k2 = 2.0 * kh;
     return 2.0 * (std::cosh(k2) - 1.0) / (std::sinh(k2) + k2);

@@ -78,6 +78,21 @@ void printInfo(const json& j) {
     fmt::print("raw frame bytes    {} (compression ratio {:.2f})\n",
                j["raw_bytes"].get<std::uint64_t>(), j["compression_ratio"].get<double>());
     fmt::print("seed               {}\n", j["seed"].get<std::uint64_t>());
+    // The bake's "replay" block (docs/cache-format.md), when this cache has one.
+    const json& meta = j["metadata"];
+    if (!meta.is_object() || !meta.contains("replay") || !meta["replay"].is_object()) return;
+    const json& r = meta["replay"];
+    const auto number = [&](const char* key) {
+        return r.contains(key) && r[key].is_number() ? fmt::format("{:g}", r[key].get<double>())
+                                                     : std::string("?");
+    };
+    fmt::print("water extent       x {} .. {} m, still water at y = {} m, particle spacing {} m\n",
+               number("water_x_min"), number("water_x_max"), number("still_water_level"),
+               number("particle_spacing"));
+    fmt::print("steady from        {} s ({})\n", number("steady_start_s"),
+               r.contains("steady_reason") && r["steady_reason"].is_string()
+                   ? r["steady_reason"].get<std::string>()
+                   : std::string("no reason given"));
 }
 
 } // namespace
@@ -208,7 +223,8 @@ int main(int argc, char** argv) {
                                   {"depth_m", wave.depth},
                                   {"amplitude_m", wave.amplitude},
                                   {"wavelength_m", wave.wavelength},
-                                  {"period_s", wave.period}}
+                                  {"period_s", wave.period},
+                                  {"replay", syntheticReplayJson(wave)}}
                                  .dump();
             Writer w(path, h);
             for (std::size_t i = 0; i < frames; ++i)

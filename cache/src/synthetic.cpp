@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numbers>
 
+#include <nlohmann/json.hpp>
+
 namespace swell::cache {
 namespace {
 
@@ -57,6 +59,17 @@ Frame syntheticFrame(const SyntheticWave& w, std::size_t index) {
         f.splash.push_back(static_cast<float>(lift / w.period));
     }
     return f;
+}
+
+nlohmann::json syntheticReplayJson(const SyntheticWave& w) {
+    const double spacing =
+        w.surfaceCount > 1 ? static_cast<double>(w.length) / static_cast<double>(w.surfaceCount - 1) : 0.0;
+    return nlohmann::json{{"water_x_min", 0.0},
+                          {"water_x_max", static_cast<double>(w.length)},
+                          {"still_water_level", static_cast<double>(w.depth)},
+                          {"particle_spacing", spacing},
+                          {"steady_start_s", 0.0},
+                          {"steady_reason", "synthetic travelling wave: steady from the start"}};
 }
 
 } // namespace swell::cache

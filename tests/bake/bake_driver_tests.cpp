@@ -118,6 +118,20 @@ TEST_F(BakeDriver, SmallSurgingBakeWritesAVerifiableCacheThatDescribesItself) {
     // Every resolved parameter: the stored scene parses back to the same scene.
     EXPECT_EQ(toJson(parseScene(meta["scene"])), toJson(scene));
     EXPECT_EQ(meta["scene"]["solver"]["ppe_tolerance"], scene.solver.ppeTolerance);
+    // Replay block (replay_window.h): the 2 m tank, still water 0.16 m, l0 = 20 mm; random piston
+    // (never behind x0): ramp 0.5 s + 2 m at c_g(T = 0.8 s, h = 0.16 m) = 0.7492 m/s = 3.169 s.
+    // It describes the scene, not this shortened run.
+    const json& replay = meta["replay"];
+    ASSERT_TRUE(replay.is_object()) << meta.dump();
+    EXPECT_EQ(replay.size(), 6u) << replay.dump();
+    EXPECT_DOUBLE_EQ(replay["water_x_min"].get<double>(), 0.0);
+    EXPECT_DOUBLE_EQ(replay["water_x_max"].get<double>(), 2.0);
+    EXPECT_DOUBLE_EQ(replay["still_water_level"].get<double>(), 0.16);
+    EXPECT_DOUBLE_EQ(replay["still_water_level"].get<double>(), meta["still_water_level"].get<double>());
+    EXPECT_DOUBLE_EQ(replay["particle_spacing"].get<double>(), 0.02);
+    EXPECT_NEAR(replay["steady_start_s"].get<double>(), 3.1694, 1e-3);
+    EXPECT_NE(replay["steady_reason"].get<std::string>().find("= 3.17 s"), std::string::npos) << replay.dump();
+    EXPECT_EQ(toJson(s)["replay"], replay); // the --json summary shows the same block
 
     std::size_t surface = 0;
     for (std::size_t f = 0; f < r.frameCount(); ++f) {

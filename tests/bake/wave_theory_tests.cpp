@@ -27,6 +27,21 @@ TEST(WaveTheory, DispersionLimits) {
     EXPECT_THROW(dispersionWavenumber(w, -1.0, g), std::invalid_argument);
 }
 
+TEST(WaveTheory, GroupVelocity) {
+    const double g = 9.81, twoPi = 2.0 * std::numbers::pi;
+    // T = 1 s, h = 0.3 m: kh = 1.37292, c = 1.37296 m/s, c_g = c/2 (1 + 2kh / sinh 2kh) = 0.929481
+    // m/s (computed independently, Python).
+    EXPECT_NEAR(groupVelocity(twoPi / 1.0, 0.3, g), 0.929481, 1e-6);
+    // Deep water: c_g = c / 2 = g T / (4 pi).
+    EXPECT_NEAR(groupVelocity(twoPi / 1.0, 100.0, g), g / (4.0 * std::numbers::pi), 1e-9);
+    // Shallow water (T = 100 s, h = 1 cm, kh = 0.002): c_g = sqrt(g h), non-dispersive.
+    EXPECT_NEAR(groupVelocity(twoPi / 100.0, 0.01, g), std::sqrt(g * 0.01), 1e-5);
+    // Group velocity below phase velocity at finite depth.
+    const double w = twoPi / 1.0, k = dispersionWavenumber(w, 0.3, g);
+    EXPECT_LT(groupVelocity(w, 0.3, g), w / k);
+    EXPECT_THROW(groupVelocity(w, 0.0, g), std::invalid_argument);
+}
+
 TEST(WaveTheory, BieselTransferFunction) {
     // Values of 2 (cosh 2kh - 1) / (sinh 2kh + 2kh), computed independently (Python).
     EXPECT_NEAR(bieselHeightOverStroke(1.0), 0.981789, 1e-6);

@@ -13,6 +13,13 @@ fail() { echo "FAIL: $*"; exit 1; }
 grep -q '"frames":20' "$dir/info.json" || fail "info --json frames"
 grep -q '"surface_mean":50' "$dir/info.json" || fail "info --json surface_mean"
 [[ $("$bin/swell-cache" dump "$dir/a.swell" --frame 19 | wc -l) -eq 53 ]] || fail "dump rows"
+# synth caches carry the bake's "replay" block (water extent, steady start); info prints it.
+grep -q '"replay":{"particle_spacing":0.0816326530612244[0-9]*,"steady_reason":"synthetic travelling wave: steady from the start","steady_start_s":0.0,"still_water_level":0.5,"water_x_max":4.0,"water_x_min":0.0}' "$dir/info.json" ||
+    fail "info --json replay block: $(grep -o '"replay":{[^}]*}' "$dir/info.json")"
+"$bin/swell-cache" info "$dir/a.swell" > "$dir/info.txt"
+grep -q "^water extent       x 0 .. 4 m, still water at y = 0.5 m" "$dir/info.txt" || fail "info water extent"
+grep -q "^steady from        0 s (synthetic travelling wave: steady from the start)" "$dir/info.txt" ||
+    fail "info steady start: $(cat "$dir/info.txt")"
 
 # recode: the same frames in quantized16, within the header's position error; refused
 # encodings leave nothing behind.

@@ -4,6 +4,7 @@
 #include "swell/cache/reader.h"
 
 #include <cmath>
+#include <nlohmann/json.hpp>
 
 using namespace swell::cache;
 using namespace swell::cache::testing;
@@ -167,4 +168,21 @@ TEST(Synthetic, IsDeterministicAndInsideItsDomain) {
                         1e-6);
         }
     }
+}
+
+TEST(Synthetic, ReplayBlockDescribesTheWave) {
+    // The schema swell-bake writes (docs/cache-format.md): water over [0, length], still water
+    // at depth, spacing length / (surfaceCount - 1), steady from the start.
+    SyntheticWave w;
+    w.surfaceCount = 401;
+    w.length = 4.0f;
+    w.depth = 0.5f;
+    const nlohmann::json j = syntheticReplayJson(w);
+    EXPECT_EQ(j.size(), 6u) << j.dump();
+    EXPECT_EQ(j["water_x_min"], 0.0);
+    EXPECT_EQ(j["water_x_max"], 4.0);
+    EXPECT_EQ(j["still_water_level"], 0.5);
+    EXPECT_DOUBLE_EQ(j["particle_spacing"].get<double>(), 0.01);
+    EXPECT_EQ(j["steady_start_s"], 0.0);
+    EXPECT_EQ(j["steady_reason"], "synthetic travelling wave: steady from the start");
 }

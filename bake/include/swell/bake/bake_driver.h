@@ -11,6 +11,7 @@
 
 #include <nlohmann/json_fwd.hpp>
 
+#include "swell/bake/replay_window.h"
 #include "swell/bake/scene.h"
 
 namespace swell::bake {
@@ -89,6 +90,7 @@ struct BakeSummary {
     std::uint64_t cacheBytes = 0;   ///< size of the cache file
     std::uint64_t rawBytes = 0;     ///< float32 bytes of the stored particles before compression
     std::vector<std::string> warnings; ///< e.g. a piston wave steeper than the breaking limit
+    ReplayWindow replay;            ///< water extent and steady start, as in the cache metadata
     long resumedFromStep = 0;       ///< step of the checkpoint this run resumed from (0: none)
     std::size_t checkpoints = 0;    ///< checkpoints written by this run
     std::uint64_t checkpointBytes = 0; ///< size of the last one

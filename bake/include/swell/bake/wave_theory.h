@@ -9,6 +9,11 @@ namespace swell::bake {
 /// relative. Throws std::invalid_argument for non-positive omega, h or g.
 double dispersionWavenumber(double omega, double depth, double gravity);
 
+/// Group velocity (m/s) of a linear wave of angular frequency omega (rad/s) in depth h (m):
+/// c_g = (c / 2) (1 + 2kh / sinh 2kh), c = omega / k, k from dispersionWavenumber. Tends to
+/// c / 2 in deep water and to sqrt(g h) in shallow water. Throws like dispersionWavenumber.
+double groupVelocity(double omega, double depth, double gravity);
+
 /// Biesel (1951) piston wavemaker in linear theory: wave height over stroke,
 /// H / S = 2 (cosh 2kh - 1) / (sinh 2kh + 2kh). S is the full stroke (twice the amplitude).
 double bieselHeightOverStroke(double kh);

@@ -9,6 +9,8 @@
 #include <cstddef>
 #include <cstdint>
 
+#include <nlohmann/json_fwd.hpp>
+
 namespace swell::cache {
 
 struct SyntheticWave {
@@ -29,5 +31,9 @@ Domain syntheticDomain(const SyntheticWave& w);
 double syntheticHeight(const SyntheticWave& w, double x, double t);
 /// Frame `index` (time index * frameTime); deterministic in (w, index).
 Frame syntheticFrame(const SyntheticWave& w, std::size_t index);
+/// The metadata's "replay" block for a synthetic cache, in the schema swell-bake writes
+/// (docs/cache-format.md): water over [0, length], still water at `depth`, particle spacing
+/// length / (surfaceCount - 1), steady from t = 0 (the wave is periodic from the first frame).
+nlohmann::json syntheticReplayJson(const SyntheticWave& w);
 
 } // namespace swell::cache
