@@ -79,6 +79,7 @@ int runFidelity(Options& o, const FidelityOptions& f) {
     if (o.modeParams.mode != ReplayMode::Surging)
         throw std::invalid_argument("fidelity measures the surging layout (--mode surging)");
     const cache::Reader reader(o.cache);
+    resolveAutoRes(o, reader.header());
     const EglContext context;
     json out;
 

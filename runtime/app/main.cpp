@@ -50,6 +50,7 @@ int runBench(Options& o, int frames, int warmup, int errorFrames, int cpuFrames,
     if (frames < 1)
         throw std::invalid_argument("--frames must be >= 1");
     const cache::Reader reader(o.cache);
+    resolveAutoRes(o, reader.header());
     std::vector<double> taus(static_cast<std::size_t>(warmup + frames));
     for (std::size_t i = 0; i < taus.size(); ++i)
         taus[i] = tauOf(o, i);
@@ -211,6 +212,7 @@ int runHeights(Options& o, const std::string& outDir, double seconds) {
         throw std::invalid_argument(fmt::format("--seconds must be > 0, got {}", seconds));
     }
     const cache::Reader reader(o.cache);
+    resolveAutoRes(o, reader.header());
     const auto count = static_cast<std::size_t>(std::max(1.0, std::round(seconds * o.playbackFps)));
     std::vector<double> taus(count);
     for (std::size_t i = 0; i < count; ++i)
@@ -378,6 +380,7 @@ int runRender(Options& o, RenderOptions& r) {
     }
 
     const cache::Reader reader(o.cache);
+    resolveAutoRes(o, reader.header());
     const auto count =
         static_cast<std::size_t>(std::max(1.0, std::round(r.seconds * o.playbackFps)));
     std::vector<double> taus(count);

@@ -108,8 +108,12 @@ void addCommon(CLI::App* cmd, Options& o) {
 void finishOptions(Options& o) {
     int n = 0, m = 0;
     char x = 0, extra = 0;
-    if (std::sscanf(o.res.c_str(), "%d%c%d%c", &n, &x, &m, &extra) != 3 || (x != 'x' && x != 'X')) {
-        throw std::invalid_argument(fmt::format("--res must look like 128x128, got '{}'", o.res));
+    if (o.res == "auto") {
+        n = m = 256; // resolveAutoRes sets it from the cache
+    } else if (std::sscanf(o.res.c_str(), "%d%c%d%c", &n, &x, &m, &extra) != 3 ||
+               (x != 'x' && x != 'X')) {
+        throw std::invalid_argument(
+            fmt::format("--res must be auto or look like 128x128, got '{}'", o.res));
     }
     o.params.cellsX = n;
     o.params.cellsZ = m;
@@ -188,6 +192,22 @@ double waterDepth(const FrameSet& set) {
     const double bottom = set.header.domain.yMin;
     return count > 0 ? sum / static_cast<double>(count) - bottom
                      : static_cast<double>(set.header.domain.yMax) - bottom;
+}
+
+void resolveAutoRes(Options& o, const cache::Header& header) {
+    if (o.res != "auto")
+        return;
+    const BakeRecord record = bakeRecord(header);
+    int n = 256;
+    if (record.particleSpacing > 0.0) {
+        ReplayParams p = o.params;
+        p.cellsX = 1;
+        const Grid g = makeGrid(header, p); // the x range the grid spans
+        n = static_cast<int>(std::lround(g.dx / record.particleSpacing));
+        n = std::clamp(n, 16, 4096);
+    }
+    o.params.cellsX = o.params.cellsZ = n;
+    o.res = fmt::format("{}x{}", n, n);
 }
 
 std::vector<std::string>& pendingNotes() {

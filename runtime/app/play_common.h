@@ -28,7 +28,9 @@ double msSince(Clock::time_point t0);
 /// Options shared by every subcommand.
 struct Options {
     std::string cache;               ///< input .swell file
-    std::string res = "256x256";     ///< N x M base-mesh cells (docs/runtime.md, "Fidelity")
+    /// N x M base-mesh cells, or "auto": N = M = the water's width over the particle spacing l0
+    /// (one cell per particle spacing; 256 when the cache records no l0). docs/runtime.md.
+    std::string res = "auto";
     std::string policy = "seamless"; ///< frames outside the window: seamless, loop or clamp
     std::string window = "steady";   ///< frames replayed: steady (the bake's record) or all
     std::string extent = "water";    ///< x range of the grid: water, domain or X0:X1
@@ -49,6 +51,8 @@ struct Options {
 void addCommon(CLI::App* cmd, Options& o);
 /// Resolves the string options into o.params and validates everything.
 void finishOptions(Options& o);
+/// With --res auto, sets the grid from the cache (see Options::res); else nothing.
+void resolveAutoRes(Options& o, const cache::Header& header);
 /// Animation time of output frame i: (start + i / fps) / time unit (eq. 5's tau); tau = 0 is
 /// the timeline's first entry (the steady window's first frame, or the loop's in-frame).
 double tauOf(const Options& o, std::size_t i);
