@@ -90,17 +90,19 @@ TEST(ReplayWindow, SteadyStartOfSurgingIsRampPlusTankCrossingAtTheGroupVelocity)
 }
 
 TEST(ReplayWindow, SteadyStartOfRecyclingIsALongWaveRoundTripThroughTheTank) {
-    // ripple.json: 2.6 m tank, h = 0.3 m, U = 0.3 m/s, sqrt(g h) = 1.715517 m/s:
-    // 2.6 / 2.015517 + 2.6 / 1.415517 = 1.2900 + 1.8368 = 3.1268 s.
+    // ripple.json: 2.6 m tank, h = 0.3 m, U = 0.3 m/s, sqrt(g h) = 1.715517 m/s: a round trip
+    // 2.6 / 2.015517 + 2.6 / 1.415517 = 1.2900 + 1.8368 = 3.1268 s, 1.5 of them 4.6902 s.
     const ReplayWindow w = replayWindow(shipped("ripple.json"));
-    EXPECT_NEAR(w.steadyStart, 3.1268, 1e-4);
-    EXPECT_EQ(w.steadyReason, "recycling channel: long-wave round trip of the 2.60 m tank, down at sqrt(g h) + U = "
-                              "1.72 + 0.30 m/s and back at |sqrt(g h) - U| = 1.42 m/s (h = 0.30 m) = 3.13 s");
+    EXPECT_NEAR(w.steadyStart, 4.6902, 1e-4);
+    EXPECT_EQ(w.steadyReason, "recycling channel: 1.5 x the long-wave round trip of the 2.60 m tank, down at "
+                              "sqrt(g h) + U = 1.72 + 0.30 m/s and back at |sqrt(g h) - U| = 1.42 m/s (h = 0.30 m): "
+                              "1.5 x 3.13 s = 4.69 s");
     // Near-critical inflow: the return speed is floored, the start stays finite.
     Scene critical = shipped("ripple_small.json");
     critical.recycling->velocity = std::sqrt(9.81 * 0.12);
     const ReplayWindow c = replayWindow(critical);
-    EXPECT_NEAR(c.steadyStart, 2.0 / (2.0 * std::sqrt(9.81 * 0.12)) + 2.0 / (0.1 * std::sqrt(9.81 * 0.12)), 1e-9);
+    EXPECT_NEAR(c.steadyStart, 1.5 * (2.0 / (2.0 * std::sqrt(9.81 * 0.12)) + 2.0 / (0.1 * std::sqrt(9.81 * 0.12))),
+                1e-9);
     EXPECT_NE(c.steadyReason.find("near-critical"), std::string::npos) << c.steadyReason;
 }
 
