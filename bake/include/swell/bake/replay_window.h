@@ -19,8 +19,8 @@ struct ReplayWindow {
     double waterXMax = 0.0;       ///< highest x where water can be (m)
     double stillWaterLevel = 0.0; ///< y of the still water surface (m)
     double particleSpacing = 0.0; ///< l0 (m)
-    double steadyStart = 0.0;     ///< simulated time from which the flow is statistically steady (s)
-    std::string steadyReason;     ///< how steadyStart was derived, with the numbers
+    double steadyStart = 0.0; ///< simulated time from which the flow is statistically steady (s)
+    std::string steadyReason; ///< how steadyStart was derived, with the numbers
 };
 
 /// The scene's water extent and steady start:
