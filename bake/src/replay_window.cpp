@@ -13,6 +13,12 @@
 namespace swell::bake {
 namespace {
 
+/// Round trips of the start-up long wave through a recycling channel before it is steady: one,
+/// and half as much again for the seiche it leaves behind to decay (docs/scenes.md, "Replay
+/// window": the gauges of ripple_small.json settle after 3-4 s, a round trip being 3.9 s; those
+/// of ripple.json after about 4 s, a round trip being 3.1 s).
+constexpr double kRecyclingRoundTrips = 1.5;
+
 /// Near-critical inflow (U close to sqrt(g h)): the upstream-going wave is taken at no less than
 /// this fraction of sqrt(g h), so the steady start stays finite.
 constexpr double kMinReturnSpeed = 0.1;
@@ -53,29 +59,33 @@ void pistonSteadyStart(const Scene& scene, double depth, ReplayWindow& w) {
     const double length = scene.geometry.tank->width();
     const double cg = groupVelocity(2.0 * std::numbers::pi / period, depth, scene.physics.gravity);
     w.steadyStart = p.rampTime + length / cg;
-    w.steadyReason = fmt::format("piston ramp {:.2f} s + tank crossing {:.2f} m at the group velocity {:.2f} m/s "
-                                 "(T = {:.2f} s{}, h = {:.2f} m, linear theory) = {:.2f} s",
-                                 p.rampTime, length, cg, period, sinus ? "" : ", the shortest random period", depth,
-                                 w.steadyStart);
+    w.steadyReason = fmt::format(
+        "piston ramp {:.2f} s + tank crossing {:.2f} m at the group velocity {:.2f} m/s "
+        "(T = {:.2f} s{}, h = {:.2f} m, linear theory) = {:.2f} s",
+        p.rampTime, length, cg, period, sinus ? "" : ", the shortest random period", depth,
+        w.steadyStart);
 }
 
 /// Recycling channel: the inflow zone starts impulsively and sends a long wave (the start-up
 /// bore) downstream at sqrt(g h) + U; it reflects at the front wall (water that waits for a free
 /// inflow slot fills the basin beyond the outflow, so the channel's water reaches the front wall)
-/// and comes back upstream at |sqrt(g h) - U|. The gauges settle once that round trip is over
-/// (docs/scenes.md, "Replay window": measured on ripple_small.json and ripple.json).
+/// and comes back upstream at |sqrt(g h) - U|, and goes on sloshing (a seiche) while it decays:
+/// kRecyclingRoundTrips round trips.
 void recyclingSteadyStart(const Scene& scene, double depth, ReplayWindow& w) {
     const double u = std::abs(scene.recycling->velocity);
     const double length = scene.geometry.tank->width();
     const double c = std::sqrt(scene.physics.gravity * depth);
     const double back = std::max(std::abs(c - u), kMinReturnSpeed * c);
-    w.steadyStart = length / (c + u) + length / back;
+    const double roundTrip = length / (c + u) + length / back;
+    w.steadyStart = kRecyclingRoundTrips * roundTrip;
     const bool floored = back > std::abs(c - u);
-    w.steadyReason = fmt::format("recycling channel: long-wave round trip of the {:.2f} m tank, down at sqrt(g h) + U "
-                                 "= {:.2f} + {:.2f} m/s and back at |sqrt(g h) - U| = {:.2f} m/s{} (h = {:.2f} m) "
-                                 "= {:.2f} s",
-                                 length, c, u, back, floored ? " (near-critical inflow: floored at 0.1 sqrt(g h))" : "",
-                                 depth, w.steadyStart);
+    w.steadyReason = fmt::format(
+        "recycling channel: {:g} x the long-wave round trip of the {:.2f} m tank, down at "
+        "sqrt(g h) + U = {:.2f} + {:.2f} m/s and back at |sqrt(g h) - U| = {:.2f} m/s{} "
+        "(h = {:.2f} m): {:g} x {:.2f} s = {:.2f} s",
+        kRecyclingRoundTrips, length, c, u, back,
+        floored ? " (near-critical inflow: floored at 0.1 sqrt(g h))" : "", depth,
+        kRecyclingRoundTrips, roundTrip, w.steadyStart);
 }
 
 } // namespace
@@ -88,9 +98,11 @@ ReplayWindow replayWindow(const Scene& scene) {
     const bool forced = scene.piston || scene.recycling;
     const double depth = scene.geometry.tank ? w.stillWaterLevel - scene.geometry.tank->y0 : 0.0;
     if (!forced) {
-        w.steadyReason = "no forcing (no piston, no recycling): the flow only relaxes from its initial state";
+        w.steadyReason =
+            "no forcing (no piston, no recycling): the flow only relaxes from its initial state";
     } else if (!(depth > 0.0)) {
-        w.steadyReason = "forced, but the still-water level is not above the tank bed: no wave speed to wait for";
+        w.steadyReason = "forced, but the still-water level is not above the tank bed: no wave "
+                         "speed to wait for";
     } else if (scene.piston) {
         pistonSteadyStart(scene, depth, w);
     } else {
@@ -100,9 +112,12 @@ ReplayWindow replayWindow(const Scene& scene) {
 }
 
 nlohmann::json toJson(const ReplayWindow& w) {
-    return nlohmann::json{{"water_x_min", w.waterXMin},           {"water_x_max", w.waterXMax},
-                          {"still_water_level", w.stillWaterLevel}, {"particle_spacing", w.particleSpacing},
-                          {"steady_start_s", w.steadyStart},        {"steady_reason", w.steadyReason}};
+    return nlohmann::json{{"water_x_min", w.waterXMin},
+                          {"water_x_max", w.waterXMax},
+                          {"still_water_level", w.stillWaterLevel},
+                          {"particle_spacing", w.particleSpacing},
+                          {"steady_start_s", w.steadyStart},
+                          {"steady_reason", w.steadyReason}};
 }
 
 } // namespace swell::bake

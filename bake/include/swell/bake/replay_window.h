@@ -19,8 +19,8 @@ struct ReplayWindow {
     double waterXMax = 0.0;       ///< highest x where water can be (m)
     double stillWaterLevel = 0.0; ///< y of the still water surface (m)
     double particleSpacing = 0.0; ///< l0 (m)
-    double steadyStart = 0.0;     ///< simulated time from which the flow is statistically steady (s)
-    std::string steadyReason;     ///< how steadyStart was derived, with the numbers
+    double steadyStart = 0.0; ///< simulated time from which the flow is statistically steady (s)
+    std::string steadyReason; ///< how steadyStart was derived, with the numbers
 };
 
 /// The scene's water extent and steady start:
@@ -29,8 +29,8 @@ struct ReplayWindow {
 ///   recycling.outflow_x in a recycling channel; without a tank, the water rectangles' union;
 /// - steady start: with a piston, the ramp plus the time the slowest wave it makes (its
 ///   shortest period) needs to cross the tank at the linear group velocity; with recycling,
-///   the round trip of the start-up long wave through the tank, down at sqrt(g h) + U and back
-///   at sqrt(g h) - U; else 0 (no forcing).
+///   1.5 round trips of the start-up long wave through the tank, down at sqrt(g h) + U and
+///   back at sqrt(g h) - U; else 0 (no forcing).
 ReplayWindow replayWindow(const Scene& scene);
 
 /// The metadata block: {"water_x_min", "water_x_max", "still_water_level",
