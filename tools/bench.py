@@ -200,6 +200,47 @@ class Bench:
                          "outcome": "ok" if r.rc == 0 else "exit %s: %s" % (r.rc, r.last_err_line())})
         return rows, renderer
 
+    # ---------------------------------------------------------------- replay fidelity
+    def paper_cache(self):
+        """The paper-scale surging bake (scenes/surging.json), baked once into out/bench/."""
+        cache = os.path.join(OUT, "surging.swell")
+        if not os.path.exists(cache):
+            r = self.run([bl.exe("swell-bake"), scene("surging.json"), "-o", cache, "--json", "-q"], 3600)
+            if r.rc != 0:
+                raise SystemExit("tools/bench: baking surging failed: " + r.last_err_line())
+        return cache
+
+    def fidelity(self, caches):
+        """The replay against the simulated surface (swell-play fidelity) next to its speed
+        (swell-play bench), over resolution and reconstruction at F = 0, and the mixing error
+        of F = 0.3 over sigma; each cache's own water range and steady window."""
+        self.note_load("fidelity")
+        frames = 100 if self.quick else 300
+        rows = []
+        for label, cache in caches:
+            cases = [(res, rec, 2.0) for rec in ("envelope", "paper")
+                     for res in ([64, 128, 256, 512] if self.quick else [64, 128, 256, 512, 1024])]
+            cases += [(256, "envelope", sg) for sg in (1.0, 4.0)]
+            for res, rec, sigma in cases:
+                common = ["--res", "%dx%d" % (res, res), "--reconstruction", rec, "--sigma", sigma, "--json"]
+                f = self.run([bl.exe("swell-play"), "fidelity", cache, "--frames", frames,
+                              "--mix-times", 4 if self.quick else 12] + common, 1800)
+                n = 200 if res <= 256 else 40
+                b = self.run([bl.exe("swell-play"), "bench", cache, "--frames", n, "--warmup", 10,
+                              "--error-frames", 2, "--cpu-frames", 0] + common, 1800)
+                fj, bj = f.json or {}, b.json or {}
+                f0, mix = fj.get("f0", {}), fj.get("mixing", {})
+                rows.append({"cache": label, "res": res, "reconstruction": rec, "sigma_cells": sigma,
+                             "fps": bj.get("fps"), "f0_rms_l0": f0.get("rms_l0"),
+                             "f0_mean_row_max_l0": f0.get("mean_row_max_l0"), "f0_max_l0": f0.get("max_l0"),
+                             "f0_crest_loss_mean": f0.get("crest_loss_mean"),
+                             "f0_crest_loss_max": f0.get("crest_loss_max"),
+                             "mix_rms_l0": mix.get("rms_l0"), "mix_crest_loss_mean": mix.get("crest_loss_mean"),
+                             "loop_residual_m": ((fj.get("timeline") or {}).get("loop") or {}).get("residual_m"),
+                             "outcome": "ok" if f.rc == 0 and b.rc == 0 else "exit %s/%s: %s" % (
+                                 f.rc, b.rc, (f if f.rc else b).last_err_line())})
+        return rows
+
     # ---------------------------------------------------------------- render (issue 7)
     def render(self, cache):
         """Shaded frames per second (swell-play render, Sec. 5) with the cost of each stage: the
@@ -523,7 +564,7 @@ def main():
     ap.add_argument("--quick", action="store_true", help="fewer, shorter runs (< 10 min)")
     ap.add_argument("--only", default="",
                     help="comma list of sections: bake (or dam_break, still_tank, regular_wave), replay, "
-                         "compression, skips, render")
+                         "fidelity, compression, skips, render")
     ap.add_argument("--no-docs", action="store_true", help="do not rewrite docs/BENCHMARKS.md")
     args = ap.parse_args()
     only = set(filter(None, args.only.split(",")))
@@ -562,6 +603,10 @@ def main():
     if want("replay"):
         print("== replay sweeps", flush=True)
         results["replay"], renderer = b.replay(cache)
+    if want("fidelity"):
+        print("== replay fidelity", flush=True)
+        results["fidelity"] = b.fidelity([("surging (paper scale)", b.paper_cache()),
+                                          ("surging_small", cache)])
     if want("compression"):
         print("== compression", flush=True)
         results["compression"] = b.compression(cache)
@@ -590,7 +635,8 @@ def main():
         import shutil
         img = os.path.join(bl.ROOT, "docs", "images", "bench")
         os.makedirs(img, exist_ok=True)
-        for n in ("bake_error_vs_cost", "replay_fps_vs_error", "compression_vs_error"):
+        for n in ("bake_error_vs_cost", "replay_fps_vs_error", "replay_fidelity_vs_fps",
+                  "compression_vs_error"):
             if os.path.exists(os.path.join(OUT, n + ".png")):
                 shutil.copy(os.path.join(OUT, n + ".png"), os.path.join(img, n + ".png"))
     print("tools/bench: done in %.1f min; CSV and PNG in out/bench/%s" % (
@@ -626,6 +672,17 @@ def plots(res):
             ann[lab] = [str(r[key]) for r in rows]
         bl.plot(P("replay_fps_vs_error.png"), "Replay: fps against max height error vs CPU double reference",
                 "fps (synced)", "max |h_GPU - h_CPU| (m)", series, logx=True, logy=True, annotate=ann)
+    if "fidelity" in res:
+        series, ann = [], {}
+        for label in sorted({r["cache"] for r in res["fidelity"]}):
+            for rec in ("envelope", "paper"):
+                rows = [r for r in res["fidelity"] if r["cache"] == label and r["reconstruction"] == rec
+                        and r["sigma_cells"] == 2.0]
+                name = "%s, %s" % (label, rec)
+                series.append((name, [r["fps"] for r in rows], [r["f0_rms_l0"] for r in rows]))
+                ann[name] = [str(r["res"]) for r in rows]
+        bl.plot(P("replay_fidelity_vs_fps.png"), "Replay against the simulated surface (F = 0)",
+                "fps (synced, N x N)", "RMS error / l0", series, logx=True, logy=True, annotate=ann)
     if "compression" in res:
         c = [r for r in res["compression"] if "bytes" in r]
         bl.plot(P("compression_vs_error.png"), "Cache size against height error (surging_small bake)",
@@ -718,6 +775,21 @@ def docs(res, m, rw_note):
              "where that happens (the rms stays small).", "",
              "![compression against error](images/bench/compression_vs_error.png)"]
         bl.replace_section(DOC, "compression", "\n".join(t))
+    if "fidelity" in res:
+        rows = [{k: bl.fmt(v) if isinstance(v, float) else v for k, v in r.items()} for r in res["fidelity"]]
+        t = ["Machine: %s, %s, %s." % (m.get("cpu"), m.get("renderer"), m.get("date")),
+             "Command: `tools/bench --only fidelity%s`; each row `swell-play fidelity CACHE --res NxN "
+             "--reconstruction R --sigma S --json` and `swell-play bench` with the same options. "
+             "f0: F = 0 (every slice one frame) against the frame's envelope over the steady window; "
+             "mix: F = 0.3, each real slice's row against its own frame; lengths in l0." % (
+                 " --quick" if m.get("variant") == "quick" else ""),
+             "",
+             bl.md_table(rows, ["cache", "res", "reconstruction", "sigma_cells", "fps", "f0_rms_l0",
+                                "f0_mean_row_max_l0", "f0_max_l0", "f0_crest_loss_mean", "f0_crest_loss_max",
+                                "mix_rms_l0", "mix_crest_loss_mean", "outcome"]),
+             "",
+             "![replay fidelity against fps](images/bench/replay_fidelity_vs_fps.png)"]
+        bl.replace_section(DOC, "fidelity", "\n".join(t))
     if "skips" in res:
         t = [head, "",
              "Each row: the same work with and without the skip (medians of repeated runs on the "
