@@ -198,12 +198,15 @@ int runFidelity(Options& o, const FidelityOptions& f) {
         HeightField prev;
         std::size_t flatFrames = 0, flatRowCount = 0;
         double largest = 0.0, largestAt = 0.0;
+        json flatAt = json::array(); // the first 20 times with a flat row
         for (std::size_t i = 0; i < count; ++i) {
             g.update(t[i]);
             HeightField h = g.readHeights();
             const auto flat = static_cast<std::size_t>(flatRows(h));
             flatRowCount += flat;
             flatFrames += flat > 0 ? 1 : 0;
+            if (flat > 0 && flatAt.size() < 20)
+                flatAt.push_back(o.start + static_cast<double>(i) / o.playbackFps);
             if (i > 0) {
                 const double d = maxChange(prev, h);
                 if (d > largest) {
@@ -218,6 +221,7 @@ int runFidelity(Options& o, const FidelityOptions& f) {
                              {"flat_row_threshold_m", kFlatRowMetres},
                              {"frames_with_flat_rows", flatFrames},
                              {"flat_rows", flatRowCount},
+                             {"flat_at_s", flatAt},
                              {"largest_change_m", largest},
                              {"largest_change_at_s", largestAt},
                              {"steady_f0_change_p999_m", p999},

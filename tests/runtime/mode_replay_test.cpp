@@ -139,6 +139,38 @@ TEST_F(ModeReplayTest, MatchesTheCpuReferenceForBothModes) {
     }
 }
 
+TEST_F(ModeReplayTest, SeamlessTimelinesWithCrossFadesMatchTheCpuReferenceInEveryMode) {
+    // Every mode reads its frames through the same timeline (timeline.h): a loop from frame 30
+    // to 200 with a 12-frame cross-fade, both reconstructions, taus across the seam.
+    const FrameSet& set = *s_frames;
+    const Timeline timeline = Timeline::seamless({30, 200, 12, 0.0, 0.0});
+    for (ReplayMode m : {ReplayMode::Surging, ReplayMode::Ripple, ReplayMode::Whirlpool}) {
+        for (Reconstruction rec : {Reconstruction::Envelope, Reconstruction::Paper}) {
+            ReplayParams p = paperDefaults(m);
+            p.cellsX = 72;
+            p.cellsZ = 56;
+            p.slices = 32;
+            p.timeUnitSeconds = 1.0; // A = 100 frames per unit: the loop is 1.7 units
+            p.reconstruction = rec;
+            ModeParams mode;
+            mode.mode = m;
+            const auto samplers = makeSamplers(p, mode, timeline, framesPerTimeUnit(set.header, p));
+            ModeReplay gpu(set, p, mode, samplers);
+            const CpuModeReference cpu(set, p, mode, samplers);
+            for (double tau : {0.2, 1.6, 1.65, 3.35, -0.05}) {
+                SCOPED_TRACE(::testing::Message()
+                             << toString(m) << " " << toString(rec) << " tau " << tau);
+                gpu.update(tau);
+                const auto frames = gpu.readSliceFrames();
+                for (std::size_t d = 0; d < samplers.size(); ++d)
+                    EXPECT_EQ(frames[d], samplers[d].frames(tau));
+                EXPECT_LE(worstError(gpu.readHeights(), cpu.heights(tau)),
+                          1e-4 * test::kSyntheticDepth);
+            }
+        }
+    }
+}
+
 TEST_F(ModeReplayTest, OneRippleDirectionAtZeroIsTheSurgingReplayWithoutSynthesis) {
     const FrameSet& set = *s_frames;
     ReplayParams p = paperDefaults(ReplayMode::Ripple);

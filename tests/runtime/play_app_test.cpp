@@ -164,3 +164,107 @@ TEST_F(PlayApp, NoEglIsOneClearLine) {
 }
 
 } // namespace swell::runtime
+
+namespace swell::runtime {
+namespace {
+
+/// A cache with the bake's "replay" record: water over x in [0.4, 3.6] m of the 4 m domain,
+/// l0 = 1 cm, steady from `steadyStart` s; 400 frames 0.01 s apart (4 s).
+fs::path recordedCache(const fs::path& dir, const std::string& name, double steadyStart) {
+    cache::Header h = test::syntheticHeader();
+    h.metadataJson = nlohmann::json{{"replay",
+                                     {{"water_x_min", 0.4},
+                                      {"water_x_max", 3.6},
+                                      {"still_water_level", test::kSyntheticDepth},
+                                      {"particle_spacing", 0.01},
+                                      {"steady_start_s", steadyStart},
+                                      {"steady_reason", "test record"}}}}
+                         .dump();
+    const fs::path path = dir / name;
+    cache::Writer w(path, h);
+    for (const cache::Frame& f : test::syntheticFrames(400, 200, 3))
+        w.addFrame(f);
+    w.finish();
+    return path;
+}
+
+TEST_F(PlayApp, HeightsSpanTheWaterAndStartInTheSteadyWindow) {
+    const fs::path c = recordedCache(s_dir, "recorded.swell", 1.0);
+    const fs::path out = s_dir / "recorded_heights";
+    const Result r = run("heights " + c.string() + " --out " + out.string() +
+                         " --res 64x16 --time-unit 1 --seconds 0.3 --fps 10 --json");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_EQ(r.err.find("note"), std::string::npos) << r.err; // recorded: nothing to say
+    const nlohmann::json meta = nlohmann::json::parse(slurp(out / "heights.json"));
+    EXPECT_DOUBLE_EQ(meta["x0"].get<double>(), 0.4);
+    EXPECT_NEAR(meta["dx"].get<double>(), 3.2 / 64, 1e-12);
+    EXPECT_EQ(meta["timeline"]["policy"], "seamless");
+    EXPECT_EQ(meta["timeline"]["window"]["first_frame"], 100);
+    const auto in = meta["timeline"]["loop"]["in_frame"].get<int>();
+    EXPECT_GE(in, 100);
+    EXPECT_GT(meta["timeline"]["loop"]["out_frame"].get<int>(), in);
+    EXPECT_TRUE(meta["bake_record"]["recorded"].get<bool>());
+    EXPECT_EQ(meta["params"]["reconstruction"], "envelope");
+}
+
+TEST_F(PlayApp, AutoResolutionIsOneCellPerParticleSpacing) {
+    const fs::path c = recordedCache(s_dir, "auto.swell", 0.0);
+    const Result r = run("bench " + c.string() +
+                         " --frames 3 --warmup 0 --error-frames 1 --cpu-frames 0 --json");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_EQ(nlohmann::json::parse(r.out)["res"], nlohmann::json({320, 320})); // 3.2 m / 1 cm
+}
+
+TEST_F(PlayApp, ASteadyWindowShorterThanTheSliceSpreadIsOneClearLine) {
+    // Steady from 2 s of a 4 s bake: 2 s of steady flow, less than 2 F x time unit = 2.4 s.
+    const fs::path c = recordedCache(s_dir, "short.swell", 2.0);
+    const Result r = run("bench " + c.string() + " --res 32x8 --frames 3");
+    EXPECT_EQ(r.code, 1);
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_NE(r.err.find("short.swell"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("shorter than the slice spread"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("bake at least 0.40 s longer"), std::string::npos) << r.err;
+    // Every frame on request, or a smaller F, is fine.
+    EXPECT_EQ(run("bench " + c.string() + " --res 32x8 --frames 3 --window all").code, 0);
+    EXPECT_EQ(run("bench " + c.string() + " --res 32x8 --frames 3 -F 0.2").code, 0);
+}
+
+TEST_F(PlayApp, OldCachesFallBackToTheDomainWithANoteAfterTheRun) {
+    const Result r = run("bench " + cachePath() + " --res 32x8 --frames 3 --json");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.err.find("note: " + cachePath() + ": the cache records no water extent"),
+              std::string::npos)
+        << r.err;
+    const nlohmann::json j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["grid_x"]["x0"], 0.0);
+    EXPECT_EQ(j["grid_x"]["x1"], 4.0);
+    EXPECT_EQ(j["res"], nlohmann::json({32, 8}));
+}
+
+TEST_F(PlayApp, FidelityReportsTheErrorAgainstTheSimulatedSurface) {
+    const fs::path c = recordedCache(s_dir, "fidelity.swell", 0.0);
+    const Result r = run("fidelity " + c.string() +
+                         " --res 128x8 --time-unit 1 --frames 20 --mix-times 2 --seam-seconds 0.5"
+                         " --fps 20 --json");
+    ASSERT_EQ(r.code, 0) << r.err;
+    const nlohmann::json j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["f0"]["rows"], 20);
+    // The synthetic wave (amplitude 6 cm + 2.5 cm, 4 mm particle noise) at 2.5 cm cells:
+    // a few millimetres, far below the wave.
+    EXPECT_LT(j["f0"]["rms_m"].get<double>(), 0.005);
+    EXPECT_GT(j["f0"]["rms_m"].get<double>(), 0.0);
+    EXPECT_GT(j["mixing"]["rows"].get<int>(), 0);
+    EXPECT_EQ(j["continuity"]["frames"], 10);
+    EXPECT_GT(j["steady_spread_m"].get<double>(), 0.01);
+    // Deterministic (but for the loop search's wall time).
+    const Result again = run("fidelity " + c.string() +
+                             " --res 128x8 --time-unit 1 --frames 20 --mix-times 2"
+                             " --seam-seconds 0.5 --fps 20 --json");
+    nlohmann::json a = nlohmann::json::parse(again.out), b = j;
+    a["timeline"]["loop"].erase("search_ms");
+    b["timeline"]["loop"].erase("search_ms");
+    EXPECT_EQ(a, b);
+}
+
+} // namespace
+} // namespace swell::runtime
