@@ -241,6 +241,31 @@ class Bench:
                                  f.rc, b.rc, (f if f.rc else b).last_err_line())})
         return rows
 
+    def continuity(self, cache):
+        """Long replays of the paper-scale bake at 128 x 64: frames with flat rows (height spread
+        below 5 mm) and the largest per-cell change between consecutive frames against the
+        99.9th percentile of the same measure in the steady bake at F = 0; the default against
+        today's-main behaviour (whole padded domain, every frame, hard loop, eq. (7) columns)."""
+        self.note_load("continuity")
+        old = ["--policy", "loop", "--window", "all", "--extent", "domain", "--reconstruction", "paper"]
+        cases = [("default (seamless, steady window, water, envelope)", [], 600, 50),
+                 ("default", [], 60, 5),
+                 ("steady window, hard loop", ["--policy", "loop"], 600, 50),
+                 ("before (0ea46e0 defaults)", old, 600, 50),
+                 ("before (0ea46e0 defaults)", old, 60, 5)]
+        rows = []
+        for label, extra, seconds, fps in cases:
+            r = self.run([bl.exe("swell-play"), "fidelity", cache, "--res", "128x64", "--fps", fps,
+                          "--seam-seconds", seconds, "--frames", 0, "--mix-times", 0, "--json"] + extra, 1800)
+            c = (r.json or {}).get("continuity", {})
+            rows.append({"replay": label, "seconds": seconds, "fps": fps, "frames": c.get("frames"),
+                         "frames_with_flat_rows": c.get("frames_with_flat_rows"), "flat_rows": c.get("flat_rows"),
+                         "largest_change_m": c.get("largest_change_m"),
+                         "steady_f0_change_p999_m": c.get("steady_f0_change_p999_m"),
+                         "largest_over_steady_p999": c.get("largest_over_steady_p999"),
+                         "outcome": "ok" if r.rc == 0 else "exit %s: %s" % (r.rc, r.last_err_line())})
+        return rows
+
     # ---------------------------------------------------------------- render (issue 7)
     def render(self, cache):
         """Shaded frames per second (swell-play render, Sec. 5) with the cost of each stage: the
@@ -607,6 +632,7 @@ def main():
         print("== replay fidelity", flush=True)
         results["fidelity"] = b.fidelity([("surging (paper scale)", b.paper_cache()),
                                           ("surging_small", cache)])
+        results["continuity"] = b.continuity(b.paper_cache())
     if want("compression"):
         print("== compression", flush=True)
         results["compression"] = b.compression(cache)
@@ -790,6 +816,16 @@ def docs(res, m, rw_note):
              "",
              "![replay fidelity against fps](images/bench/replay_fidelity_vs_fps.png)"]
         bl.replace_section(DOC, "fidelity", "\n".join(t))
+    if "continuity" in res:
+        rows = [{k: bl.fmt(v) if isinstance(v, float) else v for k, v in r.items()} for r in res["continuity"]]
+        t = ["Machine: %s, %s, %s." % (m.get("cpu"), m.get("renderer"), m.get("date")),
+             "Command: `tools/bench --only fidelity`; each row `swell-play fidelity out/bench/surging.swell "
+             "--res 128x64 --fps R --seam-seconds S --frames 0 --mix-times 0 [options]`.",
+             "",
+             bl.md_table(rows, ["replay", "seconds", "fps", "frames", "frames_with_flat_rows", "flat_rows",
+                                "largest_change_m", "steady_f0_change_p999_m", "largest_over_steady_p999",
+                                "outcome"])]
+        bl.replace_section(DOC, "continuity", "\n".join(t))
     if "skips" in res:
         t = [head, "",
              "Each row: the same work with and without the skip (medians of repeated runs on the "

@@ -112,7 +112,7 @@ int runFidelity(Options& o, const FidelityOptions& f) {
     Truths truth{envelopeBinWidth(reader.header(), grid), {}};
     const std::optional<cache::SyntheticWave> wave = syntheticWave(reader.header());
     FidelityStats f0, analytic;
-    double spreadSum = 0.0;
+    double spreadSum = 0.0, overWaterSum = 0.0, overWaterMin = 1.0;
     const int mid = grid.cellsZ / 2;
     for (double tau : taus0) {
         gpu0.update(tau);
@@ -120,7 +120,18 @@ int runFidelity(Options& o, const FidelityOptions& f) {
         const std::uint32_t frame = s0.samplers[0].frame(tau, 0);
         const std::vector<double> r = row(h, mid);
         spreadSum += rowSpread(h, mid);
-        f0.add(compareRow(r, grid, truth.of(s0.set, frame), step));
+        const SurfaceEnvelope& env = truth.of(s0.set, frame);
+        f0.add(compareRow(r, grid, env, step));
+        // Columns over water: centres between the frame's first and last surface particle
+        // (half a particle spacing beyond them).
+        int over = 0;
+        for (int n = 0; n < grid.cellsX && !env.empty(); ++n) {
+            const double x = grid.x0 + (n + 0.5) * grid.dx;
+            over += x >= env.xFirst() - 0.5 * truth.binWidth && x <= env.xLast() + 0.5 * truth.binWidth;
+        }
+        const double fraction = static_cast<double>(over) / grid.cellsX;
+        overWaterSum += fraction;
+        overWaterMin = std::min(overWaterMin, fraction);
         if (wave) {
             const double t = frame * reader.header().frameTime();
             analytic.add(compareRow(
@@ -131,6 +142,9 @@ int runFidelity(Options& o, const FidelityOptions& f) {
     out["f0"] = toJson(f0, l0);
     // How much wave the steady bake shows: the mean height spread of its frames' profiles.
     out["steady_spread_m"] = taus0.empty() ? 0.0 : spreadSum / static_cast<double>(taus0.size());
+    out["columns_over_water"] = {
+        {"mean", taus0.empty() ? 0.0 : overWaterSum / static_cast<double>(taus0.size())},
+        {"min", overWaterMin}};
     if (wave)
         out["f0_analytic"] = toJson(analytic, l0);
 
@@ -248,6 +262,10 @@ int runFidelity(Options& o, const FidelityOptions& f) {
                              "{} reconstruction, sigma {}, l0 {} m)\n",
                              o.cache, grid.cellsX, grid.cellsZ, grid.x0,
                              grid.x0 + grid.cellsX * grid.dx, o.reconstruction, o.params.sigma, l0);
+    std::cout << fmt::format("  columns over water (between the frame's first and last surface "
+                             "particle): {:.1f} % on average, {:.1f} % at least\n",
+                             100.0 * out["columns_over_water"]["mean"].get<double>(),
+                             100.0 * overWaterMin);
     std::cout << line("F = 0 vs the frames' envelopes", f0);
     if (wave)
         std::cout << line("F = 0 vs the analytic wave", analytic);
