@@ -225,7 +225,7 @@ class Bench:
                 common = ["--res", "%dx%d" % (res, res), "--reconstruction", rec, "--sigma", sigma, "--json"]
                 f = self.run([bl.exe("swell-play"), "fidelity", cache, "--frames", frames,
                               "--mix-times", 4 if self.quick else 12] + common, 1800)
-                n = 200 if res <= 256 else 40
+                n = 1000 if res <= 256 else 200
                 b = self.run([bl.exe("swell-play"), "bench", cache, "--frames", n, "--warmup", 10,
                               "--error-frames", 2, "--cpu-frames", 0] + common, 1800)
                 fj, bj = f.json or {}, b.json or {}
@@ -802,7 +802,7 @@ def docs(res, m, rw_note):
              "![compression against error](images/bench/compression_vs_error.png)"]
         bl.replace_section(DOC, "compression", "\n".join(t))
     if "fidelity" in res:
-        rows = [{k: bl.fmt(v) if isinstance(v, float) else v for k, v in r.items()} for r in res["fidelity"]]
+        pct = lambda k: (lambda r: None if r.get(k) is None else "%.2f %%" % (100 * r[k]))
         t = ["Machine: %s, %s, %s." % (m.get("cpu"), m.get("renderer"), m.get("date")),
              "Command: `tools/bench --only fidelity%s`; each row `swell-play fidelity CACHE --res NxN "
              "--reconstruction R --sigma S --json` and `swell-play bench` with the same options. "
@@ -810,21 +810,26 @@ def docs(res, m, rw_note):
              "mix: F = 0.3, each real slice's row against its own frame; lengths in l0." % (
                  " --quick" if m.get("variant") == "quick" else ""),
              "",
-             bl.md_table(rows, ["cache", "res", "reconstruction", "sigma_cells", "fps", "f0_rms_l0",
-                                "f0_mean_row_max_l0", "f0_max_l0", "f0_crest_loss_mean", "f0_crest_loss_max",
-                                "mix_rms_l0", "mix_crest_loss_mean", "outcome"]),
+             bl.md_table(res["fidelity"], [
+                 ("cache", "cache"), ("N x N", "res"), ("columns", "reconstruction"), ("sigma", "sigma_cells"),
+                 ("fps", "fps"), ("F=0 RMS / l0", "f0_rms_l0"), ("F=0 row max / l0, mean", "f0_mean_row_max_l0"),
+                 ("F=0 max / l0, worst", "f0_max_l0"), ("crest loss, mean", pct("f0_crest_loss_mean")),
+                 ("crest loss, worst", pct("f0_crest_loss_max")), ("F=0.3 RMS / l0", "mix_rms_l0"),
+                 ("F=0.3 crest loss", pct("mix_crest_loss_mean")), ("outcome", "outcome")]),
              "",
              "![replay fidelity against fps](images/bench/replay_fidelity_vs_fps.png)"]
         bl.replace_section(DOC, "fidelity", "\n".join(t))
     if "continuity" in res:
-        rows = [{k: bl.fmt(v) if isinstance(v, float) else v for k, v in r.items()} for r in res["continuity"]]
         t = ["Machine: %s, %s, %s." % (m.get("cpu"), m.get("renderer"), m.get("date")),
              "Command: `tools/bench --only fidelity`; each row `swell-play fidelity out/bench/surging.swell "
              "--res 128x64 --fps R --seam-seconds S --frames 0 --mix-times 0 [options]`.",
              "",
-             bl.md_table(rows, ["replay", "seconds", "fps", "frames", "frames_with_flat_rows", "flat_rows",
-                                "largest_change_m", "steady_f0_change_p999_m", "largest_over_steady_p999",
-                                "outcome"])]
+             bl.md_table(res["continuity"], [
+                 ("replay", "replay"), ("seconds", "seconds"), ("fps", "fps"), ("frames", "frames"),
+                 ("frames with flat rows", "frames_with_flat_rows"), ("flat rows", "flat_rows"),
+                 ("largest per-cell change (m)", "largest_change_m"),
+                 ("steady F=0 99.9th pct (m)", "steady_f0_change_p999_m"),
+                 ("ratio", "largest_over_steady_p999"), ("outcome", "outcome")])]
         bl.replace_section(DOC, "continuity", "\n".join(t))
     if "skips" in res:
         t = [head, "",

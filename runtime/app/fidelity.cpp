@@ -56,7 +56,6 @@ struct Truths {
     }
 };
 
-
 } // namespace
 
 void addFidelityOptions(CLI::App* cmd, FidelityOptions& f) {
@@ -127,7 +126,8 @@ int runFidelity(Options& o, const FidelityOptions& f) {
         int over = 0;
         for (int n = 0; n < grid.cellsX && !env.empty(); ++n) {
             const double x = grid.x0 + (n + 0.5) * grid.dx;
-            over += x >= env.xFirst() - 0.5 * truth.binWidth && x <= env.xLast() + 0.5 * truth.binWidth;
+            over +=
+                x >= env.xFirst() - 0.5 * truth.binWidth && x <= env.xLast() + 0.5 * truth.binWidth;
         }
         const double fraction = static_cast<double>(over) / grid.cellsX;
         overWaterSum += fraction;
@@ -153,8 +153,8 @@ int runFidelity(Options& o, const FidelityOptions& f) {
     const ReplaySetup probe = prepareReplay(o, reader, {});
     const double period = static_cast<double>(probe.plan.timeline.size()) / probe.A;
     for (std::size_t i = 0; i < taus.size(); ++i)
-        taus[i] = o.start / o.params.timeUnitSeconds + period * static_cast<double>(i) /
-                                                           static_cast<double>(taus.size());
+        taus[i] = o.start / o.params.timeUnitSeconds +
+                  period * static_cast<double>(i) / static_cast<double>(taus.size());
     const ReplaySetup setup = prepareReplay(o, reader, taus);
     FidelityStats mixing;
     if (o.params.fluctuation > 0.0 && !taus.empty()) {
@@ -252,11 +252,12 @@ int runFidelity(Options& o, const FidelityOptions& f) {
         return 0;
     }
     auto line = [&](const char* what, const FidelityStats& s) {
-        return fmt::format("  {}: rms {:.3g} m ({:.3f} l0), max {:.3g} m ({:.3f} l0; per-row max "
-                           "{:.3f} l0 on average), crest loss {:.2f} % mean, {:.2f} % max, {} rows\n",
-                           what, s.rms(), l0 > 0 ? s.rms() / l0 : 0.0, s.maxAbs,
-                           l0 > 0 ? s.maxAbs / l0 : 0.0, l0 > 0 ? s.meanRowMax() / l0 : 0.0,
-                           100.0 * s.meanCrestLoss(), 100.0 * s.maxCrestLoss, s.rows);
+        return fmt::format(
+            "  {}: rms {:.3g} m ({:.3f} l0), max {:.3g} m ({:.3f} l0; per-row max "
+            "{:.3f} l0 on average), crest loss {:.2f} % mean, {:.2f} % max, {} rows\n",
+            what, s.rms(), l0 > 0 ? s.rms() / l0 : 0.0, s.maxAbs, l0 > 0 ? s.maxAbs / l0 : 0.0,
+            l0 > 0 ? s.meanRowMax() / l0 : 0.0, 100.0 * s.meanCrestLoss(), 100.0 * s.maxCrestLoss,
+            s.rows);
     };
     std::cout << fmt::format("swell-play fidelity  {}  ({}x{} cells over x {:.3f} .. {:.3f} m, "
                              "{} reconstruction, sigma {}, l0 {} m)\n",
@@ -270,8 +271,8 @@ int runFidelity(Options& o, const FidelityOptions& f) {
     if (wave)
         std::cout << line("F = 0 vs the analytic wave", analytic);
     if (o.params.fluctuation > 0.0 && f.mixTimes > 0)
-        std::cout << line(fmt::format("F = {} slice rows vs their frames", o.params.fluctuation).c_str(),
-                          mixing);
+        std::cout << line(
+            fmt::format("F = {} slice rows vs their frames", o.params.fluctuation).c_str(), mixing);
     if (const auto& l = setup.plan.timeline.loop()) {
         std::cout << fmt::format("  loop: frames {} -> {} ({:.2f} s), cross-fade {} frames, "
                                  "residual {:.3g} m (typical frame difference {:.3g} m)\n",
@@ -280,15 +281,14 @@ int runFidelity(Options& o, const FidelityOptions& f) {
     }
     if (out.contains("continuity")) {
         const json& c = out["continuity"];
-        std::cout << fmt::format("  continuity over {} s at {} fps: {} frames with flat rows ({} "
-                                 "rows); largest per-cell change {:.4f} m at {:.2f} s = {:.2f} x "
-                                 "the steady F = 0 99.9th percentile {:.4f} m\n",
-                                 f.seamSeconds, o.playbackFps,
-                                 c["frames_with_flat_rows"].get<std::size_t>(),
-                                 c["flat_rows"].get<std::size_t>(), c["largest_change_m"].get<double>(),
-                                 c["largest_change_at_s"].get<double>(),
-                                 c["largest_over_steady_p999"].get<double>(),
-                                 c["steady_f0_change_p999_m"].get<double>());
+        std::cout << fmt::format(
+            "  continuity over {} s at {} fps: {} frames with flat rows ({} "
+            "rows); largest per-cell change {:.4f} m at {:.2f} s = {:.2f} x "
+            "the steady F = 0 99.9th percentile {:.4f} m\n",
+            f.seamSeconds, o.playbackFps, c["frames_with_flat_rows"].get<std::size_t>(),
+            c["flat_rows"].get<std::size_t>(), c["largest_change_m"].get<double>(),
+            c["largest_change_at_s"].get<double>(), c["largest_over_steady_p999"].get<double>(),
+            c["steady_f0_change_p999_m"].get<double>());
     }
     return 0;
 }

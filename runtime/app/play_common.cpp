@@ -24,7 +24,6 @@ double msSince(Clock::time_point t0) {
     return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
 }
 
-
 void addCommon(CLI::App* cmd, Options& o) {
     cmd->add_option("CACHE", o.cache, "input .swell cache")->required();
     cmd->add_option("--mode", o.mode,
@@ -125,7 +124,8 @@ void finishOptions(Options& o) {
     }
     o.params.policy = framePolicyFromString(o.policy);
     if (o.window != "steady" && o.window != "all")
-        throw std::invalid_argument(fmt::format("--window must be steady or all, got '{}'", o.window));
+        throw std::invalid_argument(
+            fmt::format("--window must be steady or all, got '{}'", o.window));
     o.params.steadyWindow = o.window == "steady";
     o.params.reconstruction = reconstructionFromString(o.reconstruction);
     if (o.extent == "water") {
@@ -264,13 +264,16 @@ json paramsJson(const Options& o, const ReplaySetup& setup) {
             {"frames_in_cache", set.frameCount},
             {"frames_decoded", set.ids.size()},
             {"reconstruction", o.reconstruction},
-            {"grid_x", {{"x0", grid.x0}, {"x1", grid.x0 + grid.cellsX * grid.dx}, {"dx", grid.dx},
-                        {"extent", o.extent}}},
+            {"grid_x",
+             {{"x0", grid.x0},
+              {"x1", grid.x0 + grid.cellsX * grid.dx},
+              {"dx", grid.dx},
+              {"extent", o.extent}}},
             {"bake_record",
              {{"recorded", rec.recorded},
               {"water_x", {rec.waterXMin, rec.waterXMax}},
-              {"still_water_level", std::isfinite(rec.stillWaterLevel) ? json(rec.stillWaterLevel)
-                                                                      : json(nullptr)},
+              {"still_water_level",
+               std::isfinite(rec.stillWaterLevel) ? json(rec.stillWaterLevel) : json(nullptr)},
               {"particle_spacing", rec.particleSpacing},
               {"steady_start_s", rec.steadyStartSeconds},
               {"note", rec.note}}},
@@ -284,6 +287,5 @@ double percentile(std::vector<double> v, double q) {
     const auto hi = std::min(lo + 1, v.size() - 1);
     return v[lo] + (pos - static_cast<double>(lo)) * (v[hi] - v[lo]);
 }
-
 
 } // namespace swell::play

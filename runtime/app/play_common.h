@@ -27,24 +27,24 @@ double msSince(Clock::time_point t0);
 
 /// Options shared by every subcommand.
 struct Options {
-    std::string cache;               ///< input .swell file
+    std::string cache; ///< input .swell file
     /// N x M base-mesh cells, or "auto": N = M = the water's width over the particle spacing l0
     /// (one cell per particle spacing; 256 when the cache records no l0). docs/runtime.md.
     std::string res = "auto";
-    std::string policy = "seamless"; ///< frames outside the window: seamless, loop or clamp
-    std::string window = "steady";   ///< frames replayed: steady (the bake's record) or all
-    std::string extent = "water";    ///< x range of the grid: water, domain or X0:X1
+    std::string policy = "seamless";         ///< frames outside the window: seamless, loop or clamp
+    std::string window = "steady";           ///< frames replayed: steady (the bake's record) or all
+    std::string extent = "water";            ///< x range of the grid: water, domain or X0:X1
     std::string reconstruction = "envelope"; ///< column profiles: envelope or paper (eq. 7)
-    std::string filter = "low";      ///< noise band: low, high or none
-    std::string mode = "surging";    ///< slice layout: surging, ripple or whirlpool
-    double playbackFps = 30.0;       ///< output frames per simulated second
-    double start = 0.0;              ///< simulated second of the first frame, from tau = 0
-    bool json = false;               ///< one JSON object on stdout
-    runtime::ReplayParams params;    ///< the replay itself (paper defaults)
-    runtime::ModeParams modeParams;  ///< ripple directions, whirlpool spirals
+    std::string filter = "low";              ///< noise band: low, high or none
+    std::string mode = "surging";            ///< slice layout: surging, ripple or whirlpool
+    double playbackFps = 30.0;               ///< output frames per simulated second
+    double start = 0.0;                      ///< simulated second of the first frame, from tau = 0
+    bool json = false;                       ///< one JSON object on stdout
+    runtime::ReplayParams params;            ///< the replay itself (paper defaults)
+    runtime::ModeParams modeParams;          ///< ripple directions, whirlpool spirals
     /// Options whose default depends on --mode (Table 4): given explicitly when count() > 0.
-    std::vector<std::pair<CLI::Option*, void (*)(runtime::ReplayParams&,
-                                                 const runtime::ReplayParams&)>>
+    std::vector<
+        std::pair<CLI::Option*, void (*)(runtime::ReplayParams&, const runtime::ReplayParams&)>>
         modal;
 };
 

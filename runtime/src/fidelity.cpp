@@ -29,7 +29,8 @@ RowFidelity compareRow(std::span<const double> row, const Grid& grid,
     for (long long i = 0; i < count; ++i) {
         const double x = lo + static_cast<double>(i) * step;
         // The mesh between cell centres: linear in x.
-        const double u = std::clamp((x - first) / grid.dx, 0.0, static_cast<double>(grid.cellsX - 1));
+        const double u =
+            std::clamp((x - first) / grid.dx, 0.0, static_cast<double>(grid.cellsX - 1));
         const auto n = std::min(static_cast<std::size_t>(u), row.size() - 1);
         const std::size_t n1 = std::min(n + 1, row.size() - 1);
         const double t = u - static_cast<double>(n);
@@ -48,8 +49,8 @@ RowFidelity compareRow(std::span<const double> row, const Grid& grid,
     return r;
 }
 
-RowFidelity compareRow(std::span<const double> row, const Grid& grid,
-                       const SurfaceEnvelope& eta, double step) {
+RowFidelity compareRow(std::span<const double> row, const Grid& grid, const SurfaceEnvelope& eta,
+                       double step) {
     if (eta.empty())
         return {};
     return compareRow(

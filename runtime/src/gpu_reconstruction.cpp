@@ -32,7 +32,7 @@ GpuReplay::GpuReplay(const FrameSet& frames, const ReplayParams& params,
                      const SliceSampler& sampler)
     : m_grid(makeGrid(frames.header, params)), m_A(sampler.A()), m_F(sampler.fluctuation()),
       m_T(params.noise.timeSamples), m_loop(sampler.policy() != FramePolicy::Clamp),
-      m_frameCount(sampler.timeline().size()) {
+      m_timelineSize(sampler.timeline().size()) {
     params.validate();
     frames.validate();
     const Timeline& timeline = sampler.timeline();
@@ -44,13 +44,13 @@ GpuReplay::GpuReplay(const FrameSet& frames, const ReplayParams& params,
     // Slots of the column buffer: the held frames, then one per cross-faded timeline entry
     // whose two frames are both held (timeline.h).
     std::vector<std::size_t> blendEntries;
-    std::vector<GLuint> slotOf(m_frameCount, 0xffffffffu);
-    std::vector<GLint> shown(m_frameCount, 0);
+    std::vector<GLuint> slotOf(m_timelineSize, 0xffffffffu);
+    std::vector<GLint> shown(m_timelineSize, 0);
     auto heldSlot = [&](std::uint32_t id) -> long long {
         const cache::Frame* f = frames.find(id);
         return f == nullptr ? -1 : static_cast<long long>(f - frames.frames.data());
     };
-    for (std::size_t i = 0; i < m_frameCount; ++i) {
+    for (std::size_t i = 0; i < m_timelineSize; ++i) {
         const TimelineEntry& e = timeline[i];
         shown[i] = static_cast<GLint>(e.shown());
         const long long a = heldSlot(e.a);
@@ -150,7 +150,9 @@ GpuReplay::GpuReplay(const FrameSet& frames, const ReplayParams& params,
     std::vector<float> zeros(S * static_cast<std::size_t>(Nq) * 8, 0.0f);
     auto at = [Nq](std::size_t slot, int n, int c) { // float index of S (c = 0) or W (c = 1)
         return ((slot * static_cast<std::size_t>(Nq) + static_cast<std::size_t>(n / 4)) * 2 +
-                static_cast<std::size_t>(c)) * 4 + static_cast<std::size_t>(n % 4);
+                static_cast<std::size_t>(c)) *
+                   4 +
+               static_cast<std::size_t>(n % 4);
     };
     for (GlQuery& q : m_queries)
         q = makeTimestampQuery();
@@ -170,7 +172,8 @@ GpuReplay::GpuReplay(const FrameSet& frames, const ReplayParams& params,
             }
         }
         m_columnPassMs =
-            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
+                .count();
     }
     m_columns = makeStorageBuffer(zeros.size() * sizeof(float), zeros.data());
     if (!envelope)
@@ -187,9 +190,9 @@ GpuReplay::GpuReplay(const FrameSet& frames, const ReplayParams& params,
             const auto sb = static_cast<std::size_t>(heldSlot(e.b));
             const std::size_t slot = m_heldFrames + b;
             for (int n = 0; n < N; ++n) {
-                const ColumnSum c = blendColumns({columns[at(sa, n, 0)], columns[at(sa, n, 1)]},
-                                                 {columns[at(sb, n, 0)], columns[at(sb, n, 1)]},
-                                                 e.alpha);
+                const ColumnSum c =
+                    blendColumns({columns[at(sa, n, 0)], columns[at(sa, n, 1)]},
+                                 {columns[at(sb, n, 0)], columns[at(sb, n, 1)]}, e.alpha);
                 columns[at(slot, n, 0)] = static_cast<float>(c.S);
                 columns[at(slot, n, 1)] = static_cast<float>(c.W);
             }
@@ -200,10 +203,10 @@ GpuReplay::GpuReplay(const FrameSet& frames, const ReplayParams& params,
                              columns.data() + offset);
         checkGl("uploading the cross-faded columns");
     }
-    buildLookupAndRows(frames, params, sampler, slotOf, shown);
+    buildLookupAndRows(params, sampler, slotOf, shown);
     m_uploadedBytes = particles.size() * sizeof(float) + binStart.size() * sizeof(GLuint) +
-                      zeros.size() * sizeof(float) + slotOf.size() * (sizeof(GLuint) + sizeof(GLint)) +
-                      m_lookupBytes;
+                      zeros.size() * sizeof(float) +
+                      slotOf.size() * (sizeof(GLuint) + sizeof(GLint)) + m_lookupBytes;
     glFinish(); // the particle and bin buffers are released when this returns
     checkGl("uploading the replay");
 }
@@ -220,8 +223,7 @@ void GpuReplay::runColumnPass(const std::vector<float>& particles,
     glProgramUniform1i(column.get(), uniformLocation(column, "u_Nq"), Nq);
     glProgramUniform1i(column.get(), uniformLocation(column, "u_slots"),
                        static_cast<GLint>(m_heldFrames));
-    glProgramUniform1f(column.get(), uniformLocation(column, "u_sigma"),
-                       static_cast<float>(sigma));
+    glProgramUniform1f(column.get(), uniformLocation(column, "u_sigma"), static_cast<float>(sigma));
     glProgramUniform1f(column.get(), uniformLocation(column, "u_emptyHeight"), m_missing);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, particleBuffer.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, binBuffer.get());
@@ -238,10 +240,9 @@ void GpuReplay::runColumnPass(const std::vector<float>& particles,
     checkGl("running the column pass");
 }
 
-void GpuReplay::buildLookupAndRows(const FrameSet& frames, const ReplayParams& params,
-                                   const SliceSampler& sampler, const std::vector<GLuint>& slotOf,
+void GpuReplay::buildLookupAndRows(const ReplayParams& params, const SliceSampler& sampler,
+                                   const std::vector<GLuint>& slotOf,
                                    const std::vector<GLint>& shown) {
-    (void)frames;
     const int N = m_grid.cellsX;
     const int M = m_grid.cellsZ;
     const int K = m_grid.slices;
@@ -262,7 +263,7 @@ void GpuReplay::buildLookupAndRows(const FrameSet& frames, const ReplayParams& p
     glProgramUniform1i(lp, uniformLocation(m_lookup, "u_K"), K);
     glProgramUniform1i(lp, uniformLocation(m_lookup, "u_sliceCount"), J);
     glProgramUniform1i(lp, uniformLocation(m_lookup, "u_frameCount"),
-                       static_cast<GLint>(m_frameCount));
+                       static_cast<GLint>(m_timelineSize));
     glProgramUniform1i(lp, uniformLocation(m_lookup, "u_loop"), m_loop ? 1 : 0);
 
     // ---- z windows: first slice, count and G_z per row (definitions: cpu_reconstruction.h)

@@ -86,8 +86,8 @@ void ReplayParams::validate() const {
             "extent_x must be [x0, x1] with x1 > x0 (metres), got [{}, {}]", extentX0, extentX1));
     }
     if (!std::isfinite(crossfadeSeconds) || crossfadeSeconds < 0.0 || crossfadeSeconds > 60.0) {
-        throw std::invalid_argument(fmt::format(
-            "crossfade_seconds must be in [0, 60] s, got {}", crossfadeSeconds));
+        throw std::invalid_argument(
+            fmt::format("crossfade_seconds must be in [0, 60] s, got {}", crossfadeSeconds));
     }
     noise.validate();
 }
@@ -197,9 +197,8 @@ ReplayParams replayParamsFromJson(const nlohmann::json& j) {
             p.extentX0 = e[0].get<double>();
             p.extentX1 = e[1].get<double>();
         } else {
-            throw std::invalid_argument(
-                fmt::format("extent_x must be \"water\", \"domain\" or [x0, x1], got {}",
-                            e.dump()));
+            throw std::invalid_argument(fmt::format(
+                "extent_x must be \"water\", \"domain\" or [x0, x1], got {}", e.dump()));
         }
     }
     if (j.contains("noise")) {

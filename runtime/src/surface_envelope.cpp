@@ -22,7 +22,8 @@ SurfaceEnvelope::SurfaceEnvelope(const cache::Frame& frame, double binWidth) {
         const double y = frame.surface[p + 1];
         const auto b = static_cast<long long>(std::floor(x / binWidth));
         auto [it, inserted] = top.try_emplace(b, x, y);
-        if (!inserted && (y > it->second.second || (y == it->second.second && x < it->second.first)))
+        if (!inserted &&
+            (y > it->second.second || (y == it->second.second && x < it->second.first)))
             it->second = {x, y};
     }
     m_x.reserve(top.size());
@@ -40,7 +41,8 @@ double SurfaceEnvelope::at(double x) const {
         return m_y.front();
     if (x >= m_x.back())
         return m_y.back();
-    const auto hi = static_cast<std::size_t>(std::upper_bound(m_x.begin(), m_x.end(), x) - m_x.begin());
+    const auto hi =
+        static_cast<std::size_t>(std::upper_bound(m_x.begin(), m_x.end(), x) - m_x.begin());
     const std::size_t lo = hi - 1;
     const double t = (x - m_x[lo]) / (m_x[hi] - m_x[lo]);
     return m_y[lo] + t * (m_y[hi] - m_y[lo]);

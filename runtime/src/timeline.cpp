@@ -74,8 +74,8 @@ LoopPoints findLoop(std::span<const std::vector<double>> profiles, std::uint32_t
     const long long outLo = std::max(0LL, W - 1 - W / 4), outHi = W - 1;
     if (L < 0 || inLo > inHi || outHi - inLo < 2 * L + 1) {
         throw std::invalid_argument(fmt::format(
-            "a window of {} frames is too short for a seamless loop with a {}-frame cross-fade",
-            W, crossfade));
+            "a window of {} frames is too short for a seamless loop with a {}-frame cross-fade", W,
+            crossfade));
     }
     const std::size_t Q = profiles.front().size();
     for (const auto& p : profiles) {
@@ -134,12 +134,13 @@ TimelinePlan planTimeline(const cache::Header& header, std::size_t frameCount,
     plan.record = bakeRecord(header);
     plan.frameTime = header.frameTime();
     if (!(plan.frameTime > 0.0) || !std::isfinite(plan.frameTime)) {
-        throw std::invalid_argument(fmt::format(
-            "cache frame time dt * frame_interval = {} * {} is not positive", header.dt,
-            header.frameInterval));
+        throw std::invalid_argument(
+            fmt::format("cache frame time dt * frame_interval = {} * {} is not positive", header.dt,
+                        header.frameInterval));
     }
     if (frameCount == 0 || frameCount > 0x7fffffffu)
-        throw std::invalid_argument(fmt::format("cache has {} frames; need 1 .. 2^31 - 1", frameCount));
+        throw std::invalid_argument(
+            fmt::format("cache has {} frames; need 1 .. 2^31 - 1", frameCount));
     plan.sliceSpreadSeconds = 2.0 * params.fluctuation * params.timeUnitSeconds;
     const bool steady = params.steadyWindow && plan.record.recorded;
     const double endSeconds = static_cast<double>(frameCount - 1) * plan.frameTime;
@@ -176,8 +177,7 @@ TimelinePlan planTimeline(const cache::Header& header, std::size_t frameCount,
     if (params.policy != FramePolicy::Seamless || count < 4) {
         const FramePolicy p =
             params.policy == FramePolicy::Seamless ? FramePolicy::Loop : params.policy;
-        plan.timeline =
-            Timeline::range(plan.windowFirst, static_cast<std::uint32_t>(count), p);
+        plan.timeline = Timeline::range(plan.windowFirst, static_cast<std::uint32_t>(count), p);
         return plan;
     }
 

@@ -81,7 +81,8 @@ TEST(Fidelity, CompareRowKnownAnswers) {
     const RowFidelity low = compareRow(row, g, line, -1.0, 2.0, 0.01);
     EXPECT_NEAR(low.maxAbs, 0.18, 1e-12);
     EXPECT_NEAR(low.crestLoss, 0.1, 1e-9);
-    EXPECT_THROW(compareRow(std::vector<double>(3), g, line, 0.0, 1.0, 0.01), std::invalid_argument);
+    EXPECT_THROW(compareRow(std::vector<double>(3), g, line, 0.0, 1.0, 0.01),
+                 std::invalid_argument);
 }
 
 TEST(Fidelity, EnvelopeReplayOfTheAnalyticWaveConvergesWithResolution) {

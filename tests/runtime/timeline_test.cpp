@@ -74,7 +74,7 @@ TEST(Timeline, SeamlessCrossFadeIsContinuous) {
     EXPECT_NEAR(1.0 - previous, 1.0 / 6.0, 1e-12); // the next entry is frame 20 (weight 1)
     EXPECT_EQ(t[t.index(40)].a, 20u);
     EXPECT_EQ(t[t.index(-1)].a, 59u);
-    EXPECT_THROW(Timeline::seamless({3, 60, 5, 0.0, 0.0}), std::invalid_argument); // in < L
+    EXPECT_THROW(Timeline::seamless({3, 60, 5, 0.0, 0.0}), std::invalid_argument);  // in < L
     EXPECT_THROW(Timeline::seamless({20, 30, 5, 0.0, 0.0}), std::invalid_argument); // too short
 }
 
@@ -241,10 +241,10 @@ TEST(SurfaceEnvelope, HighestParticlePerBinJoinedLinearly) {
         f.surface.push_back(v);
     const SurfaceEnvelope e(f, 1.0);
     ASSERT_EQ(e.xs().size(), 3u);
-    EXPECT_DOUBLE_EQ(e.at(-5.0), 2.0);  // constant before the first point
-    EXPECT_DOUBLE_EQ(e.at(1.0), 3.0);   // halfway between (0.5, 2) and (1.5, 4)
-    EXPECT_DOUBLE_EQ(e.at(2.5), 2.0);   // halfway between (1.5, 4) and (3.5, 0)
-    EXPECT_DOUBLE_EQ(e.at(9.0), 0.0);   // constant after the last
+    EXPECT_DOUBLE_EQ(e.at(-5.0), 2.0); // constant before the first point
+    EXPECT_DOUBLE_EQ(e.at(1.0), 3.0);  // halfway between (0.5, 2) and (1.5, 4)
+    EXPECT_DOUBLE_EQ(e.at(2.5), 2.0);  // halfway between (1.5, 4) and (3.5, 0)
+    EXPECT_DOUBLE_EQ(e.at(9.0), 0.0);  // constant after the last
     EXPECT_TRUE(std::isnan(SurfaceEnvelope(cache::Frame{}, 1.0).at(0.0)));
     EXPECT_THROW(SurfaceEnvelope(f, 0.0), std::invalid_argument);
     (void)flatFrame;

@@ -11,9 +11,9 @@
 namespace swell::runtime {
 
 struct BakeRecord {
-    bool recorded = false;   ///< the cache carries the "replay" block
-    double waterXMin = 0.0;  ///< m: lowest x where water can be (fallback: domain xMin)
-    double waterXMax = 0.0;  ///< m: highest x where water can be (fallback: domain xMax)
+    bool recorded = false;  ///< the cache carries the "replay" block
+    double waterXMin = 0.0; ///< m: lowest x where water can be (fallback: domain xMin)
+    double waterXMax = 0.0; ///< m: highest x where water can be (fallback: domain xMax)
     /// m: y of the still-water surface (fallback: the metadata's "still_water_level", else NaN).
     double stillWaterLevel = 0.0;
     /// m: l0 (fallback: scene.geometry.particle_spacing, else 0: unknown).

@@ -84,9 +84,9 @@ private:
     const SliceSampler& m_sampler;
     ReplayParams m_params;
     Grid m_grid;
-    std::vector<BinnedFrame> m_binned;         ///< per held frame (FrameSet order)
+    std::vector<BinnedFrame> m_binned;           ///< per held frame (FrameSet order)
     std::vector<std::vector<double>> m_envelope; ///< Envelope: eta at each column, per held frame
-    std::vector<std::vector<int>> m_rowSlices; ///< slices in each row's z window
+    std::vector<std::vector<int>> m_rowSlices;   ///< slices in each row's z window
 };
 
 } // namespace swell::runtime

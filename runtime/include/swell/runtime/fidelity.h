@@ -17,9 +17,9 @@ namespace swell::runtime {
 
 /// One row against one surface.
 struct RowFidelity {
-    double sumSquares = 0.0;  ///< sum of squared differences (m^2)
-    std::size_t samples = 0;  ///< points compared
-    double maxAbs = 0.0;      ///< largest |row - eta| (m)
+    double sumSquares = 0.0; ///< sum of squared differences (m^2)
+    std::size_t samples = 0; ///< points compared
+    double maxAbs = 0.0;     ///< largest |row - eta| (m)
     /// (max eta - max row) / (max eta - min eta) over the points: the crest-height loss as a
     /// fraction of the crest-to-trough height (0 when eta is flat).
     double crestLoss = 0.0;
@@ -29,28 +29,25 @@ struct RowFidelity {
 /// x = lo, lo + step, ... <= hi, clipped to the first and last column centres. Throws
 /// std::invalid_argument for a row of the wrong length or a step that is not > 0.
 RowFidelity compareRow(std::span<const double> row, const Grid& grid,
-                       const std::function<double(double)>& eta, double lo, double hi,
-                       double step);
+                       const std::function<double(double)>& eta, double lo, double hi, double step);
 /// compareRow against an envelope, over the x range where it is not extrapolated.
-RowFidelity compareRow(std::span<const double> row, const Grid& grid,
-                       const SurfaceEnvelope& eta, double step);
+RowFidelity compareRow(std::span<const double> row, const Grid& grid, const SurfaceEnvelope& eta,
+                       double step);
 
 /// Many rows (frames) together.
 struct FidelityStats {
     std::size_t rows = 0;
     std::size_t samples = 0;
     double sumSquares = 0.0;
-    double maxAbs = 0.0;        ///< worst point of any row (m)
-    double sumRowMax = 0.0;     ///< sum of each row's maxAbs
+    double maxAbs = 0.0;    ///< worst point of any row (m)
+    double sumRowMax = 0.0; ///< sum of each row's maxAbs
     double sumCrestLoss = 0.0;
-    double maxCrestLoss = 0.0;  ///< largest crest loss of a row
+    double maxCrestLoss = 0.0; ///< largest crest loss of a row
 
     void add(const RowFidelity& r);
     double rms() const;
     double meanRowMax() const { return rows ? sumRowMax / static_cast<double>(rows) : 0.0; }
-    double meanCrestLoss() const {
-        return rows ? sumCrestLoss / static_cast<double>(rows) : 0.0;
-    }
+    double meanCrestLoss() const { return rows ? sumCrestLoss / static_cast<double>(rows) : 0.0; }
 };
 
 /// Standard deviation of row m's heights (m).

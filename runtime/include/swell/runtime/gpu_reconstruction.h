@@ -84,18 +84,19 @@ public:
 
 private:
     void reconstructHeights();
+    /// column_pass.comp over the held frames' particles (Reconstruction::Paper).
     void runColumnPass(const std::vector<float>& particles, const std::vector<unsigned>& binStart,
                        double sigma);
-    void buildLookupAndRows(const FrameSet& frames, const ReplayParams& params,
-                            const SliceSampler& sampler, const std::vector<unsigned>& slotOf,
-                            const std::vector<int>& shown);
+    /// Slice-lookup tables (noise, entry -> slot, entry -> shown frame) and the z windows.
+    void buildLookupAndRows(const ReplayParams& params, const SliceSampler& sampler,
+                            const std::vector<unsigned>& slotOf, const std::vector<int>& shown);
 
     Grid m_grid;
     double m_A;
     double m_F;
     int m_T;
     bool m_loop;
-    std::size_t m_frameCount;
+    std::size_t m_timelineSize; ///< entries of the sampler's timeline
     std::size_t m_heldFrames = 0;
     std::size_t m_slots = 0;
     std::size_t m_lookupBytes = 0;

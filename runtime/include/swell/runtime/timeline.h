@@ -91,11 +91,11 @@ LoopPoints findLoop(std::span<const std::vector<double>> profiles, std::uint32_t
 struct TimelinePlan {
     Timeline timeline;
     BakeRecord record;
-    std::uint32_t windowFirst = 0; ///< first cache frame of the window the timeline lives in
-    std::uint32_t windowLast = 0;  ///< last one
-    double frameTime = 0.0;        ///< simulated seconds between cache frames
+    std::uint32_t windowFirst = 0;   ///< first cache frame of the window the timeline lives in
+    std::uint32_t windowLast = 0;    ///< last one
+    double frameTime = 0.0;          ///< simulated seconds between cache frames
     double sliceSpreadSeconds = 0.0; ///< 2 F x time unit: the frame spread of one instant
-    double searchMs = 0.0;         ///< wall time of the loop search (profiles included)
+    double searchMs = 0.0;           ///< wall time of the loop search (profiles included)
 };
 
 /// Plans the timeline of a replay of a cache with `header` and `frameCount` frames:
