@@ -98,11 +98,7 @@ int runFidelity(Options& o, const FidelityOptions& f) {
         const std::size_t k = measured > 1 ? i * (window - 1) / (measured - 1) : 0;
         taus0[i] = static_cast<double>(k) / A; // s = floor(k + 1/2) = k: window frame k
     }
-    ReplaySetup s0;
-    s0.plan = plan0;
-    s0.A = A;
-    s0.samplers = makeSamplers(o0.params, o0.modeParams, plan0.timeline, A);
-    s0.set = loadUsed(reader, s0.samplers, taus0);
+    const ReplaySetup s0 = replayOn(o0, reader, plan0, taus0);
     ModeReplay gpu0(s0.set, o0.params, o0.modeParams, s0.samplers);
     const Grid grid = gpu0.grid();
     const BakeRecord& record = plan0.record;
@@ -186,11 +182,7 @@ int runFidelity(Options& o, const FidelityOptions& f) {
             std::vector<double> t(n + 1);
             for (std::size_t i = 0; i <= n; ++i)
                 t[i] = static_cast<double>(i) / o.playbackFps / o0.params.timeUnitSeconds;
-            ReplaySetup s;
-            s.plan = plan0;
-            s.A = A;
-            s.samplers = makeSamplers(o0.params, o0.modeParams, plan0.timeline, A);
-            s.set = loadUsed(reader, s.samplers, t);
+            const ReplaySetup s = replayOn(o0, reader, plan0, t);
             ModeReplay g(s.set, o0.params, o0.modeParams, s.samplers);
             HeightField prev;
             for (std::size_t i = 0; i <= n; ++i) {
@@ -202,11 +194,8 @@ int runFidelity(Options& o, const FidelityOptions& f) {
             }
         }
         const double p999 = steadyChanges.empty() ? 0.0 : percentile(steadyChanges, 0.999);
-        const auto count =
-            static_cast<std::size_t>(std::max(1.0, std::round(f.seamSeconds * o.playbackFps)));
-        std::vector<double> t(count);
-        for (std::size_t i = 0; i < count; ++i)
-            t[i] = tauOf(o, i);
+        const std::vector<double> t = outputTaus(o, f.seamSeconds);
+        const std::size_t count = t.size();
         const ReplaySetup s = prepareReplay(o, reader, t);
         ModeReplay g(s.set, o.params, o.modeParams, s.samplers);
         HeightField prev;

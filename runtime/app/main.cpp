@@ -213,10 +213,8 @@ int runHeights(Options& o, const std::string& outDir, double seconds) {
     }
     const cache::Reader reader(o.cache);
     resolveAutoRes(o, reader.header());
-    const auto count = static_cast<std::size_t>(std::max(1.0, std::round(seconds * o.playbackFps)));
-    std::vector<double> taus(count);
-    for (std::size_t i = 0; i < count; ++i)
-        taus[i] = tauOf(o, i);
+    const std::vector<double> taus = outputTaus(o, seconds);
+    const std::size_t count = taus.size();
     const ReplaySetup setup = prepareReplay(o, reader, taus);
     const FrameSet& set = setup.set;
     const std::vector<SliceSampler>& samplers = setup.samplers;
@@ -381,11 +379,8 @@ int runRender(Options& o, RenderOptions& r) {
 
     const cache::Reader reader(o.cache);
     resolveAutoRes(o, reader.header());
-    const auto count =
-        static_cast<std::size_t>(std::max(1.0, std::round(r.seconds * o.playbackFps)));
-    std::vector<double> taus(count);
-    for (std::size_t i = 0; i < count; ++i)
-        taus[i] = tauOf(o, i);
+    const std::vector<double> taus = outputTaus(o, r.seconds);
+    const std::size_t count = taus.size();
     const ReplaySetup setup = prepareReplay(o, reader, taus);
     const FrameSet& set = setup.set;
     const std::vector<SliceSampler>& samplers = setup.samplers;

@@ -215,24 +215,39 @@ std::vector<std::string>& pendingNotes() {
     return notes;
 }
 
+std::vector<double> outputTaus(const Options& o, double seconds) {
+    const auto count = static_cast<std::size_t>(std::max(1.0, std::round(seconds * o.playbackFps)));
+    std::vector<double> taus(count);
+    for (std::size_t i = 0; i < count; ++i)
+        taus[i] = tauOf(o, i);
+    return taus;
+}
+
+ReplaySetup replayOn(const Options& o, const cache::Reader& reader, const TimelinePlan& plan,
+                     const std::vector<double>& taus) {
+    ReplaySetup s;
+    s.plan = plan;
+    s.A = framesPerTimeUnit(reader.header(), o.params);
+    s.samplers = makeSamplers(o.params, o.modeParams, plan.timeline, s.A);
+    s.set = loadUsed(reader, s.samplers, taus);
+    return s;
+}
+
 ReplaySetup prepareReplay(const Options& o, const cache::Reader& reader,
                           const std::vector<double>& taus) {
-    ReplaySetup s;
+    TimelinePlan plan;
     try {
-        s.plan = planTimeline(reader.header(), reader.frameCount(), o.params,
-                              [&](std::uint32_t id) { return reader.readFrame(id); });
+        plan = planTimeline(reader.header(), reader.frameCount(), o.params,
+                            [&](std::uint32_t id) { return reader.readFrame(id); });
     } catch (const std::invalid_argument& e) {
         throw std::invalid_argument(fmt::format("{}: {}", o.cache, e.what()));
     }
-    if (!s.plan.record.note.empty()) {
-        const std::string note = fmt::format("{}: {}", o.cache, s.plan.record.note);
+    if (!plan.record.note.empty()) {
+        const std::string note = fmt::format("{}: {}", o.cache, plan.record.note);
         if (std::find(pendingNotes().begin(), pendingNotes().end(), note) == pendingNotes().end())
             pendingNotes().push_back(note);
     }
-    s.A = framesPerTimeUnit(reader.header(), o.params);
-    s.samplers = makeSamplers(o.params, o.modeParams, s.plan.timeline, s.A);
-    s.set = loadUsed(reader, s.samplers, taus);
-    return s;
+    return replayOn(o, reader, plan, taus);
 }
 
 json paramsJson(const Options& o, const ReplaySetup& setup) {

@@ -57,6 +57,9 @@ void resolveAutoRes(Options& o, const cache::Header& header);
 /// the timeline's first entry (the steady window's first frame, or the loop's in-frame).
 double tauOf(const Options& o, std::size_t i);
 
+/// The animation times of `seconds` of output at o.playbackFps (at least one frame).
+std::vector<double> outputTaus(const Options& o, double seconds);
+
 /// A replay ready to run: its timeline, one sampler per slice set and the decoded frames.
 struct ReplaySetup {
     runtime::TimelinePlan plan;
@@ -73,6 +76,9 @@ ReplaySetup prepareReplay(const Options& o, const cache::Reader& reader,
 /// Notes for the user collected while setting up (e.g. a cache without the bake's water record),
 /// printed on stderr once the command has succeeded (an error stays one line).
 std::vector<std::string>& pendingNotes();
+/// A replay over an already planned timeline (the samplers and the frames `taus` select).
+ReplaySetup replayOn(const Options& o, const cache::Reader& reader,
+                     const runtime::TimelinePlan& plan, const std::vector<double>& taus);
 /// The frames `taus` select from `reader`, for `samplers`.
 runtime::FrameSet loadUsed(const cache::Reader& reader,
                            std::span<const runtime::SliceSampler> samplers,

@@ -188,13 +188,7 @@ ReplayParams sliceSetParams(const ReplayParams& params, int d) {
 
 std::vector<SliceSampler> makeSamplers(const ReplayParams& params, const ModeParams& mode,
                                        std::size_t frameCount, double A) {
-    mode.validate();
-    std::vector<SliceSampler> out;
-    const int sets = mode.sliceSets();
-    out.reserve(static_cast<std::size_t>(sets));
-    for (int d = 0; d < sets; ++d)
-        out.emplace_back(sliceSetParams(params, d), frameCount, A);
-    return out;
+    return makeSamplers(params, mode, Timeline::whole(frameCount, params.policy), A);
 }
 
 std::vector<SliceSampler> makeSamplers(const ReplayParams& params, const ModeParams& mode,

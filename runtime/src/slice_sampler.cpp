@@ -7,24 +7,9 @@
 
 namespace swell::runtime {
 
-namespace {
-
-Timeline wholeCache(const ReplayParams& params, std::size_t frameCount) {
-    if (frameCount == 0 || frameCount > 0x7fffffffu) {
-        throw std::invalid_argument(
-            fmt::format("cache has {} frames; need 1 .. 2^31 - 1", frameCount));
-    }
-    if (params.policy == FramePolicy::Seamless) {
-        throw std::invalid_argument(
-            "the seamless policy needs a planned timeline (planTimeline, timeline.h)");
-    }
-    return Timeline::range(0, static_cast<std::uint32_t>(frameCount), params.policy);
-}
-
-} // namespace
 
 SliceSampler::SliceSampler(const ReplayParams& params, std::size_t frameCount, double A)
-    : SliceSampler(params, wholeCache(params, frameCount), A) {}
+    : SliceSampler(params, Timeline::whole(frameCount, params.policy), A) {}
 
 SliceSampler::SliceSampler(const ReplayParams& params, Timeline timeline, double A)
     : m_K(params.slices), m_timeline(std::move(timeline)), m_A(A), m_F(params.fluctuation),

@@ -27,6 +27,18 @@ Timeline Timeline::range(std::uint32_t first, std::uint32_t count, FramePolicy p
     return t;
 }
 
+Timeline Timeline::whole(std::size_t frameCount, FramePolicy policy) {
+    if (frameCount == 0 || frameCount > 0x7fffffffu) {
+        throw std::invalid_argument(
+            fmt::format("cache has {} frames; need 1 .. 2^31 - 1", frameCount));
+    }
+    if (policy == FramePolicy::Seamless) {
+        throw std::invalid_argument(
+            "the seamless policy needs a planned timeline (planTimeline, timeline.h)");
+    }
+    return range(0, static_cast<std::uint32_t>(frameCount), policy);
+}
+
 Timeline Timeline::seamless(const LoopPoints& loop) {
     const long long L = loop.crossfade;
     const long long P = static_cast<long long>(loop.out) - static_cast<long long>(loop.in);

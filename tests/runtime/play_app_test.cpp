@@ -22,8 +22,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-using Result = test::AppResult;
-using test::slurp;
+using Result = swell::test::AppResult;
+using swell::test::slurp;
 
 class PlayApp : public ::testing::Test {
 protected:
@@ -39,7 +39,7 @@ protected:
 
     /// Runs swell-play with `args`, environment assignments `env` first.
     static Result run(const std::string& args, const std::string& env = "") {
-        return test::runApp(SWELL_PLAY_EXE, args, env, s_dir);
+        return swell::test::runApp(SWELL_PLAY_EXE, args, env, s_dir);
     }
     static std::string cachePath() { return (s_dir / "wave.swell").string(); }
     static inline fs::path s_dir;

@@ -20,7 +20,7 @@ namespace swell::runtime {
 namespace {
 
 namespace fs = std::filesystem;
-using Result = test::AppResult;
+using Result = swell::test::AppResult;
 
 class PlayStress : public ::testing::Test {
 protected:
@@ -46,7 +46,7 @@ protected:
     }
     static std::string cache(const std::string& name) { return (s_dir / name).string(); }
     static Result bench(const std::string& cacheName, const std::string& args) {
-        return test::runApp(SWELL_PLAY_EXE,
+        return swell::test::runApp(SWELL_PLAY_EXE,
                             "bench " + cache(cacheName) +
                                 " --frames 6 --warmup 1 --error-frames 2 --cpu-frames 1 --json " +
                                 args,
@@ -131,7 +131,7 @@ TEST_F(PlayStress, FramesWithoutSurfaceParticlesGiveTheDomainBottom) {
         expectGood(c, "--res 32x32 --slices 16 --mode whirlpool");
     }
     // The height field itself: every cell at the domain's yMin (0 here), none NaN.
-    const Result r = test::runApp(SWELL_PLAY_EXE,
+    const Result r = swell::test::runApp(SWELL_PLAY_EXE,
                                   "heights " + cache("empty.swell") + " --out " +
                                       (s_dir / "empty_heights").string() +
                                       " --res 8x8 --slices 4 --seconds 0.1 --json",

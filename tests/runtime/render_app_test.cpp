@@ -24,8 +24,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-using Result = test::AppResult;
-using test::slurp;
+using Result = swell::test::AppResult;
+using swell::test::slurp;
 
 class RenderApp : public ::testing::Test {
 protected:
@@ -46,7 +46,7 @@ protected:
     static void TearDownTestSuite() { fs::remove_all(s_dir); }
 
     static Result run(const std::string& args, const std::string& env = "") {
-        return test::runApp(SWELL_PLAY_EXE, args, env, s_dir);
+        return swell::test::runApp(SWELL_PLAY_EXE, args, env, s_dir);
     }
     static std::string cache(const char* name = "wave.swell") { return (s_dir / name).string(); }
     static inline fs::path s_dir;

@@ -59,6 +59,9 @@ class Timeline {
 public:
     /// Frames first .. first + count - 1; policy Clamp or Loop (std::invalid_argument else).
     static Timeline range(std::uint32_t first, std::uint32_t count, FramePolicy policy);
+    /// Every one of `frameCount` cache frames: range(0, frameCount, policy), with the errors
+    /// a cache's frame count can cause (none, too many, a seamless policy without loop points).
+    static Timeline whole(std::size_t frameCount, FramePolicy policy);
     /// The seamless loop through `loop` (see above). Throws std::invalid_argument when the
     /// loop is shorter than 2 L + 1 frames or in < L (no frames to blend with).
     static Timeline seamless(const LoopPoints& loop);

@@ -1,6 +1,6 @@
 #pragma once
 // Runs a program of ours as a user would (through the shell) and captures its exit code,
-// stdout and stderr: the end-to-end tests of swell-play share it.
+// stdout and stderr: the end-to-end tests of every program share it.
 
 #include <cstdlib>
 #include <filesystem>
@@ -9,7 +9,7 @@
 #include <string>
 #include <sys/wait.h>
 
-namespace swell::runtime::test {
+namespace swell::test {
 
 struct AppResult {
     int code = -1;
@@ -38,4 +38,4 @@ inline AppResult runApp(const std::string& exe, const std::string& args, const s
     return r;
 }
 
-} // namespace swell::runtime::test
+} // namespace swell::test

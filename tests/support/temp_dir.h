@@ -1,0 +1,36 @@
+#pragma once
+// A fresh folder for one test (suite): unique (mkdtemp under the system's temporary folder),
+// removed with everything in it when the object goes.
+
+#include <cstdlib>
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+#include <system_error>
+
+namespace swell::test {
+
+class TempDir {
+public:
+    /// Creates `<tmp>/<prefix>XXXXXX`. Throws std::runtime_error when it cannot.
+    explicit TempDir(const std::string& prefix = "swell_test_") {
+        std::string pattern = (std::filesystem::temp_directory_path() / (prefix + "XXXXXX")).string();
+        if (::mkdtemp(pattern.data()) == nullptr)
+            throw std::runtime_error("cannot create a temporary folder " + pattern);
+        m_path = pattern;
+    }
+    ~TempDir() {
+        std::error_code ec;
+        std::filesystem::remove_all(m_path, ec);
+    }
+    TempDir(const TempDir&) = delete;
+    TempDir& operator=(const TempDir&) = delete;
+
+    const std::filesystem::path& path() const { return m_path; }
+    std::filesystem::path operator/(const std::string& name) const { return m_path / name; }
+
+private:
+    std::filesystem::path m_path;
+};
+
+} // namespace swell::test
