@@ -223,8 +223,7 @@ nlohmann::json toJson(const TimelinePlan& plan) {
                 {"loop_seconds", (l->out - l->in) * plan.frameTime},
                 {"crossfade_frames", l->crossfade},
                 {"residual_m", l->residual},
-                {"typical_difference_m", l->typicalDifference},
-                {"search_ms", plan.searchMs}};
+                {"typical_difference_m", l->typicalDifference}};
     }
     return {{"policy", toString(plan.timeline.policy())},
             {"window",

@@ -116,7 +116,8 @@ TimelinePlan planTimeline(const cache::Header& header, std::size_t frameCount,
 
 /// {"policy", "window": {"first_frame", "last_frame", "start_s", "end_s", "steady_start_s",
 ///  "steady_reason", "recorded"}, "entries", "slice_spread_s", "loop": {"in_frame", "out_frame",
-///  "in_s", "out_s", "crossfade_frames", "residual_m", "typical_difference_m"} or null}.
+///  "in_s", "out_s", "loop_seconds", "crossfade_frames", "residual_m", "typical_difference_m"} or
+///  null}. No wall times: the same replay writes the same record (searchMs is for benches).
 nlohmann::json toJson(const TimelinePlan& plan);
 
 } // namespace swell::runtime
