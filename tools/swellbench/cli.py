@@ -21,7 +21,7 @@ BAKE_PARTS = bake.CSVS  # --only dam_break, still_tank, regular_wave: one bake p
 
 
 def parse_args(argv=None):
-    ap = argparse.ArgumentParser(prog="tools/bench", description=__doc__.split("\n")[0])
+    ap = argparse.ArgumentParser(prog="tools/bench", description=__doc__.split("\n\n")[0].replace("\n", " "))
     ap.add_argument("--quick", action="store_true", help="fewer, shorter runs (< 10 min)")
     ap.add_argument("--only", default="",
                     help="comma list of sections: bake (or dam_break, still_tank, regular_wave), replay, "
