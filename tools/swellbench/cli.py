@@ -73,8 +73,7 @@ def describe_machine(ctx, variant, t_start, sections):
         ctx.renderer = (r.json or {}).get("renderer")
     m = bl.machine(ctx.renderer)
     m.update({"variant": variant, "total_minutes": round((time.monotonic() - t_start) / 60, 1),
-              "loads": ctx.loads, "sections": sections,
-              "surging_small": bl.cache_facts(ctx.bake_summary)})
+              "loads": ctx.loads, "sections": sections, "facts": ctx.facts})
     return m
 
 

@@ -166,6 +166,7 @@ class Context:
         self.cache = None  # out/bench/surging_small.swell, baked by bake_small_cache()
         self.bake_summary = None  # swell-bake --json of that cache
         self.renderer = None  # the GL renderer, from the first swell-play run that names it
+        self.facts = {}  # {section: what its docs text quotes from the runs}, into machine.json
 
     def note_load(self, what):
         self.loads.append((what, load_average(), time.strftime("%H:%M:%S")))
@@ -184,6 +185,7 @@ class Context:
         if r.rc != 0:
             raise SystemExit("tools/bench: baking surging_small failed: " + r.last_err_line())
         self.bake_summary = r.json
+        self.facts["surging_small"] = cache_facts(r.json)
         return self.cache
 
     def paper_cache(self):

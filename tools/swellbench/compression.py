@@ -19,7 +19,6 @@ PLOTS = ("compression_vs_error",)
 
 ENCODINGS = [("float32", []), ("float32", ["--no-shuffle", "--no-delta"]),
              ("quantized16", []), ("quantized16", ["--no-shuffle", "--no-delta"])]
-RES, SLICES, SIGMA = 128, 256, 2.0  # swell-play's defaults, passed explicitly
 FRAMES, WARMUP, ERROR_FRAMES = 50, 5, 16
 
 
@@ -35,7 +34,10 @@ def run(ctx):
         if r.rc != 0:
             rows.append({"encoding": name, "outcome": r.last_err_line()})
             continue
-        rows.append(measure(ctx, enc, flags, path, ref_frames))
+        row, j = measure(ctx, enc, flags, path, ref_frames)
+        rows.append(row)
+        if j.get("res"):  # swell-play's defaults (--res auto), as the run reports them
+            ctx.facts["compression"] = {"res": j["res"], "slices": j.get("slices"), "sigma": j.get("sigma_cells")}
         if path != ctx.cache:
             os.remove(path)
     return {"compression": rows}
@@ -61,7 +63,7 @@ def measure(ctx, enc, flags, path, ref_frames):
     c = swell_cache.Cache(path)
     dmax, drms = position_errors(c, ref_frames)
     b = ctx.run([bl.exe("swell-play"), "bench", path, "--reference-cache", ctx.cache,
-                 "--res", "%dx%d" % (RES, RES), "--slices", SLICES, "--frames", FRAMES, "--warmup", WARMUP,
+                 "--frames", FRAMES, "--warmup", WARMUP,
                  "--error-frames", ERROR_FRAMES, "--cpu-frames", 0, "--json"], 600)
     j = b.json or {}
     return {"encoding": enc, "filters": "none" if flags else "shuffle + delta",
@@ -70,19 +72,28 @@ def measure(ctx, enc, flags, path, ref_frames):
             "max_position_error_m": dmax, "rms_position_error_m": drms,
             "header_max_position_error_m": c.max_position_error,
             "max_height_error_m": j.get("max_abs_error"), "rms_height_error_m": j.get("rms_error"),
-            "outcome": bl.outcome(b)}
+            "outcome": bl.outcome(b)}, j
+
+
+def replay_text(f):
+    """The replay's grid as the run reported it (machine.json "facts")."""
+    if not f.get("res"):
+        return "swell-play's default grid and slices"
+    return "%d x %d, K = %s" % (f["res"][0], f["res"][1], f.get("slices"))
 
 
 def table(rows, m):
+    f = (m.get("facts") or {}).get("compression") or {}
+    sigma = f.get("sigma") or 2.0
     # Gaussian weight at the cut-off's edge in x (1.5 cells from the centre of the window).
-    edge = math.exp(-1.5 ** 2 / (2 * SIGMA ** 2))
+    edge = math.exp(-1.5 ** 2 / (2 * sigma ** 2))
     t = [bl.header(m), "",
          "Cache: the surging_small bake above (float32, shuffle + delta, the swell-bake default), "
          "recoded with `swell-cache recode CACHE OUT --encoding E [--no-shuffle --no-delta]`. "
          "Position error: every stored particle against the float32 original. Height error: "
          "`swell-play bench OUT --reference-cache CACHE --error-frames %d` (GPU replay of the "
-         "recoded cache against the CPU reference of the original, %d x %d, K = %d)." % (
-             ERROR_FRAMES, RES, RES, SLICES), "",
+         "recoded cache against the CPU reference of the original, %s)." % (
+             ERROR_FRAMES, replay_text(f)), "",
          bl.md_table(rows["compression"], [
              ("encoding", "encoding"), ("filters", "filters"), ("bytes", "bytes"),
              ("vs default", "ratio_vs_float32_default"),
@@ -94,7 +105,7 @@ def table(rows, m):
          "but a particle that crosses a cell's x bin edge enters or leaves eq. (7)'s cut-off "
          "window, where its Gaussian weight is still exp(-1.5^2 / %g) = %.2f at sigma = %g "
          "cells: the height error is therefore millimetres, not micrometres, in the cells "
-         "where that happens (the rms stays small)." % (2 * SIGMA ** 2, edge, SIGMA), "",
+         "where that happens (the rms stays small)." % (2 * sigma ** 2, edge, sigma), "",
          "![compression against error](images/bench/compression_vs_error.png)"]
     return {"compression": "\n".join(t)}
 

@@ -49,7 +49,7 @@ def run(ctx):
 
 def cache_text(m):
     """The surging_small cache as the run baked it (machine.json), or as the file holds it."""
-    f = m.get("surging_small") or bl.cache_facts()
+    f = (m.get("facts") or {}).get("surging_small") or bl.cache_facts()
     if not f.get("frames"):
         return "`scenes/surging_small.json`"
     return "`scenes/surging_small.json`: %s frames, ~%.0f surface particles each" % (
