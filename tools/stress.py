@@ -18,7 +18,7 @@ import time
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import benchlib as bl  # noqa: E402
+from swellbench import common as bl  # noqa: E402
 import swell_cache  # noqa: E402
 
 OUT = os.path.join(bl.ROOT, "out", "stress")
