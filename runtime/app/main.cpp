@@ -82,17 +82,14 @@ int runBench(Options& o, int frames, int warmup, int errorFrames, int cpuFrames,
 
     // Per-stage GPU times from timer queries, in a separate run (queries cost a little).
     const int timed = std::min(frames, 200);
-    double lookupMs = 0.0, reconstructMs = 0.0, synthesisMs = 0.0, spiralMs = 0.0;
+    StageTimes sum;
     gpu.setTiming(true);
     for (int i = 0; i < timed; ++i) {
         gpu.update(taus[static_cast<std::size_t>(warmup + i)]);
-        const ModeStageTimes st = gpu.stageTimes();
-        lookupMs += st.sliceLookupMs;
-        reconstructMs += st.reconstructMs;
-        synthesisMs += st.synthesisMs;
-        spiralMs += st.spiralMs;
+        sum += gpu.stageTimes();
     }
     gpu.setTiming(false);
+    const StageTimes stage = sum.mean(timed);
 
     // Error against the double-precision CPU reference on evenly spread frames; with
     // --reference-cache the reference reads the same frames from that cache (e.g. the float32
@@ -155,10 +152,10 @@ int runBench(Options& o, int frames, int warmup, int errorFrames, int cpuFrames,
                 {"frame_ms_median", percentile(frameMs, 0.5)},
                 {"frame_ms_p95", percentile(frameMs, 0.95)},
                 {"stage_gpu_ms",
-                 {{"slice_lookup", lookupMs / timed},
-                  {"reconstruct", reconstructMs / timed},
-                  {"synthesis", synthesisMs / timed},
-                  {"spiral_mapping", spiralMs / timed},
+                 {{"slice_lookup", stage.sliceLookupMs},
+                  {"reconstruct", stage.reconstructMs},
+                  {"synthesis", stage.synthesisMs},
+                  {"spiral_mapping", stage.spiralMs},
                   {"column_pass_once", gpu.columnPassMs()}}},
                 {"slice_sets", samplers.size()},
                 {"timed_frames", timed},
@@ -192,8 +189,8 @@ int runBench(Options& o, int frames, int warmup, int errorFrames, int cpuFrames,
             context.renderer(), context.version(), context.platform(), o.mode, o.params.cellsX,
             o.params.cellsZ, o.params.slices, 2 * o.params.slices - 1, o.params.seed,
             o.params.fluctuation, set.ids.size(), set.frameCount, 1000.0 / meanMs, frames,
-            percentile(frameMs, 0.5), percentile(frameMs, 0.95), lookupMs / timed,
-            reconstructMs / timed, synthesisMs / timed, spiralMs / timed, gpu.columnPassMs(),
+            percentile(frameMs, 0.5), percentile(frameMs, 0.95), stage.sliceLookupMs,
+            stage.reconstructMs, stage.synthesisMs, stage.spiralMs, gpu.columnPassMs(),
             errorCount, maxAbs, rms, maxAbs / depth, depth, framesExact ? "exact" : "DIFFERS",
             cpuMs > 0 ? 1000.0 / cpuMs : 0.0, cpuMs);
     }
@@ -434,9 +431,9 @@ int runRender(Options& o, RenderOptions& r) {
     std::vector<Image> sheet;
     json frames = json::array();
     double drawMs = 0.0, spriteMs = 0.0, readMs = 0.0, writeMs = 0.0, exportMs = 0.0;
-    double lookupMs = 0.0, reconstructMs = 0.0, timedDrawMs = 0.0, drawCpuMs = 0.0;
+    double timedDrawMs = 0.0, drawCpuMs = 0.0;
     std::size_t timedFrames = 0;
-    RenderStageTimes stages;
+    StageTimes stages; // replay and render passes of the timed frames, summed
     std::size_t spriteTotal = 0, culledTotal = 0;
     const bool progress = ::isatty(2) != 0 && !o.json;
     const auto t0 = Clock::now();
@@ -470,14 +467,8 @@ int runRender(Options& o, RenderOptions& r) {
         if (timed) {
             ++timedFrames;
             timedDrawMs += frameDrawMs;
-            const ModeStageTimes replayTimes = gpu.stageTimes();
-            lookupMs += replayTimes.sliceLookupMs;
-            reconstructMs += replayTimes.reconstructMs;
-            const RenderStageTimes st = renderer.stageTimes();
-            stages.skyMs += st.skyMs;
-            stages.waterMs += st.waterMs;
-            stages.splashMs += st.splashMs;
-            stages.resolveMs += st.resolveMs;
+            stages += gpu.stageTimes();
+            stages += renderer.stageTimes();
         } else {
             drawMs += frameDrawMs;
             drawCpuMs += frameCpuMs;
@@ -632,8 +623,8 @@ int runRender(Options& o, RenderOptions& r) {
                    {"exports", exportMs / n},
                    {"total", totalMs / n}}},
                  {"stage_gpu_ms",
-                  {{"slice_lookup", lookupMs / nt},
-                   {"reconstruct", reconstructMs / nt},
+                  {{"slice_lookup", stages.sliceLookupMs / nt},
+                   {"reconstruct", stages.reconstructMs / nt},
                    {"sky", stages.skyMs / nt},
                    {"water", stages.waterMs / nt},
                    {"splashes", stages.splashMs / nt},
@@ -682,7 +673,7 @@ int runRender(Options& o, RenderOptions& r) {
             count, width, height, renderer.samples(), r.outDir,
             (out / "contact_sheet.png").string(), context.renderer(), context.version(),
             context.platform(), 1000.0 / drawMsPerFrame, static_cast<double>(spriteTotal) / n,
-            1000.0 * n / totalMs, lookupMs / nt, reconstructMs / nt, stages.skyMs / nt,
+            1000.0 * n / totalMs, stages.sliceLookupMs / nt, stages.reconstructMs / nt, stages.skyMs / nt,
             stages.waterMs / nt, stages.splashMs / nt, stages.resolveMs / nt, spriteMs / n,
             readMs / n, writeMs / n,
             r.video.empty() ? videoStatus : r.video + " (" + videoStatus + ")");

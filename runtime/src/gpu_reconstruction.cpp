@@ -323,16 +323,7 @@ void GpuReplay::buildLookupAndRows(const ReplayParams& params, const SliceSample
     glProgramUniform1f(rp, uniformLocation(m_reconstruct, "u_reference"), m_reference);
     glProgramUniform1f(rp, uniformLocation(m_reconstruct, "u_missing"), m_missing);
 
-    m_heights = makeStorageBuffer(
-        static_cast<std::size_t>(N) * static_cast<std::size_t>(M) * sizeof(float), nullptr);
-    GLuint tex = 0;
-    glCreateTextures(GL_TEXTURE_2D, 1, &tex);
-    m_height = GlTexture(tex);
-    glTextureStorage2D(tex, 1, GL_R32F, N, M);
-    glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTextureParameteri(tex, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTextureParameteri(tex, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    m_out.emplace(N, M);
 
     m_lookupBytes = noiseValues.size() * sizeof(double) + rows.size() * sizeof(GLint) +
                     weights.size() * sizeof(float);
@@ -370,13 +361,13 @@ void GpuReplay::reconstructHeights() {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, m_columns.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, m_rows.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, m_weights.get());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, m_heights.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, m_out->buffer());
     glUseProgram(m_reconstruct.get());
     glDispatchCompute(groups((m_grid.cellsX + 3) / 4, m_quadsPerGroup),
                       static_cast<GLuint>(m_grid.cellsZ), 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT |
                     GL_PIXEL_BUFFER_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
-    m_textureStale = true;
+    m_out->markWritten();
     if (m_timing)
         glQueryCounter(m_queries[2].get(), GL_TIMESTAMP);
 }
@@ -384,38 +375,14 @@ void GpuReplay::reconstructHeights() {
 StageTimes GpuReplay::stageTimes() const {
     if (!m_timedUpdate)
         throw std::logic_error("GpuReplay::stageTimes: no timed update yet");
-    return StageTimes{elapsedMs(m_queries[0], m_queries[1]), elapsedMs(m_queries[1], m_queries[2])};
+    StageTimes t;
+    t.sliceLookupMs = elapsedMs(m_queries[0], m_queries[1]);
+    t.reconstructMs = elapsedMs(m_queries[1], m_queries[2]);
+    return t;
 }
 
 void GpuReplay::finish() const {
     glFinish();
-}
-
-GlName GpuReplay::heightTexture() {
-    if (m_textureStale) {
-        // Buffer -> texture copy on the GPU side (a pixel-unpack buffer), only when asked.
-        glBindBuffer(GL_PIXEL_UNPACK_BUFFER, m_heights.get());
-        glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-        glTextureSubImage2D(m_height.get(), 0, 0, 0, m_grid.cellsX, m_grid.cellsZ, GL_RED, GL_FLOAT,
-                            nullptr);
-        glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
-        checkGl("copying the heights into the height texture");
-        m_textureStale = false;
-    }
-    return m_height.get();
-}
-
-HeightField GpuReplay::readHeights() const {
-    HeightField out;
-    out.cellsX = m_grid.cellsX;
-    out.cellsZ = m_grid.cellsZ;
-    std::vector<float> texels(static_cast<std::size_t>(out.cellsX) *
-                              static_cast<std::size_t>(out.cellsZ));
-    glGetNamedBufferSubData(m_heights.get(), 0,
-                            static_cast<GLsizeiptr>(texels.size() * sizeof(float)), texels.data());
-    checkGl("reading the height field back");
-    out.heights.assign(texels.begin(), texels.end());
-    return out;
 }
 
 std::vector<std::uint32_t> GpuReplay::readSliceFrames() const {

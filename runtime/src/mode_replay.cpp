@@ -19,109 +19,75 @@ ModeReplay::ModeReplay(const FrameSet& frames, const ReplayParams& params, const
     checkSets(mode, samplers);
     switch (mode.mode) {
     case ReplayMode::Surging:
-        m_surging = std::make_unique<GpuReplay>(frames, params, samplers[0]);
+        m_replay = std::make_unique<GpuReplay>(frames, params, samplers[0]);
         break;
     case ReplayMode::Ripple:
-        m_ripple = std::make_unique<GpuRipple>(frames, params, mode.ripple, samplers);
+        m_replay = std::make_unique<GpuRipple>(frames, params, mode.ripple, samplers);
         break;
     case ReplayMode::Whirlpool:
-        m_whirlpool = std::make_unique<GpuWhirlpool>(frames, params, mode.whirlpool, samplers[0]);
+        m_replay = std::make_unique<GpuWhirlpool>(frames, params, mode.whirlpool, samplers[0]);
         break;
     }
 }
 
 void ModeReplay::update(double tau) {
-    if (m_surging)
-        m_surging->update(tau);
-    else if (m_ripple)
-        m_ripple->update(tau);
-    else
-        m_whirlpool->update(tau);
+    visit([&](auto& r) { r.update(tau); });
 }
 
 void ModeReplay::finish() const {
-    const GpuReplay& any = m_surging  ? *m_surging
-                           : m_ripple ? m_ripple->direction(0)
-                                      : m_whirlpool->slices();
-    any.finish();
+    visit([](const auto& r) { r.sliceSets().front()->finish(); });
 }
 
 void ModeReplay::setTiming(bool on) {
-    if (m_surging)
-        m_surging->setTiming(on);
-    else if (m_ripple)
-        m_ripple->setTiming(on);
-    else
-        m_whirlpool->setTiming(on);
+    visit([&](auto& r) { r.setTiming(on); });
 }
 
-ModeStageTimes ModeReplay::stageTimes() const {
-    ModeStageTimes t;
-    if (m_surging) {
-        const StageTimes s = m_surging->stageTimes();
-        t.sliceLookupMs = s.sliceLookupMs;
-        t.reconstructMs = s.reconstructMs;
-    } else if (m_ripple) {
-        const RippleStageTimes s = m_ripple->stageTimes();
-        t.sliceLookupMs = s.sliceLookupMs;
-        t.reconstructMs = s.reconstructMs;
-        t.synthesisMs = s.synthesisMs;
-    } else {
-        const WhirlpoolStageTimes s = m_whirlpool->stageTimes();
-        t.sliceLookupMs = s.sliceLookupMs;
-        t.spiralMs = s.spiralMs;
-    }
-    return t;
+StageTimes ModeReplay::stageTimes() const {
+    return visit([](const auto& r) { return r.stageTimes(); });
 }
 
 double ModeReplay::columnPassMs() const {
-    if (m_surging)
-        return m_surging->columnPassMs();
-    if (m_whirlpool)
-        return m_whirlpool->slices().columnPassMs();
     double sum = 0.0;
-    for (int d = 0; d < m_ripple->directions(); ++d)
-        sum += m_ripple->direction(d).columnPassMs();
+    for (const GpuReplay* s : visit([](const auto& r) { return r.sliceSets(); }))
+        sum += s->columnPassMs();
     return sum;
 }
 
 GlName ModeReplay::heightBuffer() const {
-    return m_surging  ? m_surging->heightBuffer()
-           : m_ripple ? m_ripple->heightBuffer()
-                      : m_whirlpool->heightBuffer();
+    return visit([](const auto& r) { return r.heightBuffer(); });
 }
 
 GlName ModeReplay::heightTexture() {
-    return m_surging  ? m_surging->heightTexture()
-           : m_ripple ? m_ripple->heightTexture()
-                      : m_whirlpool->heightTexture();
+    return visit([](auto& r) { return r.heightTexture(); });
 }
 
 HeightField ModeReplay::readHeights() const {
-    return m_surging  ? m_surging->readHeights()
-           : m_ripple ? m_ripple->readHeights()
-                      : m_whirlpool->readHeights();
+    return visit([](const auto& r) { return r.readHeights(); });
 }
 
 std::vector<std::vector<std::uint32_t>> ModeReplay::readSliceFrames() const {
-    if (m_surging)
-        return {m_surging->readSliceFrames()};
-    if (m_whirlpool)
-        return {m_whirlpool->slices().readSliceFrames()};
     std::vector<std::vector<std::uint32_t>> out;
-    for (int d = 0; d < m_ripple->directions(); ++d)
-        out.push_back(m_ripple->direction(d).readSliceFrames());
+    for (const GpuReplay* s : visit([](const auto& r) { return r.sliceSets(); }))
+        out.push_back(s->readSliceFrames());
     return out;
 }
 
 const Grid& ModeReplay::grid() const {
-    return m_surging ? m_surging->grid() : m_ripple ? m_ripple->grid() : m_whirlpool->grid();
+    return visit([](const auto& r) -> const Grid& { return r.grid(); });
 }
 
 std::size_t ModeReplay::uploadedBytes() const {
-    return m_surging  ? m_surging->uploadedBytes()
-           : m_ripple ? m_ripple->uploadedBytes()
-                      : m_whirlpool->uploadedBytes();
+    return visit([](const auto& r) { return r.uploadedBytes(); });
+}
+
+GpuRipple* ModeReplay::ripple() {
+    auto* p = std::get_if<std::unique_ptr<GpuRipple>>(&m_replay);
+    return p != nullptr ? p->get() : nullptr;
+}
+
+GpuWhirlpool* ModeReplay::whirlpool() {
+    auto* p = std::get_if<std::unique_ptr<GpuWhirlpool>>(&m_replay);
+    return p != nullptr ? p->get() : nullptr;
 }
 
 CpuModeReference::CpuModeReference(const FrameSet& frames, const ReplayParams& params,
@@ -129,23 +95,19 @@ CpuModeReference::CpuModeReference(const FrameSet& frames, const ReplayParams& p
     checkSets(mode, samplers);
     switch (mode.mode) {
     case ReplayMode::Surging:
-        m_surging = std::make_unique<CpuReconstruction>(frames, params, samplers[0]);
+        m_reference = std::make_unique<CpuReconstruction>(frames, params, samplers[0]);
         break;
     case ReplayMode::Ripple:
-        m_ripple = std::make_unique<CpuRipple>(frames, params, mode.ripple, samplers);
+        m_reference = std::make_unique<CpuRipple>(frames, params, mode.ripple, samplers);
         break;
     case ReplayMode::Whirlpool:
-        m_whirlpool = std::make_unique<CpuWhirlpool>(frames, params, mode.whirlpool, samplers[0]);
+        m_reference = std::make_unique<CpuWhirlpool>(frames, params, mode.whirlpool, samplers[0]);
         break;
     }
 }
 
 HeightField CpuModeReference::heights(double tau) const {
-    if (m_surging)
-        return m_surging->heights(tau);
-    if (m_ripple)
-        return m_ripple->heights(tau);
-    return m_whirlpool->heights(tau);
+    return std::visit([&](const auto& r) { return r->heights(tau); }, m_reference);
 }
 
 } // namespace swell::runtime

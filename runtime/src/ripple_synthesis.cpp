@@ -216,18 +216,22 @@ void GpuRipple::update(double tau) {
     m_out->markWritten();
 }
 
-RippleStageTimes GpuRipple::stageTimes() const {
+StageTimes GpuRipple::stageTimes() const {
     if (!m_timed)
         throw std::logic_error("GpuRipple::stageTimes: no timed update yet");
-    RippleStageTimes t;
-    for (const auto& r : m_dirs) {
-        const StageTimes s = r->stageTimes();
-        t.sliceLookupMs += s.sliceLookupMs;
-        t.reconstructMs += s.reconstructMs;
-    }
+    StageTimes t;
+    for (const auto& r : m_dirs)
+        t += r->stageTimes();
     if (!m_identity)
         t.synthesisMs = elapsedMs(m_queries[0], m_queries[1]);
     return t;
+}
+
+std::vector<const GpuReplay*> GpuRipple::sliceSets() const {
+    std::vector<const GpuReplay*> out;
+    for (const auto& d : m_dirs)
+        out.push_back(d.get());
+    return out;
 }
 
 GlName GpuRipple::heightBuffer() const {

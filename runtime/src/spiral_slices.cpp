@@ -221,10 +221,13 @@ void GpuWhirlpool::update(double tau) {
     m_out.markWritten();
 }
 
-WhirlpoolStageTimes GpuWhirlpool::stageTimes() const {
+StageTimes GpuWhirlpool::stageTimes() const {
     if (!m_timed)
         throw std::logic_error("GpuWhirlpool::stageTimes: no timed update yet");
-    return {elapsedMs(m_queries[0], m_queries[1]), elapsedMs(m_queries[1], m_queries[2])};
+    StageTimes t;
+    t.sliceLookupMs = elapsedMs(m_queries[0], m_queries[1]);
+    t.spiralMs = elapsedMs(m_queries[1], m_queries[2]);
+    return t;
 }
 
 } // namespace swell::runtime

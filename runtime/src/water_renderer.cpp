@@ -434,10 +434,10 @@ Image WaterRenderer::readPixels() const {
     return image;
 }
 
-RenderStageTimes WaterRenderer::stageTimes() const {
+StageTimes WaterRenderer::stageTimes() const {
     if (!m_timed)
         throw std::logic_error("stageTimes() without a timed draw()");
-    RenderStageTimes t;
+    StageTimes t;
     t.skyMs = elapsedMs(m_queries[0], m_queries[1]);
     t.waterMs = elapsedMs(m_queries[1], m_queries[2]);
     t.splashMs = m_splashTimed ? elapsedMs(m_queries[2], m_queries[3]) : 0.0;

@@ -348,7 +348,7 @@ TEST_F(ModeReplayTest, HeightTextureAndStageTimes) {
                     ASSERT_EQ(texels[r * 45 + n], static_cast<float>(h.at(n, r)));
             }
         }
-        const ModeStageTimes t = gpu.stageTimes();
+        const StageTimes t = gpu.stageTimes();
         if (m == ReplayMode::Ripple) {
             EXPECT_GT(t.synthesisMs + t.reconstructMs, 0.0);
             EXPECT_EQ(t.spiralMs, 0.0);

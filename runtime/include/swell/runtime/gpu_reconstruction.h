@@ -14,19 +14,16 @@
 #include "swell/runtime/frame_set.h"
 #include "swell/runtime/gl_objects.h"
 #include "swell/runtime/height_field.h"
+#include "swell/runtime/height_output.h"
 #include "swell/runtime/replay_params.h"
 #include "swell/runtime/slice_sampler.h"
+#include "swell/runtime/stage_times.h"
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 namespace swell::runtime {
-
-/// GPU time of each stage of the last update(), from GL timestamp queries (milliseconds).
-struct StageTimes {
-    double sliceLookupMs = 0.0; ///< eq. (5)-(6), slice_lookup.comp
-    double reconstructMs = 0.0; ///< eq. (7), reconstruct.comp
-};
 
 class GpuReplay {
 public:
@@ -43,7 +40,7 @@ public:
     void lookupSlices(double tau);
     /// Puts a GL timestamp query around each pass of update() (adds a little overhead).
     void setTiming(bool on) { m_timing = on; }
-    /// Stage times of the last timed update(); waits for the GPU.
+    /// Stage times of the last timed update() (slice lookup, reconstruct); waits for the GPU.
     StageTimes stageTimes() const;
     /// Time of the one-off column pass at construction (ms): GPU timer query (paper), or the
     /// CPU envelope sampling (envelope).
@@ -54,14 +51,14 @@ public:
     /// SSBO of N x M floats, [m * N + n] = the height (metres, cache y) at the centre of cell
     /// (n, m), x = x0 + (n + 1/2) dx, z = (m + 1/2) dz: what update() writes. Bind it as a
     /// shader-storage buffer or as a GL_TEXTURE_BUFFER (R32F) for texelFetch.
-    GlName heightBuffer() const { return m_heights.get(); }
+    GlName heightBuffer() const { return m_out->buffer(); }
     /// The same heights as an R32F 2D texture (N x M, linear filtering, clamp to edge) for
     /// sampling: copied from heightBuffer() on the first call after each update(), on the GPU.
-    GlName heightTexture();
+    GlName heightTexture() { return m_out->texture(); }
     /// SSBO of 2K - 1 ivec2: (cache frame shown, column slot or -1) of slice j, at z_j.
     GlName sliceBuffer() const { return m_slices.get(); }
     /// Reads the heights back (blocks).
-    HeightField readHeights() const;
+    HeightField readHeights() const { return m_out->read(); }
     /// Reads the frame of every slice back (blocks).
     std::vector<std::uint32_t> readSliceFrames() const;
 
@@ -81,6 +78,8 @@ public:
     std::size_t slotCount() const { return m_slots; }
     /// Bytes uploaded at construction (particles, bin index, column sums, tables).
     std::size_t uploadedBytes() const { return m_uploadedBytes; }
+    /// The slice sets of this replay: itself (the same call on every mode, mode_replay.h).
+    std::vector<const GpuReplay*> sliceSets() const { return {this}; }
 
 private:
     void reconstructHeights();
@@ -118,9 +117,7 @@ private:
     GlBuffer m_columns;
     GlBuffer m_rows;
     GlBuffer m_weights;
-    GlBuffer m_heights;
-    GlTexture m_height;
-    bool m_textureStale = true;
+    std::optional<HeightOutput> m_out; ///< the heights (made once the parameters are checked)
     GlQuery m_queries[3];
     int m_lookupTau = -1;
 };

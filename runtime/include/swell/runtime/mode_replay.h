@@ -12,17 +12,10 @@
 
 #include <memory>
 #include <span>
+#include <variant>
 #include <vector>
 
 namespace swell::runtime {
-
-/// GPU time of each stage of the last timed update() (ms); stages a mode skips read 0.
-struct ModeStageTimes {
-    double sliceLookupMs = 0.0; ///< eq. (5)-(6), every slice set
-    double reconstructMs = 0.0; ///< eq. (7) (surging, each ripple direction; not whirlpool)
-    double synthesisMs = 0.0;   ///< eq. (8), ripple with a synthesis pass
-    double spiralMs = 0.0;      ///< spiral mapping, whirlpool
-};
 
 class ModeReplay {
 public:
@@ -33,7 +26,7 @@ public:
     void update(double tau);
     void finish() const;
     void setTiming(bool on);
-    ModeStageTimes stageTimes() const;
+    StageTimes stageTimes() const;
     /// The one-off column pass(es), summed (ms).
     double columnPassMs() const;
 
@@ -47,15 +40,23 @@ public:
     const Grid& grid() const;
     std::size_t uploadedBytes() const;
     /// The ripple, or null in another mode.
-    GpuRipple* ripple() { return m_ripple.get(); }
+    GpuRipple* ripple();
     /// The whirlpool, or null in another mode.
-    GpuWhirlpool* whirlpool() { return m_whirlpool.get(); }
+    GpuWhirlpool* whirlpool();
 
 private:
+    /// Calls f on the mode's replay, whichever it is.
+    template <class F> decltype(auto) visit(F&& f) const {
+        return std::visit([&](const auto& p) -> decltype(auto) { return f(*p); }, m_replay);
+    }
+    template <class F> decltype(auto) visit(F&& f) {
+        return std::visit([&](auto& p) -> decltype(auto) { return f(*p); }, m_replay);
+    }
+
     ReplayMode m_mode;
-    std::unique_ptr<GpuReplay> m_surging;
-    std::unique_ptr<GpuRipple> m_ripple;
-    std::unique_ptr<GpuWhirlpool> m_whirlpool;
+    std::variant<std::unique_ptr<GpuReplay>, std::unique_ptr<GpuRipple>,
+                 std::unique_ptr<GpuWhirlpool>>
+        m_replay;
 };
 
 class CpuModeReference {
@@ -66,9 +67,9 @@ public:
     HeightField heights(double tau) const;
 
 private:
-    std::unique_ptr<CpuReconstruction> m_surging;
-    std::unique_ptr<CpuRipple> m_ripple;
-    std::unique_ptr<CpuWhirlpool> m_whirlpool;
+    std::variant<std::unique_ptr<CpuReconstruction>, std::unique_ptr<CpuRipple>,
+                 std::unique_ptr<CpuWhirlpool>>
+        m_reference;
 };
 
 } // namespace swell::runtime

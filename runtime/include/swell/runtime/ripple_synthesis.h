@@ -58,13 +58,6 @@ std::vector<RippleTap> rippleTaps(const Grid& grid, const RippleParams& ripple);
 /// True when the synthesis is the identity (one direction at 0 degrees).
 bool rippleIsIdentity(const RippleParams& ripple);
 
-/// GPU time of each stage of the last timed update(), summed over the directions (ms).
-struct RippleStageTimes {
-    double sliceLookupMs = 0.0; ///< eq. (5)-(6), every direction
-    double reconstructMs = 0.0; ///< eq. (7), every direction
-    double synthesisMs = 0.0;   ///< eq. (8) (0 when there is no synthesis pass)
-};
-
 /// Double-precision reference: one CpuReconstruction per direction, then eq. (8).
 class CpuRipple {
 public:
@@ -94,7 +87,8 @@ public:
     /// Every direction's two passes, then the synthesis pass (skipped for the identity).
     void update(double tau);
     void setTiming(bool on);
-    RippleStageTimes stageTimes() const;
+    /// Slice lookup and reconstruct summed over the directions, synthesis (0 without it).
+    StageTimes stageTimes() const;
     /// False for one direction at 0 degrees: heightBuffer() is direction 0's own.
     bool synthesises() const { return !m_identity; }
 
@@ -109,6 +103,8 @@ public:
     const GpuReplay& direction(int d) const { return *m_dirs[static_cast<std::size_t>(d)]; }
     const Grid& grid() const { return m_dirs.front()->grid(); }
     std::size_t uploadedBytes() const { return m_uploadedBytes; }
+    /// The slice sets: one GpuReplay per direction.
+    std::vector<const GpuReplay*> sliceSets() const;
 
 private:
     std::vector<std::unique_ptr<GpuReplay>> m_dirs;

@@ -87,12 +87,6 @@ private:
     SpiralGeometry m_geometry;
 };
 
-/// GPU time of the last timed update() (ms).
-struct WhirlpoolStageTimes {
-    double sliceLookupMs = 0.0; ///< eq. (5)-(6)
-    double spiralMs = 0.0;      ///< spiral_mapping.comp
-};
-
 /// The whirlpool on the GPU: GpuReplay's column pass (once, turned into per-frame profiles
 /// once) and slice lookup (per frame), then spiral_mapping.comp instead of the surging
 /// reconstruction (which it never runs).
@@ -103,7 +97,8 @@ public:
 
     void update(double tau);
     void setTiming(bool on) { m_timing = on; }
-    WhirlpoolStageTimes stageTimes() const;
+    /// Slice lookup and spiral mapping of the last timed update().
+    StageTimes stageTimes() const;
 
     /// SSBO of N x M floats, [m * N + n] (GpuReplay's layout).
     GlName heightBuffer() const { return m_out.buffer(); }
@@ -115,6 +110,8 @@ public:
     const Grid& grid() const { return m_replay.grid(); }
     const SpiralGeometry& geometry() const { return m_geometry; }
     std::size_t uploadedBytes() const { return m_uploadedBytes; }
+    /// The slice set: the one GpuReplay whose columns the spirals map.
+    std::vector<const GpuReplay*> sliceSets() const { return {&m_replay}; }
 
 private:
     GpuReplay m_replay;

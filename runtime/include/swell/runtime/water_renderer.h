@@ -13,6 +13,7 @@
 #include "swell/runtime/replay_params.h"
 #include "swell/runtime/sky_cubemap.h"
 #include "swell/runtime/splash_system.h"
+#include "swell/runtime/stage_times.h"
 
 #include <span>
 #include <vector>
@@ -40,13 +41,6 @@ struct ShadingParams {
     void validate() const;
 };
 
-/// GPU time of each drawing stage of the last timed draw(), from GL timestamp queries (ms).
-struct RenderStageTimes {
-    double skyMs = 0.0;     ///< environment background (a copy of the cached sky pass)
-    double waterMs = 0.0;   ///< height-field mesh and sides
-    double splashMs = 0.0;  ///< point sprites (0 when no splash pass ran)
-    double resolveMs = 0.0; ///< multisample resolve
-};
 
 class WaterRenderer {
 public:
@@ -79,7 +73,8 @@ public:
     /// frame is serialised stage by stage and a little slower).
     void setTiming(bool on) { m_timing = on; }
     /// Stage times of the last timed draw(); waits for the GPU.
-    RenderStageTimes stageTimes() const;
+    /// Sky, water, splashes and resolve of the last timed draw (GL timestamp queries).
+    StageTimes stageTimes() const;
     /// The multisample count in use (after the driver's cap).
     int samples() const { return m_samples; }
     /// Splash sprites drawn by the last draw() (0: no splash pass ran).
