@@ -3,7 +3,7 @@
 // weighted sum over the directions d of the bilinearly interpolated heights of the 2 x 2 cell
 // centres Q around the cell's position in direction d's rotated grid:
 //     h(P) = sum_d w_d bilerp(h_d; Q00, Q10, Q01, Q11; fx, fz)
-// Definitions (runtime/include/swell/runtime/ripple_synthesis.h): q = R(-a_d) (P - C) + C in
+// Definitions (runtime/include/swell/runtime/ripple.h): q = R(-a_d) (P - C) + C in
 // the direction's cell coordinates (u, v); along x clamped to its edge columns, along z
 // periodic (row M - 1 neighbours row 0). The position is computed here in float; the mapping
 // is continuous (no coverage switch), so float rounding moves a height by ~1e-5 cells only.

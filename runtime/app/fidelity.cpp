@@ -1,10 +1,10 @@
 #include "fidelity.h"
 
 #include "swell/cache/synthetic.h"
-#include "swell/runtime/egl_context.h"
-#include "swell/runtime/fidelity.h"
-#include "swell/runtime/mode_replay.h"
-#include "swell/runtime/surface_envelope.h"
+#include "swell/runtime/gl/egl_context.h"
+#include "swell/runtime/replay/fidelity.h"
+#include "swell/runtime/modes/mode_replay.h"
+#include "swell/runtime/replay/surface_envelope.h"
 
 #include <algorithm>
 #include <cmath>

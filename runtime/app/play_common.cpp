@@ -1,6 +1,6 @@
 #include "play_common.h"
 
-#include "swell/runtime/bake_record.h"
+#include "swell/runtime/replay/bake_record.h"
 
 #include <algorithm>
 #include <cmath>

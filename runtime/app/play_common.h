@@ -3,11 +3,11 @@
 // samplers, decoded frames) and the parameter record written next to every output.
 
 #include "swell/cache/reader.h"
-#include "swell/runtime/frame_set.h"
-#include "swell/runtime/replay_mode.h"
-#include "swell/runtime/replay_params.h"
-#include "swell/runtime/slice_sampler.h"
-#include "swell/runtime/timeline.h"
+#include "swell/runtime/replay/frame_set.h"
+#include "swell/runtime/modes/mode_params.h"
+#include "swell/runtime/replay/replay_params.h"
+#include "swell/runtime/replay/slice_sampler.h"
+#include "swell/runtime/replay/timeline.h"
 
 #include <CLI/CLI.hpp>
 #include <chrono>

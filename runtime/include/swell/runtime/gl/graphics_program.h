@@ -1,0 +1,20 @@
+#pragma once
+// Vertex + fragment shader programs for the renderer (the compute side is gl_objects.h).
+
+#include "swell/runtime/gl/gl_objects.h"
+
+#include <string_view>
+
+namespace swell::runtime {
+
+/// The GL shader stage of a shader file by its extension: .vert, .frag or .comp (GLenum).
+/// Throws std::logic_error for any other name.
+std::uint32_t shaderStageOf(std::string_view name);
+/// Compiles one shader of the stage its name implies and deletes it again; throws RuntimeError
+/// with the driver's log, naming the shader (used to check every embedded shader).
+void checkShaderCompiles(std::string_view name, std::string_view source);
+/// Compiles and links the embedded shaders `vertexName` and `fragmentName`. Throws
+/// RuntimeError naming the shader with the driver's log.
+GlProgram makeGraphicsProgram(std::string_view vertexName, std::string_view fragmentName);
+
+} // namespace swell::runtime

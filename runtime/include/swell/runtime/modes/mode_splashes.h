@@ -1,0 +1,29 @@
+#pragma once
+// Splash sprites in the ripple and whirlpool layouts. SplashSystem lays splashes out on the
+// surging slice set (Sec. 5: x along the slice, at the real slice's z); the other replay modes
+// put that slice set elsewhere (docs/runtime.md), and the sprites follow it:
+//  * ripple direction d (Sec. 4.4): the slice set rotated by a_d about the mesh centre
+//    C = (x0 + N dx / 2, extentZ / 2): p = C + R(a_d) (q - C) in (x, z);
+//  * whirlpool (Sec. 4.5): slice coordinate s = z / dz * 2K / M - 1 (j at a real slice's z),
+//    column u = (x - x0) / dx; the point of spiral s at t = 2 pi u / N:
+//    r = a e^(b t), angle 2 pi (s + spin(tau)) / J + t about C (whirlpool.h).
+// Heights (y) and opacity are kept. Sprites that land outside the mesh's x-z extent (the
+// rotated set's corners, the spirals' outer ends beyond the mesh) are dropped: there is no water
+// there. Surging: nothing changes.
+
+#include "swell/runtime/modes/mode_params.h"
+#include "swell/runtime/replay/replay_params.h"
+#include "swell/runtime/render/splash_system.h"
+
+#include <vector>
+
+namespace swell::runtime {
+
+/// Moves `sprites` (laid out by SplashSystem on the surging slice set of `grid`) to the layout
+/// of `mode` (ripple: direction `direction`; whirlpool: spin at animation time `tau`) and drops
+/// those outside the mesh. Surging leaves them as they are. Throws std::invalid_argument for a
+/// ripple direction out of range.
+void placeSplashes(std::vector<SplashSprite>& sprites, const Grid& grid, const ModeParams& mode,
+                   int direction, double tau);
+
+} // namespace swell::runtime

@@ -1,0 +1,55 @@
+#include "swell/runtime/modes/mode_splashes.h"
+
+#include "swell/runtime/modes/whirlpool.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+namespace swell::runtime {
+
+void placeSplashes(std::vector<SplashSprite>& sprites, const Grid& grid, const ModeParams& mode,
+                   int direction, double tau) {
+    constexpr double kTwoPi = 2.0 * std::numbers::pi;
+    const double cx = grid.x0 + 0.5 * grid.cellsX * grid.dx, cz = 0.5 * grid.extentZ;
+    switch (mode.mode) {
+    case ReplayMode::Surging:
+        return;
+    case ReplayMode::Ripple: {
+        const auto& angles = mode.ripple.anglesDegrees;
+        if (direction < 0 || direction >= static_cast<int>(angles.size()))
+            throw std::invalid_argument("placeSplashes: no such ripple direction");
+        const double a = angles[static_cast<std::size_t>(direction)] * std::numbers::pi / 180.0;
+        const double c = std::cos(a), s = std::sin(a);
+        for (SplashSprite& p : sprites) {
+            const double qx = p.x - cx, qz = p.z - cz;
+            p.x = static_cast<float>(cx + c * qx - s * qz);
+            p.z = static_cast<float>(cz + s * qx + c * qz);
+        }
+        break;
+    }
+    case ReplayMode::Whirlpool: {
+        const SpiralGeometry spiral(grid, mode.whirlpool);
+        const double J = spiral.sliceCount();
+        const double spin = spiral.spinSlices(tau);
+        const double a = spiral.innerRadius(), b = mode.whirlpool.growth;
+        for (SplashSprite& p : sprites) {
+            const double u = (p.x - grid.x0) / grid.dx;
+            const double slice = p.z / grid.dz * (J + 1.0) / grid.cellsZ - 1.0;
+            const double t = kTwoPi * u / grid.cellsX;
+            const double r = a * std::exp(b * t);
+            const double angle = kTwoPi * (slice + spin) / J + t;
+            p.x = static_cast<float>(cx + r * std::cos(angle));
+            p.z = static_cast<float>(cz + r * std::sin(angle));
+        }
+        break;
+    }
+    }
+    const double x1 = grid.x0 + grid.cellsX * grid.dx;
+    std::erase_if(sprites, [&](const SplashSprite& p) {
+        return !(p.x >= grid.x0 && p.x <= x1 && p.z >= 0.0 && p.z <= grid.extentZ);
+    });
+}
+
+} // namespace swell::runtime

@@ -1,0 +1,399 @@
+#include "swell/runtime/replay/gpu_replay.h"
+
+#include "swell/runtime/replay/cpu_reconstruction.h"
+#include "swell/runtime/error.h"
+#include "swell/runtime/replay/surface_envelope.h"
+#include "swell/shaders/shaders.h"
+
+#define GL_GLEXT_PROTOTYPES
+#include <GL/glcorearb.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <fmt/format.h>
+#include <stdexcept>
+#include <string>
+
+namespace swell::runtime {
+namespace {
+
+constexpr GLuint kGroup1D = 64;      // local_size_x of column_pass.comp
+constexpr GLuint kGroupLookup = 256; // local_size_x of slice_lookup.comp
+
+GLuint groups(long long count, GLuint size) {
+    return static_cast<GLuint>((count + size - 1) / size);
+}
+
+} // namespace
+
+GpuReplay::GpuReplay(const FrameSet& frames, const ReplayParams& params,
+                     const SliceSampler& sampler)
+    : m_grid(makeGrid(frames.header, params)), m_A(sampler.A()), m_F(sampler.fluctuation()),
+      m_T(params.noise.timeSamples), m_loop(sampler.policy() != FramePolicy::Clamp),
+      m_timelineSize(sampler.timeline().size()) {
+    params.validate();
+    frames.validate();
+    const Timeline& timeline = sampler.timeline();
+    if (timeline.maxFrame() >= frames.frameCount || sampler.sliceCount() != m_grid.sliceCount()) {
+        throw std::logic_error("GpuReplay: sampler and frame set disagree");
+    }
+    const int N = m_grid.cellsX;
+    m_heldFrames = frames.frames.size();
+    // Slots of the column buffer: the held frames, then one per cross-faded timeline entry
+    // whose two frames are both held (timeline.h).
+    std::vector<std::size_t> blendEntries;
+    std::vector<GLuint> slotOf(m_timelineSize, 0xffffffffu);
+    std::vector<GLint> shown(m_timelineSize, 0);
+    auto heldSlot = [&](std::uint32_t id) -> long long {
+        const cache::Frame* f = frames.find(id);
+        return f == nullptr ? -1 : static_cast<long long>(f - frames.frames.data());
+    };
+    for (std::size_t i = 0; i < m_timelineSize; ++i) {
+        const TimelineEntry& e = timeline[i];
+        shown[i] = static_cast<GLint>(e.shown());
+        const long long a = heldSlot(e.a);
+        if (!e.blended()) {
+            if (a >= 0)
+                slotOf[i] = static_cast<GLuint>(a);
+        } else if (a >= 0 && heldSlot(e.b) >= 0) {
+            slotOf[i] = static_cast<GLuint>(m_heldFrames + blendEntries.size());
+            blendEntries.push_back(i);
+        }
+    }
+    m_slots = m_heldFrames + blendEntries.size();
+
+    m_lookup = makeEmbeddedProgram("slice_lookup.comp");
+    // reconstruct.comp: one work group per row, as few groups as fit the row's column quads.
+    const GLuint quads = static_cast<GLuint>((N + 3) / 4);
+    m_quadsPerGroup = 32;
+    while (m_quadsPerGroup < quads && m_quadsPerGroup < 256)
+        m_quadsPerGroup *= 2;
+    std::string source(shaders::get("reconstruct.comp"));
+    source.insert(source.find('\n') + 1,
+                  fmt::format("#define SWELL_QUADS_PER_GROUP {}\n", m_quadsPerGroup));
+    m_reconstruct = makeComputeProgram("reconstruct.comp", source);
+    const bool envelope = params.reconstruction == Reconstruction::Envelope;
+
+    // Heights are uploaded relative to the middle of the domain, which keeps float sums of
+    // eq. (7) accurate; it depends on the header only, so the result does not depend on which
+    // frames are held.
+    const double reference =
+        0.5 * (static_cast<double>(frames.header.domain.yMin) + frames.header.domain.yMax);
+    m_reference = static_cast<float>(reference);
+    m_missing = static_cast<float>(frames.header.domain.yMin - reference);
+
+    // ---- particles sorted by x bin (-1 .. N), one bin index per held frame
+    const std::size_t S = std::max<std::size_t>(m_slots, 1);
+    std::vector<float> particles;
+    std::vector<GLuint> binStart;
+    binStart.reserve(S * static_cast<std::size_t>(N + 3));
+    std::vector<int> binOf;
+    std::vector<GLuint> fill;
+    for (const cache::Frame& f : frames.frames) {
+        if (envelope)
+            break; // the columns are the frames' envelopes: no particles on the GPU
+        const std::size_t P = f.surfaceCount();
+        binOf.assign(P, 0);
+        fill.assign(static_cast<std::size_t>(N + 2), 0);
+        for (std::size_t p = 0; p < P; ++p) {
+            const double u = (static_cast<double>(f.surface[2 * p]) - m_grid.x0) / m_grid.dx;
+            const double b = std::floor(u);
+            binOf[p] = b < -1.0 || b > N ? -2 : static_cast<int>(b); // -2: beyond every window
+            if (binOf[p] >= -1)
+                ++fill[static_cast<std::size_t>(binOf[p] + 1)];
+        }
+        const GLuint base = static_cast<GLuint>(particles.size() / 2);
+        GLuint running = base;
+        for (int b = -1; b <= N; ++b) {
+            binStart.push_back(running);
+            const GLuint c = fill[static_cast<std::size_t>(b + 1)];
+            fill[static_cast<std::size_t>(b + 1)] = running; // now the write cursor
+            running += c;
+        }
+        binStart.push_back(running);
+        particles.resize(2 * static_cast<std::size_t>(running));
+        for (std::size_t p = 0; p < P; ++p) {
+            if (binOf[p] < -1)
+                continue;
+            const GLuint at = fill[static_cast<std::size_t>(binOf[p] + 1)]++;
+            const double u = (static_cast<double>(f.surface[2 * p]) - m_grid.x0) / m_grid.dx;
+            particles[2 * at] = static_cast<float>(u);
+            particles[2 * at + 1] =
+                static_cast<float>(static_cast<double>(f.surface[2 * p + 1]) - reference);
+        }
+    }
+    if (m_heldFrames == 0 || envelope)
+        binStart.assign(static_cast<std::size_t>(N + 3), 0);
+    // Driver limits: one shader-storage block per buffer, one work group row per held frame.
+    GLint64 maxBlock = 0;
+    glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &maxBlock);
+    GLint maxGroupsY = 0;
+    glGetIntegeri_v(GL_MAX_COMPUTE_WORK_GROUP_COUNT, 1, &maxGroupsY);
+    const std::size_t columnBytes = S * static_cast<std::size_t>((N + 3) / 4) * 8 * sizeof(float);
+    for (const std::size_t bytes : {particles.size() * sizeof(float), columnBytes}) {
+        if (static_cast<GLint64>(bytes) > maxBlock) {
+            throw RuntimeError(fmt::format(
+                "the replay needs a {:.0f} MB buffer ({} held frames at {} columns), above this "
+                "driver's {:.0f} MB shader-storage limit: lower --res or replay fewer seconds",
+                static_cast<double>(bytes) / 1e6, m_heldFrames, N,
+                static_cast<double>(maxBlock) / 1e6));
+        }
+    }
+    if (m_heldFrames > static_cast<std::size_t>(maxGroupsY)) {
+        throw RuntimeError(
+            fmt::format("{} held frames exceed this driver's {} work groups per axis", m_heldFrames,
+                        maxGroupsY));
+    }
+    const int Nq = (N + 3) / 4; // columns in quads of four (column_pass.comp)
+    std::vector<float> zeros(S * static_cast<std::size_t>(Nq) * 8, 0.0f);
+    auto at = [Nq](std::size_t slot, int n, int c) { // float index of S (c = 0) or W (c = 1)
+        return ((slot * static_cast<std::size_t>(Nq) + static_cast<std::size_t>(n / 4)) * 2 +
+                static_cast<std::size_t>(c)) *
+                   4 +
+               static_cast<std::size_t>(n % 4);
+    };
+    for (GlQuery& q : m_queries)
+        q = makeTimestampQuery();
+    if (envelope) {
+        // Envelope columns (eta(P_x), 1), or (empty-frame height, 0), on the CPU in double.
+        const auto t0 = std::chrono::steady_clock::now();
+        const double binWidth = envelopeBinWidth(frames.header, m_grid);
+        for (std::size_t slot = 0; slot < m_heldFrames; ++slot) {
+            const SurfaceEnvelope env(frames.frames[slot], binWidth);
+            const std::vector<double> eta =
+                env.empty() ? std::vector<double>{} : sampleEnvelope(env, m_grid.x0, m_grid.dx, N);
+            for (int n = 0; n < N; ++n) {
+                zeros[at(slot, n, 0)] =
+                    eta.empty() ? m_missing
+                                : static_cast<float>(eta[static_cast<std::size_t>(n)] - reference);
+                zeros[at(slot, n, 1)] = eta.empty() ? 0.0f : 1.0f;
+            }
+        }
+        m_columnPassMs =
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
+                .count();
+    }
+    m_columns = makeStorageBuffer(zeros.size() * sizeof(float), zeros.data());
+    if (!envelope)
+        runColumnPass(particles, binStart, params.sigma);
+    if (!blendEntries.empty()) {
+        // Cross-fades of two held frames' columns (blendColumns), once, from the columns above.
+        std::vector<float>& columns = zeros;
+        glGetNamedBufferSubData(m_columns.get(), 0,
+                                static_cast<GLsizeiptr>(m_heldFrames * Nq * 8 * sizeof(float)),
+                                columns.data());
+        for (std::size_t b = 0; b < blendEntries.size(); ++b) {
+            const TimelineEntry& e = timeline[blendEntries[b]];
+            const auto sa = static_cast<std::size_t>(heldSlot(e.a));
+            const auto sb = static_cast<std::size_t>(heldSlot(e.b));
+            const std::size_t slot = m_heldFrames + b;
+            for (int n = 0; n < N; ++n) {
+                const ColumnSum c =
+                    blendColumns({columns[at(sa, n, 0)], columns[at(sa, n, 1)]},
+                                 {columns[at(sb, n, 0)], columns[at(sb, n, 1)]}, e.alpha);
+                columns[at(slot, n, 0)] = static_cast<float>(c.S);
+                columns[at(slot, n, 1)] = static_cast<float>(c.W);
+            }
+        }
+        const std::size_t offset = m_heldFrames * static_cast<std::size_t>(Nq) * 8;
+        glNamedBufferSubData(m_columns.get(), static_cast<GLintptr>(offset * sizeof(float)),
+                             static_cast<GLsizeiptr>((columns.size() - offset) * sizeof(float)),
+                             columns.data() + offset);
+        checkGl("uploading the cross-faded columns");
+    }
+    buildLookupAndRows(params, sampler, slotOf, shown);
+    m_uploadedBytes = particles.size() * sizeof(float) + binStart.size() * sizeof(GLuint) +
+                      zeros.size() * sizeof(float) +
+                      slotOf.size() * (sizeof(GLuint) + sizeof(GLint)) + m_lookupBytes;
+    glFinish(); // the particle and bin buffers are released when this returns
+    checkGl("uploading the replay");
+}
+
+void GpuReplay::runColumnPass(const std::vector<float>& particles,
+                              const std::vector<GLuint>& binStart, double sigma) {
+    const int N = m_grid.cellsX;
+    const int Nq = (N + 3) / 4;
+    GlProgram column = makeEmbeddedProgram("column_pass.comp");
+    GlBuffer particleBuffer = makeStorageBuffer(particles.size() * sizeof(float), particles.data());
+    GlBuffer binBuffer = makeStorageBuffer(binStart.size() * sizeof(GLuint), binStart.data());
+    // ---- column pass: x half of eq. (7) per held frame and column, once
+    glProgramUniform1i(column.get(), uniformLocation(column, "u_N"), N);
+    glProgramUniform1i(column.get(), uniformLocation(column, "u_Nq"), Nq);
+    glProgramUniform1i(column.get(), uniformLocation(column, "u_slots"),
+                       static_cast<GLint>(m_heldFrames));
+    glProgramUniform1f(column.get(), uniformLocation(column, "u_sigma"), static_cast<float>(sigma));
+    glProgramUniform1f(column.get(), uniformLocation(column, "u_emptyHeight"), m_missing);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, particleBuffer.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, binBuffer.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, m_columns.get());
+    if (m_heldFrames > 0) {
+        glUseProgram(column.get());
+        glQueryCounter(m_queries[0].get(), GL_TIMESTAMP);
+        glDispatchCompute(groups(N, kGroup1D), static_cast<GLuint>(m_heldFrames), 1);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+        glQueryCounter(m_queries[1].get(), GL_TIMESTAMP);
+        m_columnPassMs = elapsedMs(m_queries[0], m_queries[1]);
+    }
+    glFinish();
+    checkGl("running the column pass");
+}
+
+void GpuReplay::buildLookupAndRows(const ReplayParams& params, const SliceSampler& sampler,
+                                   const std::vector<GLuint>& slotOf,
+                                   const std::vector<GLint>& shown) {
+    const int N = m_grid.cellsX;
+    const int M = m_grid.cellsZ;
+    const int K = m_grid.slices;
+    const int J = m_grid.sliceCount();
+    const int Nq = (N + 3) / 4;
+    // ---- slice lookup inputs: noise (fp64), timeline entry -> column slot and shown frame
+    const FbmNoise* noise = sampler.noise();
+    std::vector<double> noiseValues = noise ? noise->values() : std::vector<double>{0.0};
+    m_noise = makeStorageBuffer(noiseValues.size() * sizeof(double), noiseValues.data());
+    m_slotOf = makeStorageBuffer(slotOf.size() * sizeof(GLuint), slotOf.data());
+    m_shown = makeStorageBuffer(shown.size() * sizeof(GLint), shown.data());
+    m_slices = makeStorageBuffer(static_cast<std::size_t>(J) * 2 * sizeof(GLint), nullptr);
+    const GLuint lp = m_lookup.get();
+    m_lookupTau = uniformLocation(m_lookup, "u_tau");
+    glProgramUniform1d(lp, uniformLocation(m_lookup, "u_F"), m_F);
+    glProgramUniform1d(lp, uniformLocation(m_lookup, "u_A"), m_A);
+    glProgramUniform1i(lp, uniformLocation(m_lookup, "u_T"), noise ? noise->timeSamples() : 1);
+    glProgramUniform1i(lp, uniformLocation(m_lookup, "u_K"), K);
+    glProgramUniform1i(lp, uniformLocation(m_lookup, "u_sliceCount"), J);
+    glProgramUniform1i(lp, uniformLocation(m_lookup, "u_frameCount"),
+                       static_cast<GLint>(m_timelineSize));
+    glProgramUniform1i(lp, uniformLocation(m_lookup, "u_loop"), m_loop ? 1 : 0);
+
+    // ---- z windows: first slice, count and G_z per row (definitions: cpu_reconstruction.h)
+    std::vector<GLint> rows(2 * static_cast<std::size_t>(M));
+    std::vector<std::vector<float>> rowWeights(static_cast<std::size_t>(M));
+    const double inv2s2 = 1.0 / (2.0 * params.sigma * params.sigma);
+    for (int m = 0; m < M; ++m) {
+        // -2K <= (j + 1) M - (2m + 1) K < 2K  <=>  (2m - 1) K <= (j + 1) M < (2m + 3) K
+        const long long lo = static_cast<long long>(2 * m - 1) * K;
+        const long long hi = static_cast<long long>(2 * m + 3) * K;
+        int first = -1, last = -1;
+        for (int j = 0; j < J; ++j) {
+            const long long v = static_cast<long long>(j + 1) * M;
+            if (v >= lo && v < hi) {
+                if (first < 0)
+                    first = j;
+                last = j;
+            }
+        }
+        if (first < 0) { // no slice in the window (M > 2K): the nearest one, ties to the lower j
+            const long long target = static_cast<long long>(2 * m + 1) * K;
+            first = 0;
+            for (int j = 1; j < J; ++j) {
+                if (std::llabs(static_cast<long long>(j + 1) * M - target) <
+                    std::llabs(static_cast<long long>(first + 1) * M - target)) {
+                    first = j;
+                }
+            }
+            last = first;
+        }
+        rows[2 * static_cast<std::size_t>(m)] = first;
+        rows[2 * static_cast<std::size_t>(m) + 1] = last - first + 1;
+        for (int j = first; j <= last; ++j) {
+            // A row of one slice (always so when M > 2K) has G_z = 1: it cancels in eq. (7),
+            // and far from the slice exp() underflows to 0, which made 0 / 0 = NaN heights
+            // (found by tools/stress at 1 x 4096 cells, K = 64).
+            const double dz = first == last ? 0.0 : m_grid.sliceZCells(j) - (m + 0.5);
+            rowWeights[static_cast<std::size_t>(m)].push_back(
+                static_cast<float>(std::exp(-dz * dz * inv2s2)));
+        }
+        m_rowStride = std::max(m_rowStride, last - first + 1);
+    }
+    std::vector<float> weights(static_cast<std::size_t>(M) * static_cast<std::size_t>(m_rowStride),
+                               0.0f);
+    for (int m = 0; m < M; ++m) {
+        std::copy(rowWeights[static_cast<std::size_t>(m)].begin(),
+                  rowWeights[static_cast<std::size_t>(m)].end(),
+                  weights.begin() + static_cast<std::ptrdiff_t>(m) * m_rowStride);
+    }
+    m_rows = makeStorageBuffer(rows.size() * sizeof(GLint), rows.data());
+    m_weights = makeStorageBuffer(weights.size() * sizeof(float), weights.data());
+    const GLuint rp = m_reconstruct.get();
+    glProgramUniform1i(rp, uniformLocation(m_reconstruct, "u_N"), N);
+    glProgramUniform1i(rp, uniformLocation(m_reconstruct, "u_Nq"), Nq);
+    glProgramUniform1i(rp, uniformLocation(m_reconstruct, "u_M"), M);
+    glProgramUniform1i(rp, uniformLocation(m_reconstruct, "u_rowStride"), m_rowStride);
+    glProgramUniform1f(rp, uniformLocation(m_reconstruct, "u_reference"), m_reference);
+    glProgramUniform1f(rp, uniformLocation(m_reconstruct, "u_missing"), m_missing);
+
+    m_out.emplace(N, M);
+
+    m_lookupBytes = noiseValues.size() * sizeof(double) + rows.size() * sizeof(GLint) +
+                    weights.size() * sizeof(float);
+}
+
+void GpuReplay::update(double tau) {
+    lookupSlices(tau);
+    // Pass 2, eq. (7): every cell from the column sums of the slices in its z window.
+    reconstructHeights();
+}
+
+void GpuReplay::lookupSlices(double tau) {
+    if (!std::isfinite(tau) || (std::abs(tau) + 1.0) * m_A > 1.0e9) {
+        throw std::invalid_argument(
+            fmt::format("animation time tau = {} is out of range for A = {}", tau, m_A));
+    }
+    m_timedUpdate = m_timing;
+    // Pass 1, eq. (5)-(6): the frame of every slice, once per slice.
+    glProgramUniform1d(m_lookup.get(), m_lookupTau, tau);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, m_noise.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, m_slotOf.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, m_slices.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, m_shown.get());
+    glUseProgram(m_lookup.get());
+    if (m_timing)
+        glQueryCounter(m_queries[0].get(), GL_TIMESTAMP);
+    glDispatchCompute(groups(m_grid.sliceCount(), kGroupLookup), 1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    if (m_timing)
+        glQueryCounter(m_queries[1].get(), GL_TIMESTAMP);
+}
+
+void GpuReplay::reconstructHeights() {
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, m_slices.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, m_columns.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, m_rows.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, m_weights.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, m_out->buffer());
+    glUseProgram(m_reconstruct.get());
+    glDispatchCompute(groups((m_grid.cellsX + 3) / 4, m_quadsPerGroup),
+                      static_cast<GLuint>(m_grid.cellsZ), 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT |
+                    GL_PIXEL_BUFFER_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+    m_out->markWritten();
+    if (m_timing)
+        glQueryCounter(m_queries[2].get(), GL_TIMESTAMP);
+}
+
+StageTimes GpuReplay::stageTimes() const {
+    if (!m_timedUpdate)
+        throw std::logic_error("GpuReplay::stageTimes: no timed update yet");
+    StageTimes t;
+    t.sliceLookupMs = elapsedMs(m_queries[0], m_queries[1]);
+    t.reconstructMs = elapsedMs(m_queries[1], m_queries[2]);
+    return t;
+}
+
+void GpuReplay::finish() const {
+    glFinish();
+}
+
+std::vector<std::uint32_t> GpuReplay::readSliceFrames() const {
+    std::vector<GLint> pairs(2 * static_cast<std::size_t>(m_grid.sliceCount()));
+    glGetNamedBufferSubData(m_slices.get(), 0,
+                            static_cast<GLsizeiptr>(pairs.size() * sizeof(GLint)), pairs.data());
+    checkGl("reading the slice frames back");
+    std::vector<std::uint32_t> out(static_cast<std::size_t>(m_grid.sliceCount()));
+    for (std::size_t j = 0; j < out.size(); ++j)
+        out[j] = static_cast<std::uint32_t>(pairs[2 * j]);
+    return out;
+}
+
+} // namespace swell::runtime

@@ -1,0 +1,208 @@
+// The renderer on llvmpipe: a golden image, a not-blank / not-uniform check (headless EGL can
+// silently give black pictures), splashes, multisampling, bad parameters.
+//
+// Golden image: tests/runtime/data/water_golden.png, 160 x 90, of an analytic height field
+// with fixed splash sprites (goldenScene below). It must match with PSNR >= 38 dB and no
+// channel off by more than 64 (llvmpipe is deterministic on one build; the slack covers other
+// LLVM / Mesa versions rounding differently). After an intended change of the shading, regenerate:
+//   SWELL_UPDATE_GOLDEN=1 build/bin/water_renderer_test --gtest_filter='*Golden*'
+// look at the picture, and commit it.
+
+#include "swell/runtime/render/camera.h"
+#include "swell/runtime/gl/egl_context.h"
+#include "swell/runtime/error.h"
+#include "swell/runtime/gl/gl_objects.h"
+#include "swell/runtime/io/image_io.h"
+#include "swell/runtime/render/sky_cubemap.h"
+#include "swell/runtime/render/water_renderer.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <unistd.h>
+
+namespace swell::runtime {
+namespace {
+
+Grid testGrid() {
+    Grid g;
+    g.cellsX = 64;
+    g.cellsZ = 48;
+    g.slices = 32;
+    g.x0 = -0.2;
+    g.dx = 4.4 / 64;
+    g.dz = g.dx;
+    g.extentZ = 48 * g.dz;
+    return g;
+}
+
+const cache::Domain kDomain{-0.2f, 0.0f, 4.2f, 0.9f};
+
+/// A crossing-wave height field around 0.5 m depth, [m * N + n].
+std::vector<float> waveHeights(const Grid& g, double phase) {
+    std::vector<float> h;
+    for (int m = 0; m < g.cellsZ; ++m) {
+        for (int n = 0; n < g.cellsX; ++n) {
+            const double x = g.x0 + (n + 0.5) * g.dx, z = (m + 0.5) * g.dz;
+            h.push_back(static_cast<float>(0.5 + 0.06 * std::cos(2.0 * x - phase) +
+                                           0.02 * std::sin(3.1 * x + 2.3 * z)));
+        }
+    }
+    return h;
+}
+
+std::vector<SplashSprite> fixedSplashes() {
+    std::vector<SplashSprite> s;
+    for (int i = 0; i < 40; ++i) {
+        s.push_back({static_cast<float>(1.5 + 0.02 * i), static_cast<float>(0.62 + 0.003 * (i % 7)),
+                     static_cast<float>(1.0 + 0.03 * (i % 11)),
+                     1.0f - 0.02f * static_cast<float>(i)});
+    }
+    return s;
+}
+
+struct Scene {
+    Grid grid = testGrid();
+    SkyParams sky;
+    ShadingParams shading;
+    Scene(int w, int h, int samples) {
+        sky.faceSize = 64;
+        shading.width = w;
+        shading.height = h;
+        shading.samples = samples;
+    }
+    Image render(const std::vector<SplashSprite>& splashes, double phase = 0.0,
+                 const Camera* camera = nullptr) {
+        const std::vector<float> h = waveHeights(grid, phase);
+        GlBuffer buffer = makeStorageBuffer(h.size() * sizeof(float), h.data());
+        WaterRenderer r(grid, kDomain, shading, proceduralSky(sky), sunDirection(sky));
+        const Camera cam =
+            camera ? *camera
+                   : defaultCamera(grid, kDomain, 0.5, double(shading.width) / shading.height);
+        r.draw(buffer.get(), cam, splashes, 0.02);
+        lastSplashes = r.lastSplashCount();
+        return r.readPixels();
+    }
+    std::size_t lastSplashes = 0;
+};
+
+std::filesystem::path goldenPath() {
+    return std::filesystem::path(SWELL_TEST_DATA_DIR) / "water_golden.png";
+}
+
+TEST(WaterRenderer, GoldenImage) {
+    const EglContext context;
+    Scene scene(160, 90, 1);
+    const Image image = scene.render(fixedSplashes());
+    if (std::getenv("SWELL_UPDATE_GOLDEN") != nullptr) {
+        writePng(goldenPath(), image, 9);
+        GTEST_SKIP() << "wrote " << goldenPath();
+    }
+    const Image golden = readPng(goldenPath());
+    const ImageDifference d = compareImages(image, golden);
+    EXPECT_GE(d.psnr, 38.0) << "max channel error " << d.maxAbs << " on " << context.renderer();
+    EXPECT_LE(d.maxAbs, 64);
+    if (d.psnr < 38.0)
+        writePng(std::filesystem::temp_directory_path() / "water_golden_actual.png", image);
+    // The tolerance is tight enough to catch a change: the same scene half a wave later fails it.
+    const Image moved = scene.render(fixedSplashes(), 1.5);
+    EXPECT_LT(compareImages(moved, golden).psnr, 38.0);
+}
+
+TEST(WaterRenderer, FrameIsNotBlankNorUniformAndShowsWaterAndSky) {
+    const EglContext context;
+    Scene scene(160, 90, 1);
+    const Image image = scene.render({});
+    const ImageStats s = imageStats(image);
+    EXPECT_GT(s.meanLuma, 20.0);
+    EXPECT_LT(s.meanLuma, 235.0);
+    EXPECT_GT(s.stddevLuma, 8.0);
+    EXPECT_GT(s.distinctColours, 200u);
+    // The default camera frames the water in the middle of the picture: blue-green there (green
+    // and blue above red), and the top row is the sky, brighter than the water.
+    const std::uint8_t* mid = image.pixel(80, 50);
+    EXPECT_GT(mid[1], mid[0] + 10) << int(mid[0]) << " " << int(mid[1]) << " " << int(mid[2]);
+    EXPECT_GT(mid[2], mid[0] + 10);
+    double top = 0.0;
+    for (int x = 0; x < 160; ++x)
+        top += image.pixel(x, 0)[0] + image.pixel(x, 0)[1] + image.pixel(x, 0)[2];
+    EXPECT_GT(top / 160.0, mid[0] + mid[1] + mid[2]);
+}
+
+TEST(WaterRenderer, SplashesAreDrawnOnlyWhenThereAreAny) {
+    const EglContext context;
+    Scene scene(160, 90, 1);
+    const Image without = scene.render({});
+    EXPECT_EQ(scene.lastSplashes, 0u);
+    const Image with = scene.render(fixedSplashes());
+    EXPECT_EQ(scene.lastSplashes, 40u);
+    const ImageDifference d = compareImages(without, with);
+    EXPECT_GT(d.maxAbs, 40);   // bright droplets over the water
+    EXPECT_LT(d.meanAbs, 5.0); // ... in a small part of the picture
+}
+
+TEST(WaterRenderer, DrawingInTwoPartsGivesTheSamePictureAsOne) {
+    // drawSurface, then (after the caller built the sprites) drawSplashes: the same frame as
+    // draw(), which is the two in a row.
+    const EglContext context;
+    const Grid grid = testGrid();
+    SkyParams sky;
+    sky.faceSize = 64;
+    ShadingParams shading;
+    shading.width = 160;
+    shading.height = 90;
+    const std::vector<float> h = waveHeights(grid, 0.3);
+    GlBuffer buffer = makeStorageBuffer(h.size() * sizeof(float), h.data());
+    WaterRenderer r(grid, kDomain, shading, proceduralSky(sky), sunDirection(sky));
+    const Camera cam = defaultCamera(grid, kDomain, 0.5, 160.0 / 90.0);
+    const std::vector<SplashSprite> splashes = fixedSplashes();
+    r.draw(buffer.get(), cam, splashes, 0.02);
+    const Image one = r.readPixels();
+    r.drawSurface(buffer.get(), cam, true);
+    r.drawSplashes(splashes, 0.02);
+    const Image two = r.readPixels();
+    EXPECT_EQ(compareImages(one, two).maxAbs, 0);
+    EXPECT_EQ(r.lastSplashCount(), 40u);
+    // Out of order: splashes with no surface drawn, or after being told none would follow.
+    EXPECT_THROW(r.drawSplashes(splashes, 0.02), std::logic_error);
+    r.drawSurface(buffer.get(), cam, false);
+    EXPECT_THROW(r.drawSplashes(splashes, 0.02), std::logic_error);
+    r.drawSurface(buffer.get(), cam, false);
+    r.drawSplashes({}, 0.02);
+    EXPECT_EQ(r.lastSplashCount(), 0u);
+}
+
+TEST(WaterRenderer, MultisamplingSmoothsButDoesNotChangeThePicture) {
+    const EglContext context;
+    Scene one(160, 90, 1), four(160, 90, 4);
+    const Image a = one.render({});
+    const Image b = four.render({});
+    const ImageDifference d = compareImages(a, b);
+    EXPECT_GT(d.psnr, 24.0);
+    EXPECT_GT(d.maxAbs, 0); // edges differ
+}
+
+TEST(WaterRenderer, BadParametersThrow) {
+    const EglContext context;
+    const Grid grid = testGrid();
+    SkyParams sky;
+    sky.faceSize = 16;
+    const CubeFaces faces = proceduralSky(sky);
+    ShadingParams s;
+    s.width = 8;
+    EXPECT_THROW(WaterRenderer(grid, kDomain, s, faces, sunDirection(sky)), std::invalid_argument);
+    s = ShadingParams{};
+    s.samples = 0;
+    EXPECT_THROW(WaterRenderer(grid, kDomain, s, faces, sunDirection(sky)), std::invalid_argument);
+    s = ShadingParams{};
+    s.refractiveIndex = 0.5;
+    EXPECT_THROW(WaterRenderer(grid, kDomain, s, faces, sunDirection(sky)), std::invalid_argument);
+    CubeFaces uneven = faces;
+    uneven[3] = Image(8, 8);
+    EXPECT_THROW(makeCubemapTexture(uneven), std::invalid_argument);
+}
+
+} // namespace
+} // namespace swell::runtime
