@@ -1,9 +1,13 @@
-#include "fidelity.h"
+// swell-play fidelity: the replay against the simulated surface it replays (docs/runtime.md,
+// "Fidelity"): at F = 0, at the given F, and the continuity of a long replay.
+
+#include "command.h"
+#include "play_common.h"
 
 #include "swell/cache/synthetic.h"
 #include "swell/runtime/gl/egl_context.h"
-#include "swell/runtime/replay/fidelity.h"
 #include "swell/runtime/modes/mode_replay.h"
+#include "swell/runtime/replay/fidelity.h"
 #include "swell/runtime/replay/surface_envelope.h"
 
 #include <algorithm>
@@ -45,6 +49,7 @@ double maxChange(const HeightField& a, const HeightField& b) {
     return d;
 }
 
+/// The frames' envelopes, made once each.
 struct Truths {
     double binWidth = 0.0;
     std::map<std::uint32_t, SurfaceEnvelope> envelopes;
@@ -56,106 +61,143 @@ struct Truths {
     }
 };
 
-} // namespace
-
-void addFidelityOptions(CLI::App* cmd, FidelityOptions& f) {
-    cmd->add_option("--frames", f.frames,
-                    "F = 0 part: window frames measured, evenly spread (0: every one)")
-        ->capture_default_str()
-        ->check(CLI::Range(0, 10000000));
-    cmd->add_option("--mix-times", f.mixTimes, "F > 0 part: animation times measured (0: skip)")
-        ->capture_default_str()
-        ->check(CLI::Range(0, 100000));
-    cmd->add_option("--seam-seconds", f.seamSeconds,
-                    "continuity part: simulated seconds of replay checked for flat rows and "
-                    "jumps (0: skip)")
-        ->capture_default_str()
-        ->check(CLI::Range(0.0, 1.0e6));
+/// Fraction of the grid's column centres between the envelope's first and last point (half a
+/// bin beyond them): the columns over water.
+double overWater(const Grid& grid, const SurfaceEnvelope& env, double binWidth) {
+    int over = 0;
+    for (int n = 0; n < grid.cellsX && !env.empty(); ++n) {
+        const double x = grid.x0 + (n + 0.5) * grid.dx;
+        over += x >= env.xFirst() - 0.5 * binWidth && x <= env.xLast() + 0.5 * binWidth;
+    }
+    return static_cast<double>(over) / grid.cellsX;
 }
 
-int runFidelity(Options& o, const FidelityOptions& f) {
-    finishOptions(o);
-    if (o.modeParams.mode != ReplayMode::Surging)
-        throw std::invalid_argument("fidelity measures the surging layout (--mode surging)");
-    const cache::Reader reader(o.cache);
-    resolveAutoRes(o, reader.header());
-    const EglContext context;
-    json out;
+struct F0Result {
+    FidelityStats envelope, analytic;
+    bool hasAnalytic = false;
+    double spread = 0.0;         ///< mean height spread of the measured frames' rows (m)
+    double overWaterMean = 0.0, overWaterMin = 1.0;
+    Grid grid;
+    double l0 = 0.0, step = 0.0, binWidth = 0.0;
+};
 
-    // ---- F = 0: every slice shows the same frame; a row is eq. (7)'s profile of that frame.
-    Options o0 = o;
-    o0.params.fluctuation = 0.0;
-    o0.params.policy = FramePolicy::Clamp;
-    o0.policy = "clamp";
-    const TimelinePlan plan0 = planTimeline(reader.header(), reader.frameCount(), o0.params,
-                                            [&](std::uint32_t id) { return reader.readFrame(id); });
-    const std::size_t window = plan0.timeline.size();
-    const std::size_t measured =
-        f.frames > 0 ? std::min<std::size_t>(window, static_cast<std::size_t>(f.frames)) : window;
-    const double A = framesPerTimeUnit(reader.header(), o0.params);
-    std::vector<double> taus0(measured);
-    for (std::size_t i = 0; i < measured; ++i) {
-        const std::size_t k = measured > 1 ? i * (window - 1) / (measured - 1) : 0;
-        taus0[i] = static_cast<double>(k) / A; // s = floor(k + 1/2) = k: window frame k
+class FidelityCommand : public Command {
+public:
+    CLI::App* add(CLI::App& app) override {
+        CLI::App* cmd = app.add_subcommand(
+            "fidelity", "measure the replay against the simulated surface (F = 0 and F > 0) and "
+                        "the continuity of a long replay");
+        addCommon(cmd, m_o);
+        cmd->add_option("--frames", m_frames,
+                        "F = 0 part: window frames measured, evenly spread (0: every one)")
+            ->capture_default_str()
+            ->check(CLI::Range(0, 10000000));
+        cmd->add_option("--mix-times", m_mixTimes, "F > 0 part: animation times measured (0: skip)")
+            ->capture_default_str()
+            ->check(CLI::Range(0, 100000));
+        cmd->add_option("--seam-seconds", m_seamSeconds,
+                        "continuity part: simulated seconds of replay checked for flat rows and "
+                        "jumps (0: skip)")
+            ->capture_default_str()
+            ->check(CLI::Range(0.0, 1.0e6));
+        return cmd;
     }
-    const ReplaySetup s0 = replayOn(o0, reader, plan0, taus0);
-    ModeReplay gpu0(s0.set, o0.params, o0.modeParams, s0.samplers);
-    const Grid grid = gpu0.grid();
-    const BakeRecord& record = plan0.record;
-    const double l0 = record.particleSpacing;
-    const double step = (l0 > 0.0 ? l0 : grid.dx) / 4.0;
-    Truths truth{envelopeBinWidth(reader.header(), grid), {}};
-    const std::optional<cache::SyntheticWave> wave = syntheticWave(reader.header());
-    FidelityStats f0, analytic;
-    double spreadSum = 0.0, overWaterSum = 0.0, overWaterMin = 1.0;
-    const int mid = grid.cellsZ / 2;
-    for (double tau : taus0) {
-        gpu0.update(tau);
-        const HeightField h = gpu0.readHeights();
-        const std::uint32_t frame = s0.samplers[0].frame(tau, 0);
-        const std::vector<double> r = row(h, mid);
-        spreadSum += rowSpread(h, mid);
-        const SurfaceEnvelope& env = truth.of(s0.set, frame);
-        f0.add(compareRow(r, grid, env, step));
-        // Columns over water: centres between the frame's first and last surface particle
-        // (half a particle spacing beyond them).
-        int over = 0;
-        for (int n = 0; n < grid.cellsX && !env.empty(); ++n) {
-            const double x = grid.x0 + (n + 0.5) * grid.dx;
-            over +=
-                x >= env.xFirst() - 0.5 * truth.binWidth && x <= env.xLast() + 0.5 * truth.binWidth;
-        }
-        const double fraction = static_cast<double>(over) / grid.cellsX;
-        overWaterSum += fraction;
-        overWaterMin = std::min(overWaterMin, fraction);
-        if (wave) {
-            const double t = frame * reader.header().frameTime();
-            analytic.add(compareRow(
-                r, grid, [&](double x) { return cache::syntheticHeight(*wave, x, t); }, 0.0,
-                wave->length, step));
-        }
-    }
-    out["f0"] = toJson(f0, l0);
-    // How much wave the steady bake shows: the mean height spread of its frames' profiles.
-    out["steady_spread_m"] = taus0.empty() ? 0.0 : spreadSum / static_cast<double>(taus0.size());
-    out["columns_over_water"] = {
-        {"mean", taus0.empty() ? 0.0 : overWaterSum / static_cast<double>(taus0.size())},
-        {"min", overWaterMin}};
-    if (wave)
-        out["f0_analytic"] = toJson(analytic, l0);
 
-    // ---- F > 0: each real slice's row against its own frame (the mixing error).
-    std::vector<double> taus(static_cast<std::size_t>(f.mixTimes));
-    const ReplaySetup probe = prepareReplay(o, reader, {});
-    const double period = static_cast<double>(probe.plan.timeline.size()) / probe.A;
-    for (std::size_t i = 0; i < taus.size(); ++i)
-        taus[i] = o.start / o.params.timeUnitSeconds +
-                  period * static_cast<double>(i) / static_cast<double>(taus.size());
-    const ReplaySetup setup = prepareReplay(o, reader, taus);
-    FidelityStats mixing;
-    if (o.params.fluctuation > 0.0 && !taus.empty()) {
-        ModeReplay gpu(setup.set, o.params, o.modeParams, setup.samplers);
-        Truths mixTruth{truth.binWidth, {}};
+    int run() override {
+        finishOptions(m_o);
+        if (m_o.modeParams.mode != ReplayMode::Surging)
+            throw std::invalid_argument("fidelity measures the surging layout (--mode surging)");
+        const cache::Reader reader(m_o.cache);
+        resolveAutoRes(m_o, reader.header());
+        const EglContext context;
+        m_o0 = m_o; // every slice one frame: F = 0, the window's frames in order
+        m_o0.params.fluctuation = 0.0;
+        m_o0.params.policy = FramePolicy::Clamp;
+        m_o0.policy = "clamp";
+        m_plan0 = planTimeline(reader.header(), reader.frameCount(), m_o0.params,
+                               [&](std::uint32_t id) { return reader.readFrame(id); });
+        const F0Result f0 = measureF0(reader);
+        const std::vector<double> mixTaus = mixingTaus(reader);
+        const ReplaySetup setup = prepareReplay(m_o, reader, mixTaus);
+        const FidelityStats mixing = measureMixing(setup, mixTaus, f0);
+        json out = resultJson(f0, mixing);
+        if (m_seamSeconds > 0.0)
+            out["continuity"] = measureContinuity(reader);
+        out.update(paramsJson(m_o, setup));
+        out["renderer"] = context.renderer();
+        if (m_o.json)
+            std::cout << out.dump() << "\n";
+        else
+            print(out, f0, mixing, setup);
+        return 0;
+    }
+
+private:
+    /// F = 0 over `--frames` window frames: the middle row against the frame's envelope (and
+    /// the analytic wave of a synthetic cache), spread and columns over water.
+    F0Result measureF0(const cache::Reader& reader) const {
+        const std::size_t window = m_plan0.timeline.size();
+        const std::size_t measured =
+            m_frames > 0 ? std::min<std::size_t>(window, static_cast<std::size_t>(m_frames)) : window;
+        const double A = framesPerTimeUnit(reader.header(), m_o0.params);
+        std::vector<double> taus(measured);
+        for (std::size_t i = 0; i < measured; ++i) // s = floor(k + 1/2) = k: window frame k
+            taus[i] = static_cast<double>(measured > 1 ? i * (window - 1) / (measured - 1) : 0) / A;
+        const ReplaySetup s0 = replayOn(m_o0, reader, m_plan0, taus);
+        ModeReplay gpu(s0.set, m_o0.params, m_o0.modeParams, s0.samplers);
+        F0Result r;
+        r.grid = gpu.grid();
+        r.l0 = m_plan0.record.particleSpacing;
+        r.step = (r.l0 > 0.0 ? r.l0 : r.grid.dx) / 4.0;
+        Truths truth{envelopeBinWidth(reader.header(), r.grid), {}};
+        r.binWidth = truth.binWidth;
+        const std::optional<cache::SyntheticWave> wave = syntheticWave(reader.header());
+        r.hasAnalytic = wave.has_value();
+        for (double tau : taus) {
+            gpu.update(tau);
+            const HeightField h = gpu.readHeights();
+            const std::uint32_t frame = s0.samplers[0].frame(tau, 0);
+            const std::vector<double> mid = row(h, r.grid.cellsZ / 2);
+            const SurfaceEnvelope& env = truth.of(s0.set, frame);
+            r.envelope.add(compareRow(mid, r.grid, env, r.step));
+            r.spread += rowSpread(h, r.grid.cellsZ / 2);
+            const double fraction = overWater(r.grid, env, truth.binWidth);
+            r.overWaterMean += fraction;
+            r.overWaterMin = std::min(r.overWaterMin, fraction);
+            if (wave) {
+                const double t = frame * reader.header().frameTime();
+                r.analytic.add(compareRow(
+                    mid, r.grid, [&](double x) { return cache::syntheticHeight(*wave, x, t); }, 0.0,
+                    wave->length, r.step));
+            }
+        }
+        const double n = std::max<double>(1.0, static_cast<double>(taus.size()));
+        r.spread /= n;
+        r.overWaterMean /= n;
+        return r;
+    }
+
+    /// `--mix-times` animation times evenly over one period of the replay's timeline.
+    std::vector<double> mixingTaus(const cache::Reader& reader) const {
+        const ReplaySetup probe = prepareReplay(m_o, reader, {});
+        const double period = static_cast<double>(probe.plan.timeline.size()) / probe.A;
+        std::vector<double> taus(static_cast<std::size_t>(m_mixTimes));
+        for (std::size_t i = 0; i < taus.size(); ++i) {
+            taus[i] = m_o.start / m_o.params.timeUnitSeconds +
+                      period * static_cast<double>(i) / static_cast<double>(taus.size());
+        }
+        return taus;
+    }
+
+    /// At the given F: each real slice's row against its own frame (the mixing error).
+    FidelityStats measureMixing(const ReplaySetup& setup, const std::vector<double>& taus,
+                                const F0Result& f0) const {
+        FidelityStats mixing;
+        if (!(m_o.params.fluctuation > 0.0) || taus.empty())
+            return mixing;
+        ModeReplay gpu(setup.set, m_o.params, m_o.modeParams, setup.samplers);
+        const Grid& grid = f0.grid;
+        Truths truth{f0.binWidth, {}};
         for (double tau : taus) {
             gpu.update(tau);
             const HeightField h = gpu.readHeights();
@@ -164,122 +206,143 @@ int runFidelity(Options& o, const FidelityOptions& f) {
                 const int m = std::clamp(static_cast<int>(std::floor(grid.sliceZCells(j))), 0,
                                          grid.cellsZ - 1);
                 mixing.add(compareRow(row(h, m), grid,
-                                      mixTruth.of(setup.set, shown[static_cast<std::size_t>(j)]),
-                                      step));
+                                      truth.of(setup.set, shown[static_cast<std::size_t>(j)]),
+                                      f0.step));
             }
         }
+        return mixing;
     }
-    out["mixing"] = toJson(mixing, l0);
-    out["mixing"]["times"] = taus.size();
 
-    // ---- continuity of a long replay: flat rows and the largest per-cell jump per frame.
-    if (f.seamSeconds > 0.0) {
-        // The same measure inside the steady bake at F = 0, at the same output rate.
-        std::vector<double> steadyChanges;
-        {
-            const auto n = static_cast<std::size_t>(
-                std::floor(static_cast<double>(window - 1) * plan0.frameTime * o.playbackFps));
-            std::vector<double> t(n + 1);
-            for (std::size_t i = 0; i <= n; ++i)
-                t[i] = static_cast<double>(i) / o.playbackFps / o0.params.timeUnitSeconds;
-            const ReplaySetup s = replayOn(o0, reader, plan0, t);
-            ModeReplay g(s.set, o0.params, o0.modeParams, s.samplers);
-            HeightField prev;
-            for (std::size_t i = 0; i <= n; ++i) {
-                g.update(t[i]);
-                HeightField h = g.readHeights();
-                if (i > 0)
-                    steadyChanges.push_back(maxChange(prev, h));
-                prev = std::move(h);
-            }
+    /// The largest per-cell change between consecutive output frames of the steady bake at
+    /// F = 0, at the same output rate: its 99.9th percentile.
+    double steadyChangeP999(const cache::Reader& reader) const {
+        const auto n = static_cast<std::size_t>(std::floor(
+            static_cast<double>(m_plan0.timeline.size() - 1) * m_plan0.frameTime * m_o.playbackFps));
+        std::vector<double> taus(n + 1);
+        for (std::size_t i = 0; i <= n; ++i)
+            taus[i] = static_cast<double>(i) / m_o.playbackFps / m_o0.params.timeUnitSeconds;
+        const ReplaySetup s = replayOn(m_o0, reader, m_plan0, taus);
+        ModeReplay gpu(s.set, m_o0.params, m_o0.modeParams, s.samplers);
+        std::vector<double> changes;
+        HeightField prev;
+        for (std::size_t i = 0; i <= n; ++i) {
+            gpu.update(taus[i]);
+            HeightField h = gpu.readHeights();
+            if (i > 0)
+                changes.push_back(maxChange(prev, h));
+            prev = std::move(h);
         }
-        const double p999 = steadyChanges.empty() ? 0.0 : percentile(steadyChanges, 0.999);
-        const std::vector<double> t = outputTaus(o, f.seamSeconds);
-        const std::size_t count = t.size();
-        const ReplaySetup s = prepareReplay(o, reader, t);
-        ModeReplay g(s.set, o.params, o.modeParams, s.samplers);
+        return changes.empty() ? 0.0 : percentile(changes, 0.999);
+    }
+
+    /// `--seam-seconds` of replay: frames with flat rows and the largest per-cell change.
+    json measureContinuity(const cache::Reader& reader) const {
+        const double p999 = steadyChangeP999(reader);
+        const std::vector<double> taus = outputTaus(m_o, m_seamSeconds);
+        const ReplaySetup s = prepareReplay(m_o, reader, taus);
+        ModeReplay gpu(s.set, m_o.params, m_o.modeParams, s.samplers);
         HeightField prev;
         std::size_t flatFrames = 0, flatRowCount = 0;
         double largest = 0.0, largestAt = 0.0;
         json flatAt = json::array(); // the first 20 times with a flat row
-        for (std::size_t i = 0; i < count; ++i) {
-            g.update(t[i]);
-            HeightField h = g.readHeights();
+        for (std::size_t i = 0; i < taus.size(); ++i) {
+            gpu.update(taus[i]);
+            HeightField h = gpu.readHeights();
             const auto flat = static_cast<std::size_t>(flatRows(h));
             flatRowCount += flat;
             flatFrames += flat > 0 ? 1 : 0;
             if (flat > 0 && flatAt.size() < 20)
-                flatAt.push_back(o.start + static_cast<double>(i) / o.playbackFps);
-            if (i > 0) {
-                const double d = maxChange(prev, h);
-                if (d > largest) {
-                    largest = d;
-                    largestAt = o.start + static_cast<double>(i) / o.playbackFps;
-                }
+                flatAt.push_back(secondsOf(m_o, i));
+            const double change = i > 0 ? maxChange(prev, h) : 0.0;
+            if (change > largest) {
+                largest = change;
+                largestAt = secondsOf(m_o, i);
             }
             prev = std::move(h);
         }
-        out["continuity"] = {{"seconds", f.seamSeconds},
-                             {"frames", count},
-                             {"flat_row_threshold_m", kFlatRowMetres},
-                             {"frames_with_flat_rows", flatFrames},
-                             {"flat_rows", flatRowCount},
-                             {"flat_at_s", flatAt},
-                             {"largest_change_m", largest},
-                             {"largest_change_at_s", largestAt},
-                             {"steady_f0_change_p999_m", p999},
-                             {"largest_over_steady_p999", p999 > 0.0 ? largest / p999 : 0.0}};
+        return {{"seconds", m_seamSeconds},
+                {"frames", taus.size()},
+                {"flat_row_threshold_m", kFlatRowMetres},
+                {"frames_with_flat_rows", flatFrames},
+                {"flat_rows", flatRowCount},
+                {"flat_at_s", flatAt},
+                {"largest_change_m", largest},
+                {"largest_change_at_s", largestAt},
+                {"steady_f0_change_p999_m", p999},
+                {"largest_over_steady_p999", p999 > 0.0 ? largest / p999 : 0.0}};
     }
 
-    out.update(paramsJson(o, setup));
-    out["renderer"] = context.renderer();
-    out["fidelity_definition"] =
-        "row of the height field, linear between cell centres, against the frame's upper "
-        "envelope of surface particles (bins of l0), sampled every l0/4 over the water";
-    if (o.json) {
-        std::cout << out.dump() << "\n";
-        return 0;
+    json resultJson(const F0Result& f0, const FidelityStats& mixing) const {
+        json out{{"f0", toJson(f0.envelope, f0.l0)},
+                 {"mixing", toJson(mixing, f0.l0)},
+                 {"steady_spread_m", f0.spread},
+                 {"columns_over_water", {{"mean", f0.overWaterMean}, {"min", f0.overWaterMin}}},
+                 {"fidelity_definition",
+                  "row of the height field, linear between cell centres, against the frame's "
+                  "upper envelope of surface particles (bins of l0), sampled every l0/4 over "
+                  "the water"}};
+        out["mixing"]["times"] = m_mixTimes;
+        if (f0.hasAnalytic)
+            out["f0_analytic"] = toJson(f0.analytic, f0.l0);
+        return out;
     }
-    auto line = [&](const char* what, const FidelityStats& s) {
-        return fmt::format(
-            "  {}: rms {:.3g} m ({:.3f} l0), max {:.3g} m ({:.3f} l0; per-row max "
-            "{:.3f} l0 on average), crest loss {:.2f} % mean, {:.2f} % max, {} rows\n",
-            what, s.rms(), l0 > 0 ? s.rms() / l0 : 0.0, s.maxAbs, l0 > 0 ? s.maxAbs / l0 : 0.0,
-            l0 > 0 ? s.meanRowMax() / l0 : 0.0, 100.0 * s.meanCrestLoss(), 100.0 * s.maxCrestLoss,
-            s.rows);
-    };
-    std::cout << fmt::format("swell-play fidelity  {}  ({}x{} cells over x {:.3f} .. {:.3f} m, "
-                             "{} reconstruction, sigma {}, l0 {} m)\n",
-                             o.cache, grid.cellsX, grid.cellsZ, grid.x0,
-                             grid.x0 + grid.cellsX * grid.dx, o.reconstruction, o.params.sigma, l0);
-    std::cout << fmt::format("  columns over water (between the frame's first and last surface "
-                             "particle): {:.1f} % on average, {:.1f} % at least\n",
-                             100.0 * out["columns_over_water"]["mean"].get<double>(),
-                             100.0 * overWaterMin);
-    std::cout << line("F = 0 vs the frames' envelopes", f0);
-    if (wave)
-        std::cout << line("F = 0 vs the analytic wave", analytic);
-    if (o.params.fluctuation > 0.0 && f.mixTimes > 0)
-        std::cout << line(
-            fmt::format("F = {} slice rows vs their frames", o.params.fluctuation).c_str(), mixing);
-    if (const auto& l = setup.plan.timeline.loop()) {
-        std::cout << fmt::format("  loop: frames {} -> {} ({:.2f} s), cross-fade {} frames, "
-                                 "residual {:.3g} m (typical frame difference {:.3g} m)\n",
-                                 l->in, l->out, (l->out - l->in) * setup.plan.frameTime,
-                                 l->crossfade, l->residual, l->typicalDifference);
+
+    void print(const json& out, const F0Result& f0, const FidelityStats& mixing,
+               const ReplaySetup& setup) const {
+        const double l0 = f0.l0;
+        auto line = [&](const std::string& what, const FidelityStats& s) {
+            return fmt::format("  {}: rms {:.3g} m ({:.3f} l0), max {:.3g} m ({:.3f} l0; per-row "
+                               "max {:.3f} l0 on average), crest loss {:.2f} % mean, {:.2f} % "
+                               "max, {} rows\n",
+                               what, s.rms(), l0 > 0 ? s.rms() / l0 : 0.0, s.maxAbs,
+                               l0 > 0 ? s.maxAbs / l0 : 0.0, l0 > 0 ? s.meanRowMax() / l0 : 0.0,
+                               100.0 * s.meanCrestLoss(), 100.0 * s.maxCrestLoss, s.rows);
+        };
+        const Grid& g = f0.grid;
+        std::cout << fmt::format("swell-play fidelity  {}  ({}x{} cells over x {:.3f} .. {:.3f} "
+                                 "m, {} reconstruction, sigma {}, l0 {} m)\n",
+                                 m_o.cache, g.cellsX, g.cellsZ, g.x0, g.x0 + g.cellsX * g.dx,
+                                 m_o.reconstruction, m_o.params.sigma, l0);
+        std::cout << fmt::format("  columns over water (between the frame's first and last "
+                                 "surface particle): {:.1f} % on average, {:.1f} % at least\n",
+                                 100.0 * f0.overWaterMean, 100.0 * f0.overWaterMin);
+        std::cout << line("F = 0 vs the frames' envelopes", f0.envelope);
+        if (f0.hasAnalytic)
+            std::cout << line("F = 0 vs the analytic wave", f0.analytic);
+        if (m_o.params.fluctuation > 0.0 && m_mixTimes > 0)
+            std::cout << line(fmt::format("F = {} slice rows vs their frames",
+                                          m_o.params.fluctuation),
+                              mixing);
+        if (const auto& l = setup.plan.timeline.loop()) {
+            std::cout << fmt::format("  loop: frames {} -> {} ({:.2f} s), cross-fade {} frames, "
+                                     "residual {:.3g} m (typical frame difference {:.3g} m)\n",
+                                     l->in, l->out, (l->out - l->in) * setup.plan.frameTime,
+                                     l->crossfade, l->residual, l->typicalDifference);
+        }
+        if (out.contains("continuity")) {
+            const json& c = out["continuity"];
+            std::cout << fmt::format(
+                "  continuity over {} s at {} fps: {} frames with flat rows ({} rows); largest "
+                "per-cell change {:.4f} m at {:.2f} s = {:.2f} x the steady F = 0 99.9th "
+                "percentile {:.4f} m\n",
+                m_seamSeconds, m_o.playbackFps, c["frames_with_flat_rows"].get<std::size_t>(),
+                c["flat_rows"].get<std::size_t>(), c["largest_change_m"].get<double>(),
+                c["largest_change_at_s"].get<double>(), c["largest_over_steady_p999"].get<double>(),
+                c["steady_f0_change_p999_m"].get<double>());
+        }
     }
-    if (out.contains("continuity")) {
-        const json& c = out["continuity"];
-        std::cout << fmt::format(
-            "  continuity over {} s at {} fps: {} frames with flat rows ({} "
-            "rows); largest per-cell change {:.4f} m at {:.2f} s = {:.2f} x "
-            "the steady F = 0 99.9th percentile {:.4f} m\n",
-            f.seamSeconds, o.playbackFps, c["frames_with_flat_rows"].get<std::size_t>(),
-            c["flat_rows"].get<std::size_t>(), c["largest_change_m"].get<double>(),
-            c["largest_change_at_s"].get<double>(), c["largest_over_steady_p999"].get<double>(),
-            c["steady_f0_change_p999_m"].get<double>());
-    }
-    return 0;
+
+    Options m_o, m_o0;
+    TimelinePlan m_plan0;
+    int m_frames = 0;           ///< F = 0 part: window frames measured (0: all)
+    int m_mixTimes = 24;        ///< F > 0 part: animation times measured
+    double m_seamSeconds = 0.0; ///< continuity part: simulated seconds replayed (0: skip)
+};
+
+} // namespace
+
+std::unique_ptr<Command> makeFidelityCommand() {
+    return std::make_unique<FidelityCommand>();
 }
 
 } // namespace swell::play

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 #include <iostream>
 #include <sys/resource.h>
+#include <unistd.h>
 
 namespace swell::play {
 
@@ -215,12 +216,46 @@ std::vector<std::string>& pendingNotes() {
     return notes;
 }
 
-std::vector<double> outputTaus(const Options& o, double seconds) {
-    const auto count = static_cast<std::size_t>(std::max(1.0, std::round(seconds * o.playbackFps)));
+double secondsOf(const Options& o, std::size_t i) {
+    return o.start + static_cast<double>(i) / o.playbackFps;
+}
+
+std::vector<double> frameTaus(const Options& o, std::size_t count) {
     std::vector<double> taus(count);
     for (std::size_t i = 0; i < count; ++i)
         taus[i] = tauOf(o, i);
     return taus;
+}
+
+std::vector<double> outputTaus(const Options& o, double seconds) {
+    return frameTaus(
+        o, static_cast<std::size_t>(std::max(1.0, std::round(seconds * o.playbackFps))));
+}
+
+void checkSeconds(double seconds) {
+    if (!(seconds > 0.0) || !std::isfinite(seconds))
+        throw std::invalid_argument(fmt::format("--seconds must be > 0, got {}", seconds));
+}
+
+HeightScale heightScale(const cache::Domain& d) {
+    return {d.yMin, (static_cast<double>(d.yMax) - d.yMin) / 65535.0};
+}
+
+Progress::Progress(std::string name, std::size_t count, bool wanted)
+    : m_name(std::move(name)), m_count(count), m_on(wanted && ::isatty(2) != 0),
+      m_t0(Clock::now()) {}
+
+void Progress::step(std::size_t i) {
+    if (!m_on)
+        return;
+    const double eta = msSince(m_t0) / 1000.0 * static_cast<double>(m_count - i - 1) /
+                       static_cast<double>(i + 1);
+    std::cerr << fmt::format("\r{}: {}/{} frames, ETA {:.0f} s ", m_name, i + 1, m_count, eta);
+}
+
+void Progress::done() {
+    if (m_on)
+        std::cerr << "\n";
 }
 
 ReplaySetup replayOn(const Options& o, const cache::Reader& reader, const TimelinePlan& plan,

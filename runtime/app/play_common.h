@@ -3,6 +3,7 @@
 // samplers, decoded frames) and the parameter record written next to every output.
 
 #include "swell/cache/reader.h"
+#include "swell/runtime/io/height_png.h"
 #include "swell/runtime/replay/frame_set.h"
 #include "swell/runtime/modes/mode_params.h"
 #include "swell/runtime/replay/replay_params.h"
@@ -57,8 +58,30 @@ void resolveAutoRes(Options& o, const cache::Header& header);
 /// the timeline's first entry (the steady window's first frame, or the loop's in-frame).
 double tauOf(const Options& o, std::size_t i);
 
+/// Simulated second of output frame i: start + i / fps.
+double secondsOf(const Options& o, std::size_t i);
+/// The animation times of output frames 0 .. count - 1.
+std::vector<double> frameTaus(const Options& o, std::size_t count);
 /// The animation times of `seconds` of output at o.playbackFps (at least one frame).
 std::vector<double> outputTaus(const Options& o, double seconds);
+/// Throws std::invalid_argument unless --seconds is finite and > 0.
+void checkSeconds(double seconds);
+/// 16-bit PNG scale of a cache's domain: offset yMin, 65535 steps up to yMax.
+runtime::HeightScale heightScale(const cache::Domain& domain);
+
+/// "name: i/count frames, ETA s" on stderr while a long command runs (on a terminal only).
+class Progress {
+public:
+    Progress(std::string name, std::size_t count, bool wanted);
+    void step(std::size_t i);
+    void done();
+
+private:
+    std::string m_name;
+    std::size_t m_count;
+    bool m_on;
+    Clock::time_point m_t0;
+};
 
 /// A replay ready to run: its timeline, one sampler per slice set and the decoded frames.
 struct ReplaySetup {

@@ -32,4 +32,19 @@ HeightField readHeightPng(const std::filesystem::path& path, const HeightScale& 
     return out;
 }
 
+nlohmann::json heightsSidecar(nlohmann::json params, const HeightScale& scale, const Grid& grid,
+                              const std::string& renderer, nlohmann::json frames) {
+    const std::size_t count = frames.size();
+    params.update({{"renderer", renderer},
+                   {"format", "16-bit greyscale PNG; height_m = offset + value * scale"},
+                   {"scale", {{"offset", scale.offset}, {"scale", scale.scale}, {"units", "m"}}},
+                   {"layout", "column n = x cell (x = x0 + (n + 0.5) dx), row m = z cell"},
+                   {"x0", grid.x0},
+                   {"dx", grid.dx},
+                   {"dz", grid.dz},
+                   {"count", count},
+                   {"frames", std::move(frames)}});
+    return params;
+}
+
 } // namespace swell::runtime

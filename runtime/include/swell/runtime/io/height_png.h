@@ -3,8 +3,11 @@
 // (metres). Row 0 of the image is z row m = 0; column n is x cell n.
 
 #include "swell/runtime/replay/height_field.h"
+#include "swell/runtime/replay/replay_params.h"
 
 #include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
 
 namespace swell::runtime {
 
@@ -20,5 +23,11 @@ void writeHeightPng(const std::filesystem::path& path, const HeightField& field,
                     const HeightScale& scale);
 /// Reads a file written by writeHeightPng back to metres. Throws RuntimeError.
 HeightField readHeightPng(const std::filesystem::path& path, const HeightScale& scale);
+
+/// The sidecar of a folder of height PNGs (heights.json): `params` (every replay parameter and
+/// the seed, as the program records them) plus the renderer, the PNG format and scale, the
+/// layout, the grid (x0, dx, dz) and `frames` (file, tau, seconds per frame).
+nlohmann::json heightsSidecar(nlohmann::json params, const HeightScale& scale, const Grid& grid,
+                              const std::string& renderer, nlohmann::json frames);
 
 } // namespace swell::runtime

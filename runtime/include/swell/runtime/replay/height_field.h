@@ -1,7 +1,9 @@
 #pragma once
 // A reconstructed height field on the base mesh: h at every cell centre (eq. 7).
 
+#include <cmath>
 #include <cstddef>
+#include <limits>
 #include <vector>
 
 namespace swell::runtime {
@@ -15,6 +17,26 @@ struct HeightField {
         return heights[static_cast<std::size_t>(m) * static_cast<std::size_t>(cellsX) +
                        static_cast<std::size_t>(n)];
     }
+};
+
+/// How far one height field is from another (e.g. the GPU's from the CPU reference's), over
+/// many fields; a non-finite height counts as an infinite difference.
+struct HeightDifference {
+    double maxAbs = 0.0;
+    double sumSquares = 0.0;
+    std::size_t cells = 0;
+
+    /// Adds every cell of a against b (the same size).
+    void add(const HeightField& a, const HeightField& b) {
+        for (std::size_t i = 0; i < a.heights.size(); ++i) {
+            const double d = std::isfinite(a.heights[i]) ? std::abs(a.heights[i] - b.heights[i])
+                                                         : std::numeric_limits<double>::infinity();
+            maxAbs = d > maxAbs ? d : maxAbs;
+            sumSquares += d * d;
+        }
+        cells += a.heights.size();
+    }
+    double rms() const { return cells > 0 ? std::sqrt(sumSquares / static_cast<double>(cells)) : 0.0; }
 };
 
 } // namespace swell::runtime
