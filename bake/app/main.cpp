@@ -29,10 +29,13 @@ namespace {
 // Set by SIGINT/SIGTERM; the bake polls it after every step and stops cleanly (the cache
 // writer then removes its temporary file). A signal handler can only reach a static.
 volatile std::sig_atomic_t g_stop = 0;
-extern "C" void onSignal(int) { g_stop = 1; }
+extern "C" void onSignal(int) {
+    g_stop = 1;
+}
 
 std::string clock(double s) {
-    if (!(s >= 0.0) || s > 1e7) return "--:--";
+    if (!(s >= 0.0) || s > 1e7)
+        return "--:--";
     const long t = static_cast<long>(s + 0.5);
     return t >= 3600 ? fmt::format("{}:{:02}:{:02}", t / 3600, t / 60 % 60, t % 60)
                      : fmt::format("{}:{:02}", t / 60, t % 60);
@@ -43,21 +46,25 @@ class ProgressReporter {
 public:
     explicit ProgressReporter(bool quiet) : m_quiet(quiet), m_tty(isatty(STDERR_FILENO) != 0) {}
     void operator()(const BakeProgress& p) {
-        if (m_quiet) return;
+        if (m_quiet)
+            return;
         const bool last = p.step == p.totalSteps;
         if (m_tty) {
-            if (!last && p.wallSeconds - m_lastPrint < 0.25) return;
+            if (!last && p.wallSeconds - m_lastPrint < 0.25)
+                return;
         } else {
             const long tenth = std::max(1L, p.totalSteps / 10);
-            if (!last && p.step % tenth != 0) return;
+            if (!last && p.step % tenth != 0)
+                return;
         }
         m_lastPrint = p.wallSeconds;
         const double rate = p.wallSeconds > 0.0 ? (p.step - p.firstStep) / p.wallSeconds : 0.0;
         const double eta = rate > 0.0 ? (p.totalSteps - p.step) / rate : -1.0;
-        const std::string line = fmt::format("step {}/{} ({:.0f}%)  t = {:.3f} s  {:.1f} steps/s  frames {}  "
-                                             "elapsed {}  ETA {}", p.step, p.totalSteps,
-                                             100.0 * p.step / p.totalSteps, p.time, rate, p.frames,
-                                             clock(p.wallSeconds), clock(eta));
+        const std::string line =
+            fmt::format("step {}/{} ({:.0f}%)  t = {:.3f} s  {:.1f} steps/s  frames {}  "
+                        "elapsed {}  ETA {}",
+                        p.step, p.totalSteps, 100.0 * p.step / p.totalSteps, p.time, rate, p.frames,
+                        clock(p.wallSeconds), clock(eta));
         if (m_tty) {
             std::fprintf(stderr, "\r%s\033[K%s", line.c_str(), last ? "\n" : "");
         } else {
@@ -66,7 +73,8 @@ public:
         std::fflush(stderr);
     }
     void endLine() {
-        if (m_tty && !m_quiet && m_lastPrint >= 0.0) std::fprintf(stderr, "\n");
+        if (m_tty && !m_quiet && m_lastPrint >= 0.0)
+            std::fprintf(stderr, "\n");
     }
 
 private:
@@ -74,6 +82,52 @@ private:
     bool m_tty;
     double m_lastPrint = -1.0;
 };
+
+/// The one-line summary of a finished bake on stderr.
+void printSummary(const Scene& scene, const BakeSummary& s, const std::string& output) {
+    std::fprintf(
+        stderr,
+        "swell-bake: %s: %zu water + %zu fixed particles, %ld steps, %zu frames; kept per frame "
+        "%.1f surface + %.1f splash (%.1fx fewer than water); cache %s, %llu bytes (%.2fx); "
+        "%.1f s wall, %.2f ms/step%s\n",
+        scene.name.c_str(), s.particlesWater, s.particlesWall, s.steps, s.frames, s.surfaceMean,
+        s.splashMean, s.reduction, output.c_str(), static_cast<unsigned long long>(s.cacheBytes),
+        s.cacheBytes ? static_cast<double>(s.rawBytes) / s.cacheBytes : 0.0, s.wallSeconds,
+        s.msPerStep,
+        scene.recycling
+            ? fmt::format("; {} particles recycled outflow -> inflow (count conserved)", s.recycled)
+                  .c_str()
+            : "");
+    if (s.resumedFromStep > 0) {
+        std::fprintf(stderr, "swell-bake: resumed from step %ld (checkpoint %s, now removed)\n",
+                     s.resumedFromStep, checkpointPath(output).c_str());
+    }
+}
+
+/// Exit code and stderr line of a failed bake (README "Programs"): 130 cancelled, 3 diverged
+/// (no cache), 2 bad scene, 5 checkpoint, 4 cache, 1 anything else.
+int reportFailure(const std::exception& e, const std::string& scenePath,
+                  ProgressReporter& progress) {
+    if (dynamic_cast<const SceneError*>(&e) != nullptr) {
+        std::fprintf(stderr, "swell-bake: %s: %s\n", scenePath.c_str(), e.what());
+        return 2;
+    }
+    progress.endLine();
+    int code = 1;
+    const char* suffix = "";
+    if (dynamic_cast<const BakeCancelled*>(&e) != nullptr) {
+        code = 130;
+    } else if (dynamic_cast<const DivergenceError*>(&e) != nullptr) {
+        code = 3;
+        suffix = "; no cache written";
+    } else if (dynamic_cast<const CheckpointError*>(&e) != nullptr) {
+        code = 5;
+    } else if (dynamic_cast<const swell::cache::CacheError*>(&e) != nullptr) {
+        code = 4;
+    }
+    std::fprintf(stderr, "swell-bake: %s%s\n", e.what(), suffix);
+    return code;
+}
 
 } // namespace
 
@@ -85,28 +139,35 @@ int main(int argc, char** argv) {
     long checkpointEvery = 0;
     bool asJson = false, quiet = false, resume = false;
     app.add_option("SCENE", scenePath, "scene file (JSON, docs/scenes.md)")->required();
-    app.add_option("-o,--output", output, "cache file to write (.swell); appears only when the bake completes")
+    app.add_option("-o,--output", output,
+                   "cache file to write (.swell); appears only when the bake completes")
         ->required();
-    app.add_option("--set", sets, "override a scene key before validation: section.key=value (repeatable)");
-    app.add_option("--threads", threads, "OpenMP threads (default: OpenMP's choice)")->check(CLI::Range(1, 1024));
+    app.add_option("--set", sets,
+                   "override a scene key before validation: section.key=value (repeatable)");
+    app.add_option("--threads", threads, "OpenMP threads (default: OpenMP's choice)")
+        ->check(CLI::Range(1, 1024));
     app.add_option("--probes", probes, "write a CSV time,front_x,gauge_<x>... per stored frame");
     app.add_option("--checkpoint-every", checkpointEvery,
-                   "write a checkpoint CACHE.ckpt every N steps (and on SIGINT/SIGTERM); removed when the bake "
+                   "write a checkpoint CACHE.ckpt every N steps (and on SIGINT/SIGTERM); removed "
+                   "when the bake "
                    "completes")
         ->check(CLI::Range(1L, 1000000000L));
     app.add_flag("--resume", resume,
-                 "continue from CACHE.ckpt; the cache is byte-identical to an uninterrupted bake (same scene, "
+                 "continue from CACHE.ckpt; the cache is byte-identical to an uninterrupted bake "
+                 "(same scene, "
                  "--set, --threads and build)");
     app.add_flag("--json", asJson, "print the summary as one JSON object on stdout");
     app.add_flag("-q,--quiet", quiet, "no progress lines");
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
-        if (e.get_exit_code() == 0) return app.exit(e);
+        if (e.get_exit_code() == 0)
+            return app.exit(e);
         std::fprintf(stderr, "swell-bake: %s (see --help)\n", e.what());
         return 2;
     }
-    if (threads > 0) omp_set_num_threads(threads);
+    if (threads > 0)
+        omp_set_num_threads(threads);
     std::signal(SIGINT, onSignal);
     std::signal(SIGTERM, onSignal);
 
@@ -115,7 +176,8 @@ int main(int argc, char** argv) {
         const Scene scene = loadScene(scenePath, sets);
         (void)frameIntervalSteps(scene); // bake-specific scene errors before any warning
         (void)totalSteps(scene);
-        for (const std::string& w : sceneWarnings(scene)) std::fprintf(stderr, "swell-bake: warning: %s\n", w.c_str());
+        for (const std::string& w : sceneWarnings(scene))
+            std::fprintf(stderr, "swell-bake: warning: %s\n", w.c_str());
         BakeOptions opt;
         opt.output = output;
         opt.probes = probes;
@@ -125,51 +187,17 @@ int main(int argc, char** argv) {
         opt.programVersion = SWELL_VERSION;
         opt.checkpointEvery = checkpointEvery;
         opt.resume = resume;
-        if (checkpointEvery > 0 || resume) opt.buildId = fileDigest("/proc/self/exe");
+        if (checkpointEvery > 0 || resume)
+            opt.buildId = fileDigest("/proc/self/exe");
         opt.onProgress = [&](const BakeProgress& p) { progress(p); };
         opt.cancelled = [] { return g_stop != 0; };
         const BakeSummary s = runBake(scene, opt);
-        if (!quiet) {
-            std::fprintf(stderr,
-                         "swell-bake: %s: %zu water + %zu fixed particles, %ld steps, %zu frames; kept per frame "
-                         "%.1f surface + %.1f splash (%.1fx fewer than water); cache %s, %llu bytes (%.2fx); "
-                         "%.1f s wall, %.2f ms/step%s\n",
-                         scene.name.c_str(), s.particlesWater, s.particlesWall, s.steps, s.frames, s.surfaceMean,
-                         s.splashMean, s.reduction, output.c_str(), static_cast<unsigned long long>(s.cacheBytes),
-                         s.cacheBytes ? static_cast<double>(s.rawBytes) / s.cacheBytes : 0.0, s.wallSeconds,
-                         s.msPerStep,
-                         scene.recycling ? fmt::format("; {} particles recycled outflow -> inflow (count conserved)",
-                                                       s.recycled).c_str()
-                                         : "");
-        }
-        if (!quiet && s.resumedFromStep > 0) {
-            std::fprintf(stderr, "swell-bake: resumed from step %ld (checkpoint %s, now removed)\n",
-                         s.resumedFromStep, checkpointPath(output).c_str());
-        }
-        if (asJson) std::printf("%s\n", toJson(s).dump().c_str());
+        if (!quiet)
+            printSummary(scene, s, output);
+        if (asJson)
+            std::printf("%s\n", toJson(s).dump().c_str());
         return 0;
-    } catch (const BakeCancelled& e) {
-        progress.endLine();
-        std::fprintf(stderr, "swell-bake: %s\n", e.what());
-        return 130;
-    } catch (const DivergenceError& e) {
-        progress.endLine();
-        std::fprintf(stderr, "swell-bake: %s; no cache written\n", e.what());
-        return 3;
-    } catch (const SceneError& e) {
-        std::fprintf(stderr, "swell-bake: %s: %s\n", scenePath.c_str(), e.what());
-        return 2;
-    } catch (const CheckpointError& e) {
-        progress.endLine();
-        std::fprintf(stderr, "swell-bake: %s\n", e.what());
-        return 5;
-    } catch (const swell::cache::CacheError& e) {
-        progress.endLine();
-        std::fprintf(stderr, "swell-bake: %s\n", e.what());
-        return 4;
     } catch (const std::exception& e) {
-        progress.endLine();
-        std::fprintf(stderr, "swell-bake: %s\n", e.what());
-        return 1;
+        return reportFailure(e, scenePath, progress);
     }
 }

@@ -82,8 +82,8 @@ int main(int argc, char** argv) {
                  {"ppe_iterations_mean", iterations / steps},
                  {"ppe_iterations_max", maxIterations},
                  {"ppe_residual_max", maxResidual},
-                 {"ppe_tolerance", scene.solver.ppeTolerance},
-                 {"preconditioner", std::string(toString(scene.solver.preconditioner))},
+                 {"ppe_tolerance", scene.solver.pressure.tolerance},
+                 {"preconditioner", std::string(toString(scene.solver.pressure.preconditioner))},
                  {"neighbor_rebuilds_per_step", static_cast<double>(rebuilds) / steps}};
         json ph = json::object();
         for (std::size_t p = 0; p < kPhaseCount; ++p) {

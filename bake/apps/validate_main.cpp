@@ -93,7 +93,7 @@ json damBreak(const Scene& scene, double tEnd, const std::string& csv) {
     }
     out["steps"] = totals.steps;
     out["ppe_iterations_mean"] = totals.steps ? totals.ppeIterations / totals.steps : 0.0;
-    out["ppe_tolerance"] = scene.solver.ppeTolerance;
+    out["ppe_tolerance"] = scene.solver.pressure.tolerance;
     out["solver_seconds"] = totals.seconds;
     return out;
 }
@@ -212,7 +212,7 @@ json regularWave(const Scene& scene, double from, double to, const std::string& 
     out["us_per_particle_step"] =
         1e3 * summary.msPerStep / static_cast<double>(summary.particlesWater + summary.particlesWall);
     out["ppe_iterations_mean"] = summary.ppeIterationsMean;
-    out["ppe_tolerance"] = scene.solver.ppeTolerance;
+    out["ppe_tolerance"] = scene.solver.pressure.tolerance;
     return out;
 }
 
@@ -271,7 +271,7 @@ int main(int argc, char** argv) {
             out = regularWave(loadScene(waveScene, sets), waveFrom, waveTo, keep);
         } else {
             const Scene scene = loadScene(stillScene, sets);
-            if (steps < 0) steps = std::lround(scene.solver.endTime / scene.solver.dt);
+            if (steps < 0) steps = std::lround(scene.run.endTime / scene.solver.time.dt);
             out = stillTank(scene, settle, steps, trace);
         }
         out["wall_seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

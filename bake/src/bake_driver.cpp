@@ -128,24 +128,24 @@ void removeStaleTemporaries(const std::filesystem::path& output) {
 } // namespace
 
 long frameIntervalSteps(const Scene& scene) {
-    if (scene.solver.adaptiveDt) {
+    if (scene.solver.time.adaptive) {
         throw SceneError("solver.adaptive_dt", "swell-bake needs a fixed time step (stored frames are evenly spaced in "
                                                "steps); set it to false");
     }
-    const double ratio = scene.output.frameInterval / scene.solver.dt;
+    const double ratio = scene.output.frameInterval / scene.solver.time.dt;
     const double k = std::round(ratio);
     if (k < 1.0 || std::abs(ratio - k) > 1e-6 * k) {
         throw SceneError("output.frame_interval", fmt::format("{} s is not a whole number of time steps dt = {} s",
-                                                              scene.output.frameInterval, scene.solver.dt));
+                                                              scene.output.frameInterval, scene.solver.time.dt));
     }
     return static_cast<long>(k);
 }
 
 long totalSteps(const Scene& scene) {
-    const double k = std::round(scene.solver.endTime / scene.solver.dt);
+    const double k = std::round(scene.run.endTime / scene.solver.time.dt);
     if (k < 1.0 || k > 1e9) {
         throw SceneError("solver.end_time", fmt::format("{} s is {} steps of dt = {} s: must be 1 to 1e9",
-                                                        scene.solver.endTime, k, scene.solver.dt));
+                                                        scene.run.endTime, k, scene.solver.time.dt));
     }
     return static_cast<long>(k);
 }
@@ -253,12 +253,12 @@ BakeSummary runBake(const Scene& scene, const BakeOptions& opt) {
     const double n0 = solver.densityConstants().n0;
     const double d1 = scene.output.splashRatio, d2 = scene.output.surfaceRatio;
 
-    // Header: everything needed to reproduce the bake (issue 4, "Classification and caches").
+    // Header: everything needed to reproduce the bake (docs/cache-format.md).
     cache::Header header;
     const Box& dom = solver.domain();
     header.domain = cache::Domain{static_cast<float>(dom.x0), static_cast<float>(dom.y0), static_cast<float>(dom.x1),
                                   static_cast<float>(dom.y1)};
-    header.dt = scene.solver.dt;
+    header.dt = scene.solver.time.dt;
     header.frameInterval = static_cast<std::uint32_t>(interval);
     header.seed = scene.seed;
     const json meta{{"program", "swell-bake"},
@@ -268,7 +268,7 @@ BakeSummary runBake(const Scene& scene, const BakeOptions& opt) {
                     {"scene", toJson(scene)},
                     {"seed", scene.seed},
                     {"threads", opt.threads},
-                    {"dt", scene.solver.dt},
+                    {"dt", scene.solver.time.dt},
                     {"steps", steps},
                     {"frame_interval_steps", interval},
                     {"n0", n0},
@@ -279,7 +279,7 @@ BakeSummary runBake(const Scene& scene, const BakeOptions& opt) {
                     {"replay", toJson(sum.replay)}};
     header.metadataJson = meta.dump();
 
-    // Checkpoints (issue 4): what a resume must match is everything the cache records, plus
+    // Checkpoints (docs/scenes.md "Checkpoints"): what a resume must match is everything the cache records, plus
     // the build of the program (a different build may step differently).
     const std::filesystem::path ckptPath = checkpointPath(opt.output);
     const std::string fingerprint = json{{"cache_metadata", meta}, {"build", opt.buildId}}.dump();

@@ -1,4 +1,4 @@
-// MpsSolver::exportState / importState (issue 4, checkpoint / resume). Kept apart from the
+// MpsSolver::exportState / importState (checkpoint / resume, docs/scenes.md "Checkpoints"). Kept apart from the
 // numerics in mps_solver.cpp: plain copies of the state that survives from step to step.
 #include <cmath>
 #include <stdexcept>

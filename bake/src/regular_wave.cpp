@@ -47,7 +47,7 @@ WaveWindow regularWaveWindow(const Scene& scene) {
     WaveWindow win;
     win.start = p.rampTime + (*gMax - tank.x0) / cg + p.period;
     const double reflected = (2.0 * (tank.x1 - tank.x0) - (*gMin - tank.x0)) / cg;
-    win.end = std::min(scene.solver.endTime, reflected);
+    win.end = std::min(scene.run.endTime, reflected);
     return win;
 }
 

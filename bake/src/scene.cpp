@@ -21,7 +21,8 @@ using nlohmann::json;
 class Section {
 public:
     Section(const json& j, std::string path) : m_json(j), m_path(std::move(path)) {
-        if (!m_json.is_object()) throw SceneError(m_path, "must be a JSON object");
+        if (!m_json.is_object())
+            throw SceneError(m_path, "must be a JSON object");
     }
 
     std::string key(const std::string& k) const { return m_path.empty() ? k : m_path + "." + k; }
@@ -37,11 +38,14 @@ public:
     double number(const std::string& k, double def, double lo, double hi, bool loOpen = false,
                   const char* unit = "") {
         const json* v = get(k);
-        if (!v) return def;
-        if (!v->is_number()) throw SceneError(key(k), fmt::format("must be a number{}, got {}", unit, v->dump()));
+        if (!v)
+            return def;
+        if (!v->is_number())
+            throw SceneError(key(k), fmt::format("must be a number{}, got {}", unit, v->dump()));
         const double x = v->get<double>();
         if (!std::isfinite(x) || x < lo || x > hi || (loOpen && x == lo)) {
-            throw SceneError(key(k), fmt::format("{} is out of range: must be {} {}{}", x, loOpen ? ">" : ">=", lo,
+            throw SceneError(key(k), fmt::format("{} is out of range: must be {} {}{}", x,
+                                                 loOpen ? ">" : ">=", lo,
                                                  hi < std::numeric_limits<double>::max()
                                                      ? fmt::format(" and <= {}", hi)
                                                      : std::string()));
@@ -51,46 +55,58 @@ public:
 
     int integer(const std::string& k, int def, int lo, int hi) {
         const json* v = get(k);
-        if (!v) return def;
-        if (!v->is_number_integer()) throw SceneError(key(k), fmt::format("must be an integer, got {}", v->dump()));
+        if (!v)
+            return def;
+        if (!v->is_number_integer())
+            throw SceneError(key(k), fmt::format("must be an integer, got {}", v->dump()));
         const auto x = v->get<long long>();
         if (x < lo || x > hi) {
-            throw SceneError(key(k), fmt::format("{} is out of range: must be in [{}, {}]", x, lo, hi));
+            throw SceneError(key(k),
+                             fmt::format("{} is out of range: must be in [{}, {}]", x, lo, hi));
         }
         return static_cast<int>(x);
     }
 
     bool boolean(const std::string& k, bool def) {
         const json* v = get(k);
-        if (!v) return def;
-        if (!v->is_boolean()) throw SceneError(key(k), fmt::format("must be true or false, got {}", v->dump()));
+        if (!v)
+            return def;
+        if (!v->is_boolean())
+            throw SceneError(key(k), fmt::format("must be true or false, got {}", v->dump()));
         return v->get<bool>();
     }
 
     std::string string(const std::string& k, const std::string& def) {
         const json* v = get(k);
-        if (!v) return def;
-        if (!v->is_string()) throw SceneError(key(k), fmt::format("must be a string, got {}", v->dump()));
+        if (!v)
+            return def;
+        if (!v->is_string())
+            throw SceneError(key(k), fmt::format("must be a string, got {}", v->dump()));
         return v->get<std::string>();
     }
 
     template <typename E>
     E enumeration(const std::string& k, E def, std::initializer_list<E> values) {
         const json* v = get(k);
-        if (!v) return def;
+        if (!v)
+            return def;
         std::string names;
-        for (E e : values) names += (names.empty() ? "\"" : ", \"") + std::string(toString(e)) + "\"";
-        if (!v->is_string()) throw SceneError(key(k), fmt::format("must be one of {}, got {}", names, v->dump()));
+        for (E e : values)
+            names += (names.empty() ? "\"" : ", \"") + std::string(toString(e)) + "\"";
+        if (!v->is_string())
+            throw SceneError(key(k), fmt::format("must be one of {}, got {}", names, v->dump()));
         const auto s = v->get<std::string>();
         for (E e : values) {
-            if (toString(e) == s) return e;
+            if (toString(e) == s)
+                return e;
         }
         throw SceneError(key(k), fmt::format("unknown value \"{}\": must be one of {}", s, names));
     }
 
     void finish() const {
         for (const auto& [k, v] : m_json.items()) {
-            if (!m_used.count(k)) throw SceneError(key(k), "unknown key");
+            if (!m_used.count(k))
+                throw SceneError(key(k), "unknown key");
         }
     }
 
@@ -106,35 +122,45 @@ Box readBox(const json& j, const std::string& path) {
     Section s(j, path);
     Box b;
     for (const char* k : {"x0", "y0", "x1", "y1"}) {
-        if (!s.has(k)) throw SceneError(s.key(k), "missing (a rectangle needs x0, y0, x1, y1 in m)");
+        if (!s.has(k))
+            throw SceneError(s.key(k), "missing (a rectangle needs x0, y0, x1, y1 in m)");
     }
     b.x0 = s.number("x0", 0.0, -kInf, kInf, false, " (m)");
     b.y0 = s.number("y0", 0.0, -kInf, kInf, false, " (m)");
     b.x1 = s.number("x1", 0.0, -kInf, kInf, false, " (m)");
     b.y1 = s.number("y1", 0.0, -kInf, kInf, false, " (m)");
     s.finish();
-    if (!(b.x1 > b.x0)) throw SceneError(path, fmt::format("empty rectangle: x1 = {} must exceed x0 = {}", b.x1, b.x0));
-    if (!(b.y1 > b.y0)) throw SceneError(path, fmt::format("empty rectangle: y1 = {} must exceed y0 = {}", b.y1, b.y0));
+    if (!(b.x1 > b.x0))
+        throw SceneError(path,
+                         fmt::format("empty rectangle: x1 = {} must exceed x0 = {}", b.x1, b.x0));
+    if (!(b.y1 > b.y0))
+        throw SceneError(path,
+                         fmt::format("empty rectangle: y1 = {} must exceed y0 = {}", b.y1, b.y0));
     return b;
 }
 
 std::vector<Box> readBoxes(Section& parent, const std::string& k) {
     std::vector<Box> out;
     const json* v = parent.get(k);
-    if (!v) return out;
-    if (!v->is_array()) throw SceneError(parent.key(k), "must be an array of rectangles {x0, y0, x1, y1}");
+    if (!v)
+        return out;
+    if (!v->is_array())
+        throw SceneError(parent.key(k), "must be an array of rectangles {x0, y0, x1, y1}");
     for (std::size_t i = 0; i < v->size(); ++i) {
         out.push_back(readBox((*v)[i], fmt::format("{}[{}]", parent.key(k), i)));
     }
     return out;
 }
 
-json boxJson(const Box& b) { return json{{"x0", b.x0}, {"y0", b.y0}, {"x1", b.x1}, {"y1", b.y1}}; }
+json boxJson(const Box& b) {
+    return json{{"x0", b.x0}, {"y0", b.y0}, {"x1", b.x1}, {"y1", b.y1}};
+}
 
 } // namespace
 
 double expectedSpeed(const Scene& scene) {
-    if (scene.solver.expectedSpeed > 0.0) return scene.solver.expectedSpeed;
+    if (scene.run.expectedSpeed > 0.0)
+        return scene.run.expectedSpeed;
     double lo = kInf, hi = -kInf;
     for (const Box& b : scene.geometry.water) {
         lo = std::min(lo, b.y0);
@@ -151,7 +177,8 @@ Scene parseScene(const json& j) {
     scene.description = top.string("description", "");
     if (const json* sd = top.get("seed")) {
         if (!sd->is_number_unsigned() && !(sd->is_number_integer() && sd->get<long long>() >= 0)) {
-            throw SceneError("seed", fmt::format("must be a non-negative integer, got {}", sd->dump()));
+            throw SceneError("seed",
+                             fmt::format("must be a non-negative integer, got {}", sd->dump()));
         }
         scene.seed = sd->get<std::uint64_t>();
     }
@@ -162,53 +189,73 @@ Scene parseScene(const json& j) {
         Section s(phys ? *phys : kEmpty, "physics");
         PhysicsParams& p = scene.physics;
         p.density = s.number("density", p.density, 0.0, kInf, true, " (kg/m^3)");
-        p.kinematicViscosity = s.number("kinematic_viscosity", p.kinematicViscosity, 0.0, kInf, false, " (m^2/s)");
+        p.kinematicViscosity =
+            s.number("kinematic_viscosity", p.kinematicViscosity, 0.0, kInf, false, " (m^2/s)");
         p.gravity = s.number("gravity", p.gravity, 0.0, kInf, false, " (m/s^2)");
         s.finish();
     }
     const json* geo = top.get("geometry");
-    if (!geo) throw SceneError("geometry", "missing: a scene needs at least one water rectangle");
+    if (!geo)
+        throw SceneError("geometry", "missing: a scene needs at least one water rectangle");
     {
         Section s(*geo, "geometry");
         GeometryParams& g = scene.geometry;
-        g.particleSpacing = s.number("particle_spacing", g.particleSpacing, 0.0, kInf, true, " (m)");
-        if (const json* t = s.get("tank")) g.tank = readBox(*t, "geometry.tank");
-        if (!s.has("water")) throw SceneError("geometry.water", "missing: a scene needs at least one water rectangle");
+        g.particleSpacing =
+            s.number("particle_spacing", g.particleSpacing, 0.0, kInf, true, " (m)");
+        if (const json* t = s.get("tank"))
+            g.tank = readBox(*t, "geometry.tank");
+        if (!s.has("water"))
+            throw SceneError("geometry.water",
+                             "missing: a scene needs at least one water rectangle");
         g.water = readBoxes(s, "water");
-        if (g.water.empty()) throw SceneError("geometry.water", "is empty: a scene needs at least one water rectangle");
+        if (g.water.empty())
+            throw SceneError("geometry.water",
+                             "is empty: a scene needs at least one water rectangle");
         g.solids = readBoxes(s, "solids");
         g.wallLayers = s.integer("wall_layers", g.wallLayers, 1, 10);
         g.dummyLayers = s.integer("dummy_layers", g.dummyLayers, 0, 10);
-        if (const json* d = s.get("domain")) g.domain = readBox(*d, "geometry.domain");
+        if (const json* d = s.get("domain"))
+            g.domain = readBox(*d, "geometry.domain");
         s.finish();
     }
     const json* sol = top.get("solver");
     {
         Section s(sol ? *sol : kEmpty, "solver");
         SolverParams& p = scene.solver;
-        p.dt = s.number("dt", p.dt, 0.0, kInf, true, " (s)");
-        p.endTime = s.number("end_time", p.endTime, 0.0, kInf, true, " (s)");
-        p.adaptiveDt = s.boolean("adaptive_dt", p.adaptiveDt);
-        p.courantTarget = s.number("courant_target", p.courantTarget, 0.0, 1.0, true);
-        p.courantLimit = s.number("courant_limit", p.courantLimit, 0.0, 2.0, true);
-        p.expectedSpeed = s.number("expected_speed", p.expectedSpeed, 0.0, kInf, false, " (m/s)");
-        p.reDensity = s.number("re_density", p.reDensity, 1.0, 10.0, true, " (l0)");
-        p.reLaplacian = s.number("re_laplacian", p.reLaplacian, 1.0, 10.0, true, " (l0)");
-        p.surfaceThreshold = s.number("surface_threshold", p.surfaceThreshold, 0.0, 1.0, true);
-        p.relaxation = s.number("relaxation", p.relaxation, 0.0, 1.0, true);
-        p.compressibility = s.number("compressibility", p.compressibility, 0.0, kInf, false, " (1/Pa)");
-        p.collisionDistance = s.number("collision_distance", p.collisionDistance, 0.0, 1.0, false, " (l0)");
-        p.restitution = s.number("restitution", p.restitution, 0.0, 1.0);
-        p.sourceTerm = s.enumeration("source_term", p.sourceTerm, {SourceTerm::Relaxed, SourceTerm::Mixed});
-        p.gradientCorrection = s.boolean("gradient_correction", p.gradientCorrection);
-        p.symmetricGradient = s.boolean("symmetric_gradient", p.symmetricGradient);
-        p.preconditioner = s.enumeration("preconditioner", p.preconditioner,
-                                         {Preconditioner::Jacobi, Preconditioner::SymmetricGaussSeidel,
-                                          Preconditioner::IncompleteCholesky, Preconditioner::TwoLevel});
-        p.ppeTolerance = s.number("ppe_tolerance", p.ppeTolerance, 0.0, 0.5, true);
-        p.ppeMaxIterations = s.integer("ppe_max_iterations", p.ppeMaxIterations, 1, 1000000);
-        p.neighborSkin = s.number("neighbor_skin", p.neighborSkin, 0.0, 2.0, false, " (l0)");
-        p.maxNeighbors = s.integer("max_neighbors", p.maxNeighbors, 8, 1024);
+        TimeStepParams& t = p.time;
+        ModelParams& m = p.model;
+        PressureParams& e = p.pressure;
+        NeighborParams& nb = p.neighbors;
+        RunParams& run = scene.run;
+        t.dt = s.number("dt", t.dt, 0.0, kInf, true, " (s)");
+        run.endTime = s.number("end_time", run.endTime, 0.0, kInf, true, " (s)");
+        t.adaptive = s.boolean("adaptive_dt", t.adaptive);
+        t.courantTarget = s.number("courant_target", t.courantTarget, 0.0, 1.0, true);
+        t.courantLimit = s.number("courant_limit", t.courantLimit, 0.0, 2.0, true);
+        run.expectedSpeed =
+            s.number("expected_speed", run.expectedSpeed, 0.0, kInf, false, " (m/s)");
+        m.reDensity = s.number("re_density", m.reDensity, 1.0, 10.0, true, " (l0)");
+        m.reLaplacian = s.number("re_laplacian", m.reLaplacian, 1.0, 10.0, true, " (l0)");
+        m.surfaceThreshold = s.number("surface_threshold", m.surfaceThreshold, 0.0, 1.0, true);
+        e.relaxation = s.number("relaxation", e.relaxation, 0.0, 1.0, true);
+        e.compressibility =
+            s.number("compressibility", e.compressibility, 0.0, kInf, false, " (1/Pa)");
+        m.collisionDistance =
+            s.number("collision_distance", m.collisionDistance, 0.0, 1.0, false, " (l0)");
+        m.restitution = s.number("restitution", m.restitution, 0.0, 1.0);
+        e.sourceTerm =
+            s.enumeration("source_term", e.sourceTerm, {SourceTerm::Relaxed, SourceTerm::Mixed});
+        const bool corrected = s.boolean("gradient_correction", usesCorrectiveMatrix(m.gradient));
+        const bool symmetric = s.boolean("symmetric_gradient", usesSymmetricPairs(m.gradient));
+        m.gradient = gradientModel(symmetric, corrected);
+        e.preconditioner =
+            s.enumeration("preconditioner", e.preconditioner,
+                          {Preconditioner::Jacobi, Preconditioner::SymmetricGaussSeidel,
+                           Preconditioner::IncompleteCholesky, Preconditioner::TwoLevel});
+        e.tolerance = s.number("ppe_tolerance", e.tolerance, 0.0, 0.5, true);
+        e.maxIterations = s.integer("ppe_max_iterations", e.maxIterations, 1, 1000000);
+        nb.skin = s.number("neighbor_skin", nb.skin, 0.0, 2.0, false, " (l0)");
+        nb.maxNeighbors = s.integer("max_neighbors", nb.maxNeighbors, 8, 1024);
         s.finish();
     }
     const json* outp = top.get("output");
@@ -219,11 +266,13 @@ Scene parseScene(const json& j) {
         o.splashRatio = s.number("splash_ratio", o.splashRatio, 0.0, 1.0, true);
         o.surfaceRatio = s.number("surface_ratio", o.surfaceRatio, 0.0, 1.0, true);
         if (const json* g = s.get("gauges")) {
-            if (!g->is_array()) throw SceneError("output.gauges", "must be an array of x positions (m)");
+            if (!g->is_array())
+                throw SceneError("output.gauges", "must be an array of x positions (m)");
             for (std::size_t i = 0; i < g->size(); ++i) {
                 const json& v = (*g)[i];
                 if (!v.is_number() || !std::isfinite(v.get<double>())) {
-                    throw SceneError(fmt::format("output.gauges[{}]", i), fmt::format("must be a number (m), got {}", v.dump()));
+                    throw SceneError(fmt::format("output.gauges[{}]", i),
+                                     fmt::format("must be a number (m), got {}", v.dump()));
                 }
                 o.gauges.push_back(v.get<double>());
             }
@@ -233,8 +282,9 @@ Scene parseScene(const json& j) {
         }
         s.finish();
         if (!(o.splashRatio < o.surfaceRatio)) {
-            throw SceneError("output.splash_ratio", fmt::format("d1 = {} must be below output.surface_ratio d2 = {}",
-                                                                o.splashRatio, o.surfaceRatio));
+            throw SceneError("output.splash_ratio",
+                             fmt::format("d1 = {} must be below output.surface_ratio d2 = {}",
+                                         o.splashRatio, o.surfaceRatio));
         }
     }
     if (const json* pj = top.get("piston")) {
@@ -250,20 +300,23 @@ Scene parseScene(const json& j) {
         p.rampTime = s.number("ramp_time", p.rampTime, 0.0, kInf, false, " (s)");
         s.finish();
         p.seed = scene.seed;
-        if (!scene.geometry.tank) throw SceneError("piston", "needs geometry.tank: the piston is the tank's back wall");
+        if (!scene.geometry.tank)
+            throw SceneError("piston", "needs geometry.tank: the piston is the tank's back wall");
         try {
-            (void)PistonMotion(p, scene.solver.endTime);
+            (void)PistonMotion(p, scene.run.endTime);
         } catch (const std::invalid_argument& e) {
             const std::string what = e.what(); // "piston.<field>: problem"
             const auto colon = what.find(':');
-            throw SceneError(what.substr(0, colon), colon == std::string::npos ? what : what.substr(colon + 2));
+            throw SceneError(what.substr(0, colon),
+                             colon == std::string::npos ? what : what.substr(colon + 2));
         }
         const bool sinus = p.kind == PistonKind::Sinusoidal;
         const double forward = sinus ? 0.5 * p.stroke : p.strokeMax;
         if (forward >= 0.5 * scene.geometry.tank->width()) {
-            throw SceneError(sinus ? "piston.stroke" : "piston.stroke_max",
-                             fmt::format("the piston would travel {} m, at least half the tank width {} m", forward,
-                                         scene.geometry.tank->width()));
+            throw SceneError(
+                sinus ? "piston.stroke" : "piston.stroke_max",
+                fmt::format("the piston would travel {} m, at least half the tank width {} m",
+                            forward, scene.geometry.tank->width()));
         }
         // Room behind the back wall for a piston that moves back (sinusoidal: S/2).
         scene.geometry.bedExtensionBack = sinus ? 0.5 * p.stroke : 0.0;
@@ -276,27 +329,32 @@ Scene parseScene(const json& j) {
         r.velocity = s.number("velocity", r.velocity, -kInf, kInf, false, " (m/s)");
         r.outflowX = s.number("outflow_x", r.outflowX, -kInf, kInf, false, " (m)");
         s.finish();
-        if (!scene.geometry.tank) throw SceneError("recycling", "needs geometry.tank (the channel)");
+        if (!scene.geometry.tank)
+            throw SceneError("recycling", "needs geometry.tank (the channel)");
         const Box& t = *scene.geometry.tank;
         const double l0 = scene.geometry.particleSpacing;
         if (!(r.inflowX1 >= t.x0 + 2.0 * l0)) {
-            throw SceneError("recycling.inflow_x1", fmt::format("{} m must be at least two spacings past the tank's "
-                                                                "back wall x0 = {} m", r.inflowX1, t.x0));
+            throw SceneError("recycling.inflow_x1",
+                             fmt::format("{} m must be at least two spacings past the tank's "
+                                         "back wall x0 = {} m",
+                                         r.inflowX1, t.x0));
         }
         if (!(r.outflowX > r.inflowX1 && r.outflowX <= t.x1 - l0)) {
-            throw SceneError("recycling.outflow_x", fmt::format("{} m must lie between inflow_x1 = {} m and the "
-                                                                "front wall x1 - l0 = {} m", r.outflowX, r.inflowX1,
-                                                                t.x1 - l0));
+            throw SceneError("recycling.outflow_x",
+                             fmt::format("{} m must lie between inflow_x1 = {} m and the "
+                                         "front wall x1 - l0 = {} m",
+                                         r.outflowX, r.inflowX1, t.x1 - l0));
         }
-        if (scene.piston) throw SceneError("recycling", "a scene has either a piston or recycling, not both");
+        if (scene.piston)
+            throw SceneError("recycling", "a scene has either a piston or recycling, not both");
         scene.recycling = r;
     }
     for (std::size_t i = 0; i < scene.output.gauges.size(); ++i) {
         const double x = scene.output.gauges[i];
         if (scene.geometry.tank && (x < scene.geometry.tank->x0 || x > scene.geometry.tank->x1)) {
             throw SceneError(fmt::format("output.gauges[{}]", i),
-                             fmt::format("x = {} m lies outside the tank [{}, {}] m", x, scene.geometry.tank->x0,
-                                         scene.geometry.tank->x1));
+                             fmt::format("x = {} m lies outside the tank [{}, {}] m", x,
+                                         scene.geometry.tank->x0, scene.geometry.tank->x1));
         }
     }
     top.finish();
@@ -306,20 +364,24 @@ Scene parseScene(const json& j) {
 
     // Time step against the Courant limit for the expected speed.
     const double speed = expectedSpeed(scene);
-    const double courant = speed * scene.solver.dt / scene.geometry.particleSpacing;
-    if (!scene.solver.adaptiveDt && courant > scene.solver.courantLimit) {
-        throw SceneError("solver.dt", fmt::format("dt = {} s gives Courant number {:.3g} = {:.3g} m/s x dt / {} m at "
-                                                  "the expected speed, above solver.courant_limit {}; use dt <= {:.3g} s "
-                                                  "or solver.adaptive_dt", scene.solver.dt, courant, speed,
-                                                  scene.geometry.particleSpacing, scene.solver.courantLimit,
-                                                  scene.solver.courantLimit * scene.geometry.particleSpacing / speed));
+    const TimeStepParams& time = scene.solver.time;
+    const double courant = speed * time.dt / scene.geometry.particleSpacing;
+    if (!time.adaptive && courant > time.courantLimit) {
+        throw SceneError(
+            "solver.dt",
+            fmt::format("dt = {} s gives Courant number {:.3g} = {:.3g} m/s x dt / {} m at "
+                        "the expected speed, above solver.courant_limit {}; use dt <= {:.3g} s "
+                        "or solver.adaptive_dt",
+                        time.dt, courant, speed, scene.geometry.particleSpacing, time.courantLimit,
+                        time.courantLimit * scene.geometry.particleSpacing / speed));
     }
     return scene;
 }
 
 Scene loadScene(const std::filesystem::path& path, const std::vector<std::string>& overrides) {
     std::ifstream in(path);
-    if (!in) throw SceneError("", fmt::format("cannot open scene file {}", path.string()));
+    if (!in)
+        throw SceneError("", fmt::format("cannot open scene file {}", path.string()));
     std::stringstream buffer;
     buffer << in.rdbuf();
     json j;
@@ -336,63 +398,93 @@ Scene loadScene(const std::filesystem::path& path, const std::vector<std::string
 json toJson(const Scene& sc) {
     const GeometryParams& g = sc.geometry;
     json water = json::array();
-    for (const Box& b : g.water) water.push_back(boxJson(b));
+    for (const Box& b : g.water)
+        water.push_back(boxJson(b));
     json solids = json::array();
-    for (const Box& b : g.solids) solids.push_back(boxJson(b));
-    json geo{{"particle_spacing", g.particleSpacing}, {"water", water}, {"solids", solids},
-             {"wall_layers", g.wallLayers}, {"dummy_layers", g.dummyLayers}};
-    if (g.tank) geo["tank"] = boxJson(*g.tank);
-    if (g.domain) geo["domain"] = boxJson(*g.domain);
+    for (const Box& b : g.solids)
+        solids.push_back(boxJson(b));
+    json geo{{"particle_spacing", g.particleSpacing},
+             {"water", water},
+             {"solids", solids},
+             {"wall_layers", g.wallLayers},
+             {"dummy_layers", g.dummyLayers}};
+    if (g.tank)
+        geo["tank"] = boxJson(*g.tank);
+    if (g.domain)
+        geo["domain"] = boxJson(*g.domain);
     const SolverParams& s = sc.solver;
-    json output{{"frame_interval", sc.output.frameInterval}, {"splash_ratio", sc.output.splashRatio},
-                {"surface_ratio", sc.output.surfaceRatio}, {"gauges", sc.output.gauges}};
-    if (sc.output.stillWaterLevel) output["still_water_level"] = *sc.output.stillWaterLevel;
+    json output{{"frame_interval", sc.output.frameInterval},
+                {"splash_ratio", sc.output.splashRatio},
+                {"surface_ratio", sc.output.surfaceRatio},
+                {"gauges", sc.output.gauges}};
+    if (sc.output.stillWaterLevel)
+        output["still_water_level"] = *sc.output.stillWaterLevel;
     json out{
         {"name", sc.name},
         {"description", sc.description},
-        {"physics", {{"density", sc.physics.density}, {"kinematic_viscosity", sc.physics.kinematicViscosity},
-                     {"gravity", sc.physics.gravity}}},
+        {"physics",
+         {{"density", sc.physics.density},
+          {"kinematic_viscosity", sc.physics.kinematicViscosity},
+          {"gravity", sc.physics.gravity}}},
         {"geometry", geo},
-        {"solver", {{"dt", s.dt}, {"end_time", s.endTime}, {"adaptive_dt", s.adaptiveDt},
-                    {"courant_target", s.courantTarget}, {"courant_limit", s.courantLimit},
-                    {"expected_speed", s.expectedSpeed}, {"re_density", s.reDensity},
-                    {"re_laplacian", s.reLaplacian}, {"surface_threshold", s.surfaceThreshold},
-                    {"relaxation", s.relaxation}, {"compressibility", s.compressibility},
-                    {"collision_distance", s.collisionDistance}, {"restitution", s.restitution},
-                    {"source_term", std::string(toString(s.sourceTerm))},
-                    {"gradient_correction", s.gradientCorrection},
-                    {"symmetric_gradient", s.symmetricGradient},
-                    {"preconditioner", std::string(toString(s.preconditioner))},
-                    {"ppe_tolerance", s.ppeTolerance}, {"ppe_max_iterations", s.ppeMaxIterations},
-                    {"neighbor_skin", s.neighborSkin}, {"max_neighbors", s.maxNeighbors}}},
+        {"solver",
+         {{"dt", s.time.dt},
+          {"end_time", sc.run.endTime},
+          {"adaptive_dt", s.time.adaptive},
+          {"courant_target", s.time.courantTarget},
+          {"courant_limit", s.time.courantLimit},
+          {"expected_speed", sc.run.expectedSpeed},
+          {"re_density", s.model.reDensity},
+          {"re_laplacian", s.model.reLaplacian},
+          {"surface_threshold", s.model.surfaceThreshold},
+          {"relaxation", s.pressure.relaxation},
+          {"compressibility", s.pressure.compressibility},
+          {"collision_distance", s.model.collisionDistance},
+          {"restitution", s.model.restitution},
+          {"source_term", std::string(toString(s.pressure.sourceTerm))},
+          {"gradient_correction", usesCorrectiveMatrix(s.model.gradient)},
+          {"symmetric_gradient", usesSymmetricPairs(s.model.gradient)},
+          {"preconditioner", std::string(toString(s.pressure.preconditioner))},
+          {"ppe_tolerance", s.pressure.tolerance},
+          {"ppe_max_iterations", s.pressure.maxIterations},
+          {"neighbor_skin", s.neighbors.skin},
+          {"max_neighbors", s.neighbors.maxNeighbors}}},
         {"output", output},
         {"seed", sc.seed},
     };
     if (sc.piston) {
         const PistonParams& p = *sc.piston;
-        out["piston"] = json{{"kind", std::string(toString(p.kind))}, {"period", p.period}, {"stroke", p.stroke},
-                             {"period_min", p.periodMin}, {"period_max", p.periodMax},
-                             {"stroke_min", p.strokeMin}, {"stroke_max", p.strokeMax},
+        out["piston"] = json{{"kind", std::string(toString(p.kind))},
+                             {"period", p.period},
+                             {"stroke", p.stroke},
+                             {"period_min", p.periodMin},
+                             {"period_max", p.periodMax},
+                             {"stroke_min", p.strokeMin},
+                             {"stroke_max", p.strokeMax},
                              {"ramp_time", p.rampTime}};
     }
     if (sc.recycling) {
         const RecyclingParams& r = *sc.recycling;
-        out["recycling"] = json{{"inflow_x1", r.inflowX1}, {"velocity", r.velocity}, {"outflow_x", r.outflowX}};
+        out["recycling"] =
+            json{{"inflow_x1", r.inflowX1}, {"velocity", r.velocity}, {"outflow_x", r.outflowX}};
     }
     return out;
 }
 
 double stillWaterLevel(const Scene& scene) {
-    if (scene.output.stillWaterLevel) return *scene.output.stillWaterLevel;
+    if (scene.output.stillWaterLevel)
+        return *scene.output.stillWaterLevel;
     double top = -kInf;
-    for (const Box& b : scene.geometry.water) top = std::max(top, b.y1);
+    for (const Box& b : scene.geometry.water)
+        top = std::max(top, b.y1);
     return top;
 }
 
 void applyOverride(json& j, const std::string& assignment) {
     const auto eq = assignment.find('=');
     if (eq == std::string::npos || eq == 0) {
-        throw SceneError("", fmt::format("override \"{}\" must look like section.key=value", assignment));
+        throw SceneError(
+            "", fmt::format("override \"{}\" must look like section.key=value", assignment));
     }
     const std::string path = assignment.substr(0, eq);
     const std::string text = assignment.substr(eq + 1);
@@ -406,34 +498,39 @@ void applyOverride(json& j, const std::string& assignment) {
     std::size_t start = 0;
     while (true) {
         const auto dot = path.find('.', start);
-        const std::string part = path.substr(start, dot == std::string::npos ? std::string::npos : dot - start);
-        if (part.empty()) throw SceneError(path, "empty key in override");
-        if (!node->is_object()) throw SceneError(path, "override goes through a value that is not an object");
+        const std::string part =
+            path.substr(start, dot == std::string::npos ? std::string::npos : dot - start);
+        if (part.empty())
+            throw SceneError(path, "empty key in override");
+        if (!node->is_object())
+            throw SceneError(path, "override goes through a value that is not an object");
         if (dot == std::string::npos) {
             (*node)[part] = value;
             return;
         }
         node = &(*node)[part];
-        if (node->is_null()) *node = json::object();
+        if (node->is_null())
+            *node = json::object();
         start = dot + 1;
     }
 }
 
 MpsSolver makeSolver(const Scene& scene) {
     GeneratedGeometry geo = generateGeometry(scene.geometry);
-    MpsSolver solver(scene.physics, scene.solver, std::move(geo.particles), scene.geometry.particleSpacing,
-                     geo.domain);
+    MpsSolver solver(scene.physics, scene.solver, std::move(geo.particles),
+                     scene.geometry.particleSpacing, geo.domain);
     if (scene.piston) {
         // Paper Sec. 3.3.1: the pushing wall (the tank's back wall) moves back and forth.
-        PistonMotion motion(*scene.piston, scene.solver.endTime);
-        solver.setMovingWall(MovingWall{std::move(geo.backWall),
-                                        [motion](double t) { return motion.at(t); }});
+        PistonMotion motion(*scene.piston, scene.run.endTime);
+        solver.setMovingWall(
+            MovingWall{std::move(geo.backWall), [motion](double t) { return motion.at(t); }});
     }
     if (scene.recycling) {
         // Paper Sec. 3.3.2: inflow zone at the channel's upstream end (the driver recycles).
         const Box& t = *scene.geometry.tank;
         const Box& d = solver.domain();
-        solver.setInflow(Box{t.x0, d.y0, scene.recycling->inflowX1, d.y1}, scene.recycling->velocity);
+        solver.setInflow(Box{t.x0, d.y0, scene.recycling->inflowX1, d.y1},
+                         scene.recycling->velocity);
     }
     return solver;
 }

@@ -12,35 +12,17 @@
 #include <gtest/gtest.h>
 #include <iterator>
 #include <string>
-#include <unistd.h>
 #include <vector>
 #include <xxhash.h>
+
+#include "temp_dir.h"
 
 namespace swell::cache::testing {
 
 namespace fs = std::filesystem;
 
-/// A fresh folder under the system temp dir, removed at scope exit.
-class TempDir {
-public:
-    TempDir() {
-        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        m_path = fs::temp_directory_path() /
-                 ("swell-" + std::string(info ? info->name() : "test") + "-" +
-                  std::to_string(::getpid()));
-        fs::remove_all(m_path);
-        fs::create_directories(m_path);
-    }
-    ~TempDir() {
-        std::error_code ec;
-        fs::remove_all(m_path, ec);
-    }
-    fs::path operator/(const std::string& name) const { return m_path / name; }
-    const fs::path& path() const { return m_path; }
-
-private:
-    fs::path m_path;
-};
+/// A fresh folder (tests/support/temp_dir.h), removed at scope exit.
+using swell::test::TempDir;
 
 inline std::vector<std::uint8_t> readBytes(const fs::path& p) {
     std::ifstream in(p, std::ios::binary);

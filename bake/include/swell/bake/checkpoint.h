@@ -1,5 +1,5 @@
 #pragma once
-// Checkpoints of a long bake (issue 4; docs/scenes.md, "Checkpoints"): everything a bake
+// Checkpoints of a long bake (docs/scenes.md, "Checkpoints"): everything a bake
 // needs to continue as if it had never stopped, in one self-contained file written
 // atomically next to the cache (CACHE.ckpt). The solver state comes from
 // MpsSolver::exportState; this file only stores and checks it. Format: a 48-byte header

@@ -13,13 +13,11 @@
 #include "swell/bake/neighbor_grid.h"
 #include "swell/bake/particles.h"
 #include "swell/bake/piston_motion.h"
+#include "swell/bake/pressure_solver.h"
 #include "swell/bake/step_stats.h"
 
 namespace swell::bake {
 
-/// Semi-implicit 2D MPS solver (Koshizuka & Oka 1996; the paper's Sec. 3.1).
-/// Advances plain particle arrays; no I/O. All buffers are sized at construction,
-/// so step() allocates nothing. Loops over particles run in OpenMP threads.
 /// A rigid set of fixed (wall and dummy) particles moved along x with a prescribed motion:
 /// a piston wavemaker (paper Sec. 3.3.1; Algorithm 1, step 3 "Move pushing wall").
 struct MovingWall {
@@ -29,6 +27,9 @@ struct MovingWall {
     std::function<PistonState(double)> motion;
 };
 
+/// Semi-implicit 2D MPS solver (Koshizuka & Oka 1996; the paper's Sec. 3.1, eqs. (1)-(4)).
+/// Advances plain particle arrays; no I/O. All buffers are sized at construction,
+/// so step() allocates nothing. Loops over particles run in OpenMP threads.
 class MpsSolver {
 public:
     /// Takes the particles (water, wall, dummy) of a scene. `spacing` is l0 (m); the
@@ -57,7 +58,7 @@ public:
     /// position outside the domain.
     void relocateWater(std::size_t i, double x, double y, double vx, double vy);
 
-    /// Everything a later step depends on (checkpoints, issue 4); see mps_state.h.
+    /// Everything a later step depends on (checkpoints); see mps_state.h.
     MpsState exportState() const;
     /// Continues from a state exported by a solver of the same scene (same particles, kinds
     /// and moving wall; set the moving wall and inflow first, as makeSolver does). The next
@@ -89,21 +90,17 @@ public:
     const std::vector<std::uint8_t>& surfaceFlags() const { return m_surface; }
 
 private:
+    /// m_surface value of a particle outside the pressure solve (dummies).
+    static constexpr std::uint8_t kNotInPpe = 2;
+
     void rebuildNeighbors(const std::vector<double>& x, const std::vector<double>& y);
     bool skinUsedUp(const std::vector<double>& x, const std::vector<double>& y) const;
-    void explicitPhase(double dt);
-    void densityPhase(double dt);
-    void assemblePpe(double dt);
-    void solvePpe();
-    void factorIncompleteCholesky();
-    void setupTwoLevel();
-    void applyPreconditioner(const double* r, double* z) const;
-    double matVec(const double* v, double* out) const; ///< out = A v; returns v.out
-    /// One past the last used entry of PPE row r.
-    int rowEnd(int r) const {
-        return m_rowPtr[static_cast<std::size_t>(r)] + m_rowNnz[static_cast<std::size_t>(r)];
-    }
-    void correctionPhase(double dt);
+    void predictVelocity(double dt);
+    void resolveCollisions(double dt);
+    void numberDensityAndSurface();
+    void assemblePressureEquation(double dt);
+    void solvePressure();
+    void correctVelocity(double dt);
     void checkState(double dt);
     double chooseDt() const;
     [[noreturn]] void fail(std::size_t particle, const std::string& reason) const;
@@ -122,37 +119,24 @@ private:
     NeighborGrid m_grid;
 
     // work arrays (structure of arrays, sized once)
-    std::vector<double> m_xs, m_ys;   // positions at the last neighbour build
+    std::vector<double> m_xs, m_ys;                         // positions at the last neighbour build
     std::vector<double> m_xStar, m_yStar, m_uStar, m_vStar; // predicted state
-    std::vector<double> m_divU;       // velocity divergence (mixed source term)
-    std::vector<std::uint8_t> m_surface;
-    std::vector<std::int32_t> m_row;  // PPE row of each particle, -1 if none
+    std::vector<double> m_divU;          // velocity divergence (mixed source term)
+    std::vector<std::uint8_t> m_surface; // 1 free surface (p = 0), 0 inside, kNotInPpe
+    std::vector<std::int32_t> m_row;     // PPE row of each particle, -1 if none
     std::vector<std::uint32_t> m_rowParticle;
 
-    std::vector<double> m_uC, m_vC;   // velocities after collisions
-    MovingWall m_wall;                 // prescribed-motion wall (piston), may be empty
+    std::vector<double> m_uC, m_vC;     // velocities after collisions
+    MovingWall m_wall;                  // prescribed-motion wall (piston), may be empty
     std::vector<std::uint8_t> m_moving; // 1 for particles of m_wall
     std::vector<double> m_restX;        // rest x of moving-wall particles
     bool m_hasInflow = false;
     Box m_inflowZone;
     double m_inflowVelocity = 0.0;
 
-    // PPE in sparse rows with room for each particle's neighbour list (rows in neighbour-grid
-    // order; Eigen's uncompressed layout), viewed by Eigen as a SparseMatrix map. Our own PCG
-    // runs on it so a step allocates nothing.
-    std::vector<int> m_rowPtr, m_rowNnz, m_col; // row starts, used lengths, columns
-    std::vector<double> m_val;
-    std::vector<int> m_diagPos;        // position of the diagonal entry in each row
-    std::vector<double> m_b, m_x, m_r, m_z, m_d, m_q, m_invDiag;
-    std::vector<double> m_ic;          // IC(0) factor L (lower triangle incl. diagonal) on A's pattern
-    std::vector<int> m_icMark;         // column -> position scratch for the factorisation
-    std::size_t m_rows = 0;
-    // Two-level preconditioner: aggregates (the unknowns of one grid cell) and the banded
-    // Cholesky factor of the coarse matrix P^T A P. The band grows only when it must.
-    std::vector<int> m_aggMap, m_aggOf; // grid cell -> aggregate (-1 unused); row -> aggregate
-    std::vector<double> m_band, m_rc, m_zc;
-    int m_nAgg = 0;
-    int m_bandwidth = 0;
+    // The pressure Poisson equation: rows in neighbour-grid order, each with room for its
+    // particle's neighbour list (pressure_solver.h).
+    PressureSolver m_ppe;
 };
 
 } // namespace swell::bake

@@ -1,5 +1,5 @@
 #pragma once
-// The complete state of an MpsSolver between two steps (issue 4, checkpoint / resume):
+// The complete state of an MpsSolver between two steps (checkpoint / resume, docs/scenes.md "Checkpoints"):
 // everything a later step reads that is not rebuilt from the scene. A solver built from the
 // same scene that imports it continues bit for bit as the solver that exported it.
 // Plain data; the checkpoint file format (checkpoint.h) serialises it.

@@ -1,5 +1,5 @@
 #pragma once
-// Regular-wave validation (issue 4): the gauge records of a bake whose piston moves
+// Regular-wave validation (docs/validation.md): the gauge records of a bake whose piston moves
 // sinusoidally, against linear wavemaker theory (Biesel transfer function, dispersion).
 // Pure functions on probe samples; readProbeCsv reads what swell-bake --probes wrote.
 

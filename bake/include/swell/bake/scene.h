@@ -18,7 +18,8 @@ namespace swell::bake {
 struct OutputParams {
     double frameInterval = 0.02; ///< simulated time between stored frames (s): 50 frames per second
     double splashRatio = 0.49;   ///< d1: water with n < d1 n0 is splash (paper eq. (4), Table 1)
-    double surfaceRatio = 0.96;  ///< d2: water with d1 n0 <= n <= d2 n0 is surface (paper eq. (4), Table 1)
+    double surfaceRatio =
+        0.96; ///< d2: water with d1 n0 <= n <= d2 n0 is surface (paper eq. (4), Table 1)
     /// Wave gauges: x positions (m) where probes report the free-surface elevation.
     std::vector<double> gauges;
     /// Still-water level (m) that gauge elevations are measured from; unset: the top of the
@@ -26,15 +27,24 @@ struct OutputParams {
     std::optional<double> stillWaterLevel;
 };
 
+/// How long a scene runs and how fast its water is expected to move: read by the bake
+/// driver, the piston and the scene's dt check, never by the solver. Scene keys
+/// solver.end_time and solver.expected_speed (docs/scenes.md).
+struct RunParams {
+    double endTime = 1.0; ///< simulated time to run (s)
+    /// Speed (m/s) the scene is expected to reach, used to check dt at load; 0: 2 sqrt(g H) with
+    /// H the highest water top above the lowest water bottom (dam-break front speed, Ritter).
+    double expectedSpeed = 0.0;
+};
 
 /// Inflow-outflow channel with particle recycling (paper Sec. 3.3.2; Algorithm 1 steps 3
 /// "Add particles" and 8 "Delete particles"): water in the inflow zone [tank x0, inflowX1]
 /// is driven at `velocity`; water that passes `outflowX` is moved back by outflowX - tank x0
 /// (same height) with the inflow velocity, so the particle count is conserved.
 struct RecyclingParams {
-    double inflowX1 = 0.2;  ///< downstream end of the inflow zone (m)
-    double velocity = 0.2;  ///< horizontal speed imposed in the inflow zone (m/s)
-    double outflowX = 1.0;  ///< water beyond this x (m) leaves and re-enters at the inflow
+    double inflowX1 = 0.2; ///< downstream end of the inflow zone (m)
+    double velocity = 0.2; ///< horizontal speed imposed in the inflow zone (m/s)
+    double outflowX = 1.0; ///< water beyond this x (m) leaves and re-enters at the inflow
 };
 
 /// A scene file: separate physics, geometry, solver and output sections (docs/scenes.md).
@@ -44,6 +54,7 @@ struct Scene {
     PhysicsParams physics;
     GeometryParams geometry;
     SolverParams solver;
+    RunParams run;
     OutputParams output;
     std::uint64_t seed = 1; ///< seed of everything random in the scene (the piston's cycles)
     /// Piston wavemaker: when set, the tank's back wall moves with this motion (Sec. 3.3.1).
@@ -66,7 +77,7 @@ Scene loadScene(const std::filesystem::path& path, const std::vector<std::string
 /// gives the same scene.
 nlohmann::json toJson(const Scene& scene);
 
-/// Speed (m/s) used to check dt at load: solver.expectedSpeed, or if that is 0,
+/// Speed (m/s) used to check dt at load: run.expectedSpeed, or if that is 0,
 /// 2 sqrt(g H) with H the water column height (Ritter's dam-break front speed).
 double expectedSpeed(const Scene& scene);
 

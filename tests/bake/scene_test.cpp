@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "temp_dir.h"
 #include "swell/bake/error.h"
 #include "swell/bake/scene.h"
 
@@ -65,8 +66,8 @@ TEST(Scene, DamBreakSceneIsTheMartinMoyceSetUp) {
 TEST(Scene, DefaultsFillMissingSectionsAndKeys) {
     const Scene s = parseScene(minimal());
     const SolverParams d;
-    EXPECT_DOUBLE_EQ(s.solver.reDensity, d.reDensity);
-    EXPECT_DOUBLE_EQ(s.solver.reLaplacian, 3.1);
+    EXPECT_DOUBLE_EQ(s.solver.model.reDensity, d.model.reDensity);
+    EXPECT_DOUBLE_EQ(s.solver.model.reLaplacian, 3.1);
     EXPECT_DOUBLE_EQ(s.physics.density, 1000.0);
     EXPECT_EQ(s.geometry.wallLayers, 2);
     EXPECT_DOUBLE_EQ(s.output.splashRatio, 0.49);
@@ -78,8 +79,8 @@ TEST(Scene, EnumsAreReadByName) {
     j["solver"]["preconditioner"] = "jacobi";
     j["solver"]["source_term"] = "mixed";
     const Scene s = parseScene(j);
-    EXPECT_EQ(s.solver.preconditioner, Preconditioner::Jacobi);
-    EXPECT_EQ(s.solver.sourceTerm, SourceTerm::Mixed);
+    EXPECT_EQ(s.solver.pressure.preconditioner, Preconditioner::Jacobi);
+    EXPECT_EQ(s.solver.pressure.sourceTerm, SourceTerm::Mixed);
     j["solver"]["preconditioner"] = "multigrid";
     EXPECT_EQ(errorKey(j), "solver.preconditioner");
     j["solver"]["preconditioner"] = 1;
@@ -163,8 +164,8 @@ TEST(Scene, ToJsonRoundTrips) {
     const Scene a = parseScene(j);
     const Scene b = parseScene(toJson(a));
     EXPECT_EQ(toJson(a), toJson(b));
-    EXPECT_EQ(b.solver.preconditioner, Preconditioner::IncompleteCholesky);
-    EXPECT_TRUE(b.solver.gradientCorrection);
+    EXPECT_EQ(b.solver.pressure.preconditioner, Preconditioner::IncompleteCholesky);
+    EXPECT_TRUE(usesCorrectiveMatrix(b.solver.model.gradient));
     ASSERT_EQ(b.geometry.solids.size(), 1u);
 }
 
@@ -174,8 +175,8 @@ TEST(Scene, OverridesSetNestedKeysWithJsonValues) {
     applyOverride(j, "solver.preconditioner=jacobi"); // not JSON: taken as a string
     applyOverride(j, "output.frame_interval=0.1");    // creates the section
     const Scene s = parseScene(j);
-    EXPECT_DOUBLE_EQ(s.solver.dt, 0.0005);
-    EXPECT_EQ(s.solver.preconditioner, Preconditioner::Jacobi);
+    EXPECT_DOUBLE_EQ(s.solver.time.dt, 0.0005);
+    EXPECT_EQ(s.solver.pressure.preconditioner, Preconditioner::Jacobi);
     EXPECT_DOUBLE_EQ(s.output.frameInterval, 0.1);
     EXPECT_THROW(applyOverride(j, "solver.dt"), SceneError);
     EXPECT_THROW(applyOverride(j, "solver.dt.x=1"), SceneError);
@@ -183,14 +184,14 @@ TEST(Scene, OverridesSetNestedKeysWithJsonValues) {
 
 TEST(Scene, UnreadableFilesAreSceneErrors) {
     EXPECT_THROW(loadScene(kScenes / "no_such_scene.json"), SceneError);
-    const auto tmp = std::filesystem::temp_directory_path() / "swell_bad_scene.json";
+    const swell::test::TempDir dir("swell_bad_scene_");
+    const auto tmp = dir / "bad.json";
     {
         std::FILE* f = std::fopen(tmp.c_str(), "w");
         std::fputs("{ \"geometry\": ", f);
         std::fclose(f);
     }
     EXPECT_THROW(loadScene(tmp), SceneError);
-    std::filesystem::remove(tmp);
 }
 
 namespace {
@@ -221,7 +222,7 @@ TEST(Scene, WaveScenesLoad) {
     const std::size_t water = g.particles.count(ParticleKind::Water);
     EXPECT_NEAR(static_cast<double>(water), 8376.0, 0.05 * 8376.0);
     EXPECT_NEAR(static_cast<double>(g.particles.size() - water), 1662.0, 0.05 * 1662.0);
-    EXPECT_NEAR(s.solver.endTime / s.solver.dt, 12000.0, 0.5);
+    EXPECT_NEAR(s.run.endTime / s.solver.time.dt, 12000.0, 0.5);
 }
 
 TEST(Scene, PistonSeedGaugesRoundTrip) {

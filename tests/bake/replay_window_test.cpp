@@ -23,9 +23,9 @@ Scene shipped(const std::string& name) {
 
 /// Smallest piston displacement over the scene's run, sampled every dt.
 double furthestRetreat(const Scene& scene) {
-    const PistonMotion motion(*scene.piston, scene.solver.endTime);
+    const PistonMotion motion(*scene.piston, scene.run.endTime);
     double lowest = 0.0;
-    for (double t = 0.0; t <= scene.solver.endTime; t += scene.solver.dt) {
+    for (double t = 0.0; t <= scene.run.endTime; t += scene.solver.time.dt) {
         lowest = std::min(lowest, motion.at(t).displacement);
     }
     return lowest;
@@ -80,7 +80,7 @@ TEST(ReplayWindow, WithoutATankTheWaterRectanglesUnion) {
 }
 
 TEST(ReplayWindow, SteadyStartOfSurgingIsRampPlusTankCrossingAtTheGroupVelocity) {
-    // Shortest random period T = 1.0 s at h = 0.3 m: c_g = 0.929481 m/s (wave_theory_tests), so
+    // Shortest random period T = 1.0 s at h = 0.3 m: c_g = 0.929481 m/s (wave_theory_test), so
     // 1.0 s + 2.8 m / 0.929481 m/s = 4.0124 s.
     const ReplayWindow w = replayWindow(shipped("surging.json"));
     EXPECT_NEAR(w.steadyStart, 1.0 + 2.8 / 0.929481, 1e-5);
@@ -130,7 +130,7 @@ TEST(ReplayWindow, ShippedWaveScenesLeaveAtLeastFourSteadySeconds) {
         const Scene scene = shipped(file);
         const ReplayWindow w = replayWindow(scene);
         EXPECT_GT(w.steadyStart, 0.0) << file;
-        EXPECT_GE(scene.solver.endTime - w.steadyStart, 4.0)
+        EXPECT_GE(scene.run.endTime - w.steadyStart, 4.0)
             << file << ": steady from " << w.steadyStart << " s";
     }
 }

@@ -10,8 +10,8 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
-#include <unistd.h>
 
+#include "temp_dir.h"
 #include "swell/bake/bake_driver.h"
 #include "swell/bake/checkpoint.h"
 #include "swell/bake/classification.h"
@@ -29,13 +29,8 @@ const fs::path kScenes = SWELL_SCENES_DIR;
 class BakeDriver : public ::testing::Test {
 protected:
     void SetUp() override {
-        m_dir = fs::temp_directory_path() /
-                ("swell_bake_driver_" + std::to_string(::getpid()) + "_" +
-                 ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::remove_all(m_dir);
-        fs::create_directories(m_dir);
+        m_dir = m_tmp.path();
     }
-    void TearDown() override { fs::remove_all(m_dir); }
 
     /// A shipped scene shortened to `endTime` seconds.
     static Scene shortened(const char* file, double endTime) {
@@ -73,6 +68,7 @@ protected:
         }
         return "";
     }
+    swell::test::TempDir m_tmp{"swell_bake_driver_"};
     fs::path m_dir;
 };
 
@@ -117,7 +113,7 @@ TEST_F(BakeDriver, SmallSurgingBakeWritesAVerifiableCacheThatDescribesItself) {
     EXPECT_EQ(meta["frame_interval_steps"], 10);
     // Every resolved parameter: the stored scene parses back to the same scene.
     EXPECT_EQ(toJson(parseScene(meta["scene"])), toJson(scene));
-    EXPECT_EQ(meta["scene"]["solver"]["ppe_tolerance"], scene.solver.ppeTolerance);
+    EXPECT_EQ(meta["scene"]["solver"]["ppe_tolerance"], scene.solver.pressure.tolerance);
     // Replay block (replay_window.h): the 2 m tank, still water 0.16 m, l0 = 20 mm; random piston
     // (never behind x0): ramp 0.5 s + 2 m at c_g(T = 0.8 s, h = 0.16 m) = 0.7492 m/s = 3.169 s.
     // It describes the scene, not this shortened run.
@@ -253,7 +249,7 @@ TEST_F(BakeDriver, RippleChannelRecyclesWaterAndConservesTheCount) {
     EXPECT_LE(last.surfaceCount() + last.splashCount(), s.particlesWater);
 }
 
-// Issue 4: a bake resumed from a checkpoint gives the uninterrupted bake's cache and probes
+// A bake resumed from a checkpoint gives the uninterrupted bake's cache and probes
 // byte for byte, and the checkpoint is gone once the cache is complete.
 TEST_F(BakeDriver, ResumedBakeIsByteIdenticalToAnUninterruptedOne) {
     const Scene scene = smallSurging(1.0);
@@ -290,7 +286,7 @@ TEST_F(BakeDriver, ResumedBakeIsByteIdenticalToAnUninterruptedOne) {
     EXPECT_EQ(resumed.surfaceMean, whole.surfaceMean);
     EXPECT_EQ(resumed.keptMax, whole.keptMax);
     EXPECT_EQ(resumed.maxCourant, whole.maxCourant);
-    // Conservation figures (issue 8): the start is the scene's initial state in both runs.
+    // Conservation figures: the start is the scene's initial state in both runs.
     EXPECT_EQ(resumed.start.potentialEnergy, whole.start.potentialEnergy);
     EXPECT_EQ(resumed.start.volume, whole.start.volume);
     EXPECT_EQ(resumed.end.kineticEnergy, whole.end.kineticEnergy);
@@ -391,7 +387,7 @@ TEST_F(BakeDriver, DamagedCheckpointIsRefusedNamingTheFile) {
     EXPECT_FALSE(fs::exists(opt.output));
 }
 
-// Issue 8: the summary reports conservation figures. A still tank keeps its water, its
+// The summary reports conservation figures. A still tank keeps its water, its
 // volume (from the mean number density) and, starting at rest, its energy can only drop
 // (viscosity, collisions) or grow by the solver's own error: both stay small in a short run.
 TEST_F(BakeDriver, SummaryReportsConservationOfCountVolumeAndEnergy) {

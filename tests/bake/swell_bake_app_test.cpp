@@ -15,24 +15,17 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "app_runner.h"
+#include "temp_dir.h"
+
 namespace fs = std::filesystem;
 
 namespace {
 
 const fs::path kScenes = SWELL_SCENES_DIR;
 
-struct Result {
-    int code = -1;
-    std::string out;
-    std::string err;
-};
-
-std::string slurp(const fs::path& p) {
-    std::ifstream f(p, std::ios::binary);
-    std::stringstream s;
-    s << f.rdbuf();
-    return s.str();
-}
+using Result = swell::test::AppResult;
+using swell::test::slurp;
 
 int lines(const std::string& s) {
     int n = 0;
@@ -51,25 +44,13 @@ int errorLines(const std::string& s) {
 class SwellBakeApp : public ::testing::Test {
 protected:
     void SetUp() override {
-        m_dir = fs::temp_directory_path() /
-                ("swell_bake_app_" + std::to_string(::getpid()) + "_" +
-                 ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::remove_all(m_dir);
-        fs::create_directories(m_dir);
+        m_dir = m_tmp.path();
     }
-    void TearDown() override { fs::remove_all(m_dir); }
 
+    /// Runs a program; its stdout and stderr pass through a folder of their own, so m_dir
+    /// holds only what the program writes.
     Result run(const std::string& exe, const std::string& args) const {
-        const fs::path out = m_dir / "stdout.txt", err = m_dir / "stderr.txt";
-        const std::string cmd = exe + " " + args + " >" + out.string() + " 2>" + err.string();
-        const int status = std::system(cmd.c_str());
-        Result r;
-        r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-        r.out = slurp(out);
-        r.err = slurp(err);
-        fs::remove(out);
-        fs::remove(err);
-        return r;
+        return swell::test::runApp(exe, args, "", m_io.path());
     }
     Result bake(const std::string& args) const { return run(SWELL_BAKE_EXE, args); }
 
@@ -99,6 +80,8 @@ protected:
         for (const auto& e : fs::directory_iterator(m_dir)) n += e.path().filename().string().rfind("k.swell", 0) == 0;
         return n;
     }
+    swell::test::TempDir m_tmp{"swell_bake_app_"};
+    swell::test::TempDir m_io{"swell_bake_app_io_"};
     fs::path m_dir;
 };
 
@@ -185,7 +168,7 @@ TEST_F(SwellBakeApp, InterruptedBakeStopsCleanlyAndLeavesNothing) {
     }
 }
 
-// Issue 4: SIGKILL after a checkpoint exists, then --resume: the cache is byte-identical to
+// SIGKILL after a checkpoint exists, then --resume: the cache is byte-identical to
 // an uninterrupted bake, the checkpoint and the killed run's temporaries are gone.
 TEST_F(SwellBakeApp, BakeKilledAfterACheckpointResumesToTheSameCache) {
     const std::string scene = (kScenes / "surging_small.json").string();

@@ -7,10 +7,10 @@
 #include <string>
 #include <vector>
 
-#include <unistd.h>
 
 #include <gtest/gtest.h>
 
+#include "temp_dir.h"
 #include "swell/bake/error.h"
 #include "swell/bake/regular_wave.h"
 #include "swell/bake/scene.h"
@@ -36,9 +36,6 @@ std::vector<ProbeSample> linearRecord(const Scene& scene, double H, double L, do
     return out;
 }
 
-std::filesystem::path tempFile(const std::string& name) {
-    return std::filesystem::temp_directory_path() / (name + "_" + std::to_string(::getpid()) + ".csv");
-}
 
 } // namespace
 
@@ -48,7 +45,7 @@ TEST(RegularWave, WindowOpensAfterTheRampAndArrivalAndClosesBeforeReflections) {
     // h = 0.2 m, T = 1.03 s: kh = 1.0, c_g = 0.95 m/s; ramp 2.06 s, farthest gauge 1.1 m.
     EXPECT_GT(w.start, scene.piston->rampTime + 1.1 / 1.0);
     EXPECT_LT(w.start, scene.piston->rampTime + 1.1 / 0.7 + scene.piston->period);
-    EXPECT_LE(w.end, scene.solver.endTime);
+    EXPECT_LE(w.end, scene.run.endTime);
     EXPECT_GT(w.end - w.start, 2.0 * scene.piston->period);
 }
 
@@ -56,11 +53,11 @@ TEST(RegularWave, RecoversHeightAndLengthOfALinearWave) {
     const Scene scene = loadScene(kScenes / "regular_wave_small.json");
     const WaveWindow w = regularWaveWindow(scene);
     const RegularWaveCheck exact = checkRegularWave(
-        scene, linearRecord(scene, 0.9 * 0.029, 1.26, scene.solver.endTime, 0.02), w);
+        scene, linearRecord(scene, 0.9 * 0.029, 1.26, scene.run.endTime, 0.02), w);
     // A record of 90 % of Biesel's height at the dispersion wavelength reads as such.
     const double L = exact.theory.wavelength;
     const RegularWaveCheck c =
-        checkRegularWave(scene, linearRecord(scene, 0.9 * exact.theory.height, L, scene.solver.endTime, 0.02), w);
+        checkRegularWave(scene, linearRecord(scene, 0.9 * exact.theory.height, L, scene.run.endTime, 0.02), w);
     ASSERT_EQ(c.heights.size(), scene.output.gauges.size());
     for (std::size_t g = 0; g < c.heights.size(); ++g) EXPECT_NEAR(c.heightError(g), -0.10, 1e-6) << g;
     EXPECT_NEAR(c.wavelengthError(), 0.0, 1e-6);
@@ -71,7 +68,7 @@ TEST(RegularWave, RecoversHeightAndLengthOfALinearWave) {
 TEST(RegularWave, DryGaugeOrRandomPistonIsAClearError) {
     const Scene scene = loadScene(kScenes / "regular_wave_small.json");
     const WaveWindow w = regularWaveWindow(scene);
-    auto record = linearRecord(scene, 0.02, 0.9, scene.solver.endTime, 0.02);
+    auto record = linearRecord(scene, 0.02, 0.9, scene.run.endTime, 0.02);
     for (auto& s : record) {
         if (s.time > w.start + 0.5 && s.time < w.start + 0.6) s.elevations[1] = std::nan("");
     }
@@ -81,7 +78,8 @@ TEST(RegularWave, DryGaugeOrRandomPistonIsAClearError) {
 }
 
 TEST(RegularWave, ReadsProbeCsvAndNamesTheLineOfABadValue) {
-    const auto path = tempFile("swell_probes");
+    const swell::test::TempDir dir("swell_probes_");
+    const auto path = dir / "probes.csv";
     {
         std::ofstream f(path);
         f << "time,front_x,gauge_0.5,gauge_0.8\n0,1.5,0.001,nan\n0.02,1.5,0.002,-0.001\n";

@@ -8,9 +8,9 @@
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
-#include <unistd.h>
 
 #include "expect_same_particles.h"
+#include "temp_dir.h"
 #include "swell/bake/checkpoint.h"
 
 using namespace swell::bake;
@@ -58,14 +58,9 @@ void writeBytes(const fs::path& p, const std::string& b) {
 class CheckpointFile : public ::testing::Test {
 protected:
     void SetUp() override {
-        m_dir = fs::temp_directory_path() /
-                ("swell_checkpoint_" + std::to_string(::getpid()) + "_" +
-                 ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::remove_all(m_dir);
-        fs::create_directories(m_dir);
+        m_dir = m_tmp.path();
         m_path = checkpointPath(m_dir / "c.swell");
     }
-    void TearDown() override { fs::remove_all(m_dir); }
     /// The CheckpointError message of reading m_path ("" if it reads).
     std::string readError() const {
         try {
@@ -75,6 +70,7 @@ protected:
         }
         return "";
     }
+    swell::test::TempDir m_tmp{"swell_checkpoint_"};
     fs::path m_dir, m_path;
 };
 

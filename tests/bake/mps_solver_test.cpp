@@ -42,7 +42,7 @@ Scene smallDamBreak() {
     s.geometry.particleSpacing = 0.01;
     s.geometry.tank = Box{0.0, 0.0, 0.4, 0.3};
     s.geometry.water = {Box{0.0, 0.0, 0.1, 0.2}};
-    s.solver.dt = 0.001;
+    s.solver.time.dt = 0.001;
     return s;
 }
 
@@ -63,8 +63,8 @@ TEST(MpsSolver, PpeMatrixIsSymmetricDiagonallyDominantAndSolvedExactly) {
                               Preconditioner::IncompleteCholesky, Preconditioner::TwoLevel}) {
         SCOPED_TRACE(std::string(toString(pc)));
         Scene scene = smallDamBreak();
-        scene.solver.preconditioner = pc;
-        scene.solver.ppeTolerance = 1e-10;
+        scene.solver.pressure.preconditioner = pc;
+        scene.solver.pressure.tolerance = 1e-10;
         MpsSolver solver = makeSolver(scene);
         for (int k = 0; k < 30; ++k) solver.step();
         const Eigen::SparseMatrix<double, Eigen::RowMajor> A = solver.ppeMatrix();
@@ -98,7 +98,7 @@ TEST(MpsSolver, PreconditionersCutIterations) {
     for (Preconditioner pc : {Preconditioner::Jacobi, Preconditioner::SymmetricGaussSeidel,
                               Preconditioner::IncompleteCholesky, Preconditioner::TwoLevel}) {
         Scene scene = smallDamBreak();
-        scene.solver.preconditioner = pc;
+        scene.solver.pressure.preconditioner = pc;
         MpsSolver solver = makeSolver(scene);
         for (int s = 0; s < 20; ++s) iterations[k] += solver.step().ppeIterations;
         ++k;
@@ -115,7 +115,7 @@ TEST(MpsSolver, StepReportsStatsAndPhaseTimes) {
     EXPECT_DOUBLE_EQ(s.dt, 0.001);
     EXPECT_DOUBLE_EQ(solver.time(), 0.001);
     EXPECT_GT(s.ppeIterations, 0);
-    EXPECT_LE(s.ppeResidual, solver.params().ppeTolerance);
+    EXPECT_LE(s.ppeResidual, solver.params().pressure.tolerance);
     EXPECT_GT(s.ppeUnknowns, 0u);
     EXPECT_GT(s.surfaceParticles, 0u);
     EXPECT_EQ(s.outOfBounds, 0u);
@@ -139,9 +139,9 @@ TEST(MpsSolver, WaterAtRestOnALatticeWithoutGravityStaysAtRest) {
 
 TEST(MpsSolver, AdaptiveStepKeepsTheCourantTarget) {
     Scene scene = smallDamBreak();
-    scene.solver.dt = 0.004;
-    scene.solver.adaptiveDt = true;
-    scene.solver.courantTarget = 0.2;
+    scene.solver.time.dt = 0.004;
+    scene.solver.time.adaptive = true;
+    scene.solver.time.courantTarget = 0.2;
     MpsSolver solver = makeSolver(scene);
     double smallest = 1.0;
     for (int k = 0; k < 150; ++k) {
@@ -165,7 +165,7 @@ TEST(MpsSolver, StepLoopDoesNotAllocate) {
 
 TEST(MpsSolver, DetectorStopsOnCourantNumberAboveTheLimit) {
     Scene scene = smallDamBreak();
-    scene.solver.dt = 0.006; // far above what the collapse allows
+    scene.solver.time.dt = 0.006; // far above what the collapse allows
     MpsSolver solver = makeSolver(scene);
     const std::string msg = runUntilFailure(solver, 200);
     ASSERT_FALSE(msg.empty()) << "a too-large step must be stopped";
@@ -198,7 +198,7 @@ TEST(MpsSolver, DetectorStopsWhenAParticleLeavesTheDomain) {
     GeneratedGeometry g = generateGeometry(scene.geometry);
     g.particles.vx[5] = 400.0; // 0.4 m per step: out of the domain at once
     SolverParams par = scene.solver;
-    par.courantLimit = 1e9;    // so the domain check is the one that fires
+    par.time.courantLimit = 1e9;    // so the domain check is the one that fires
     MpsSolver solver(PhysicsParams{}, par, g.particles, 0.01, g.domain);
     const std::string msg = runUntilFailure(solver, 3);
     ASSERT_FALSE(msg.empty());
@@ -208,8 +208,8 @@ TEST(MpsSolver, DetectorStopsWhenAParticleLeavesTheDomain) {
 
 TEST(MpsSolver, DetectorStopsOnAnUnconvergedPressureSolve) {
     Scene scene = smallDamBreak();
-    scene.solver.ppeMaxIterations = 2;
-    scene.solver.ppeTolerance = 1e-12;
+    scene.solver.pressure.maxIterations = 2;
+    scene.solver.pressure.tolerance = 1e-12;
     MpsSolver solver = makeSolver(scene);
     const std::string msg = runUntilFailure(solver, 5);
     EXPECT_NE(msg.find("did not converge"), std::string::npos) << msg;
@@ -218,7 +218,7 @@ TEST(MpsSolver, DetectorStopsOnAnUnconvergedPressureSolve) {
 TEST(MpsSolver, RejectsUnusableConstruction) {
     const GeneratedGeometry g = generateGeometry(smallDamBreak().geometry);
     SolverParams bad;
-    bad.dt = 0.0;
+    bad.time.dt = 0.0;
     EXPECT_THROW(MpsSolver(PhysicsParams{}, bad, g.particles, 0.01, g.domain), std::invalid_argument);
     EXPECT_THROW(MpsSolver(PhysicsParams{}, SolverParams{}, g.particles, 0.01, Box{0, 0, 0.01, 0.01}),
                  std::invalid_argument);
@@ -250,8 +250,8 @@ TEST(MpsSolver, PistonBackWallFollowsItsMotionAndPushesWater) {
     scene.geometry.particleSpacing = 0.02;
     scene.geometry.tank = Box{0.0, 0.0, 0.8, 0.3};
     scene.geometry.water = {Box{0.0, 0.0, 0.8, 0.12}};
-    scene.solver.dt = 0.002;
-    scene.solver.endTime = 0.25;
+    scene.solver.time.dt = 0.002;
+    scene.run.endTime = 0.25;
     PistonParams piston;
     piston.kind = PistonKind::Sinusoidal;
     piston.period = 1.0;
@@ -262,7 +262,7 @@ TEST(MpsSolver, PistonBackWallFollowsItsMotionAndPushesWater) {
     MpsSolver solver = makeSolver(scene);
     const GeneratedGeometry geo = generateGeometry(scene.geometry);
     ASSERT_EQ(geo.backWall.size(), 4u * 15u); // 2 wall + 2 dummy layers, 0.3 m / 0.02 m rows
-    const PistonMotion motion(*scene.piston, scene.solver.endTime);
+    const PistonMotion motion(*scene.piston, scene.run.endTime);
     const Particles& P = solver.particles();
     double meanU = 0.0;
     for (int k = 0; k < 125; ++k) solver.step(); // a quarter period: the piston moves forward

@@ -6,11 +6,11 @@
 #include <string>
 #include <vector>
 
-#include <unistd.h>
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include "temp_dir.h"
 #include "swell/bake/bake_driver.h"
 #include "swell/bake/error.h"
 #include "swell/bake/regular_wave.h"
@@ -85,7 +85,7 @@ TEST(Validation, DamBreakFrontFollowsMartinMoyceAtCiResolution) {
     ASSERT_EQ(e225.points + e1125.points, 9);
     const double mean = (e225.mean * e225.points + e1125.mean * e1125.points) / (e225.points + e1125.points);
     RecordProperty("front_error_mean", fmt::format("{:.4f}", mean));
-    EXPECT_LT(mean, 0.35) << "mean |dZ| over T in [0.8, 3.0] (issue 3 bound: 0.35 a)";
+    EXPECT_LT(mean, 0.35) << "mean |dZ| over T in [0.8, 3.0] (bound: 0.35 a, docs/validation.md)";
     // The front must actually travel: Z(3) well past the column (Martin & Moyce: ~3.7-4.0).
     EXPECT_GT(run.series.back().Z, 3.0);
 }
@@ -143,7 +143,7 @@ StillTankResult runStillTank(Scene scene, long steps, double settle) {
 // (docs/validation.md), which misses the 5 % bound.
 TEST(Validation, StillTankHydrostaticPressureWithGradientCorrection) {
     Scene scene = loadScene(kScenes / "still_tank_small.json");
-    scene.solver.gradientCorrection = true;
+    scene.solver.model.gradient = GradientModel::MinimumPressureCorrected;
     const StillTankResult r = runStillTank(scene, 20000, 2.0);
     EXPECT_EQ(r.steps, 20000);
     EXPECT_EQ(r.escaped, 0u);
@@ -151,15 +151,15 @@ TEST(Validation, StillTankHydrostaticPressureWithGradientCorrection) {
     EXPECT_NEAR(r.pressureRatio, 1.0, 0.05);
 }
 
-// Issue 3 asks for max |u| < 1 % of sqrt(g H) after settling. The textbook (p_j - p_i^min)
+// The goal is max |u| < 1 % of sqrt(g H) after settling. The textbook (p_j - p_i^min)
 // gradient keeps the water churning at 20-50 % of sqrt(g H); the symmetric (p_i + p_j)
 // gradient with gamma = 0.05 settles to about 0.5 cm/s, but surface particles whose n sits
 // at beta n0 flicker between p = 0 and p > 0 and give spikes up to 1.6-1.8 % of sqrt(g H)
 // (docs/validation.md section 3). Each case: 20,000 steps, about 22 s.
 Scene settlingStillTank() {
     Scene scene = loadScene(kScenes / "still_tank_small.json");
-    scene.solver.symmetricGradient = true;
-    scene.solver.relaxation = 0.05;
+    scene.solver.model.gradient = GradientModel::Symmetric;
+    scene.solver.pressure.relaxation = 0.05;
     return scene;
 }
 
@@ -205,7 +205,7 @@ TEST(Validation, StressSweepEitherStaysStableOrStopsWithAClearMessage) {
         s.geometry.particleSpacing = c.spacing;
         s.geometry.water[0].y1 = s.geometry.water[0].y0 + c.aspect * s.geometry.water[0].width();
         s.geometry.tank->y1 = std::max(s.geometry.tank->y1, s.geometry.water[0].y1 + 0.1);
-        s.solver.dt = base.solver.dt * c.dtFactor;
+        s.solver.time.dt = base.solver.time.dt * c.dtFactor;
         const DamBreakRun run = runDamBreak(s, 3.0);
         RecordProperty(fmt::format("dt_x{}_l0_{}_aspect{}", c.dtFactor, c.spacing, c.aspect),
                        run.failure.empty() ? "stable" : run.failure);
@@ -236,28 +236,25 @@ TEST(Validation, HarmonicFitRecoversAmplitudePhaseAndMean) {
                  std::invalid_argument);
 }
 
-// Issue 4: regular waves from a sinusoidal piston against linear wavemaker theory at a
+// Regular waves from a sinusoidal piston against linear wavemaker theory at a
 // gauge 2.5 depths from the paddle: height within 15 % of Biesel's H/S, wavelength (from the
 // phase lag between gauges 0.3 m apart) within 10 % of the dispersion relation.
 // DISABLED: NOT met at CI resolution (l0 = h/10): the measured height is about 46 % low and
 // the record is dominated by the solver's free-surface noise (docs/validation.md, section 5).
-// Issue 4: a non-breaking regular wave (kh = 1.0, H/L = 0.023, gradient correction) at h/20:
+// A non-breaking regular wave (kh = 1.0, H/L = 0.023, gradient correction) at h/20:
 // measured +0.7 % (1 thread) and +5.4 % (2 threads) height, +0.2-4 % wavelength; 7,000 steps of
 // 10,000 particles, about 90 s. At h/15 (regular_wave_small.json) the record is too noisy for a
 // test: the same height read -10 % to +16 % from one build or thread count to the next.
 TEST(Validation, RegularWaveMatchesLinearWavemakerTheoryAtCiResolution) {
     const Scene scene = loadScene(std::filesystem::path(SWELL_SCENES_DIR) / "regular_wave.json");
-    const std::filesystem::path dir =
-        std::filesystem::temp_directory_path() / ("swell_regular_wave_" + std::to_string(::getpid()));
-    std::filesystem::create_directories(dir);
+    const swell::test::TempDir dir("swell_regular_wave_");
     BakeOptions opt;
     opt.output = dir / "w.swell";
     opt.probes = dir / "w.csv";
     runBake(scene, opt);
     const std::vector<ProbeSample> samples = readProbeCsv(opt.probes);
-    std::filesystem::remove_all(dir);
     const RegularWaveCheck c = checkRegularWave(scene, samples, regularWaveWindow(scene));
-    // Issue 4: height within 15 % of Biesel at the gauge 2.5 h from the paddle, wavelength
+    // Bounds (docs/validation.md): height within 15 % of Biesel at the gauge 2.5 h from the paddle, wavelength
     // within 10 % of the dispersion relation.
     EXPECT_NEAR(c.heightError(0), 0.0, 0.15) << "H = " << c.heights[0] << " m, Biesel " << c.theory.height;
     EXPECT_NEAR(c.wavelengthError(), 0.0, 0.10) << "L = " << c.wavelength << " m, theory " << c.theory.wavelength;
