@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Stability stress suite (issue 8). Bake sweeps over dt, particle spacing, piston stroke and
+"""Stability stress suite (docs/validation.md, section 6). Bake sweeps over dt, particle spacing, piston stroke and
 period (up to and past breaking), inflow speed and long runs (100,000 steps of the small still
 tank and surging scenes); replay at extreme parameters and on degenerate caches.
 

@@ -1,5 +1,5 @@
 // swell-bake: runs a scene's 2D MPS simulation and writes the surface/splash cache
-// (DESIGN.md, Programs). Thin: scene loading, the bake loop and the cache are library code;
+// (README.md, "Programs"). Thin: scene loading, the bake loop and the cache are library code;
 // this file parses the command line, reports progress and maps errors to exit codes.
 #include <atomic>
 #include <csignal>

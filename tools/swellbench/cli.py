@@ -1,4 +1,4 @@
-"""Run time against error (issue 8): bake accuracy against cost, replay accuracy against cost,
+"""Run time against error (docs/BENCHMARKS.md): bake accuracy against cost, replay accuracy against cost,
 replay fidelity, compression against error, what the skips save and the render's speed. Writes
 CSV files and PNG plots to out/bench/ and regenerates the marked tables in docs/BENCHMARKS.md.
 

@@ -1,4 +1,4 @@
-"""Render (issue 7): shaded frames per second of swell-play render (Sec. 5) with the cost of
+"""Render (docs/render.md): shaded frames per second of swell-play render (Sec. 5) with the cost of
 each stage: a synthetic stress cache (real splash particles every frame) with and without
 splashes at two sizes, and the surging_small bake (its own few splashes). Runs interleaved,
 rep by rep, so drift hits every case.

@@ -3,6 +3,7 @@
 
 #include "app_runner.h"
 #include "synthetic_frames.h"
+#include "temp_dir.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -11,6 +12,7 @@
 #include <array>
 #include <cstdio>
 #include <filesystem>
+#include <memory>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -28,20 +30,21 @@ using swell::test::slurp;
 class PlayApp : public ::testing::Test {
 protected:
     static void SetUpTestSuite() {
-        s_dir = fs::temp_directory_path() / ("swell_play_test_" + std::to_string(::getpid()));
-        fs::create_directories(s_dir);
+        s_temp = std::make_unique<swell::test::TempDir>("swell_play_test_");
+        s_dir = s_temp->path();
         cache::Writer w(s_dir / "wave.swell", test::syntheticHeader());
         for (const cache::Frame& f : test::syntheticFrames(400, 200, 3))
             w.addFrame(f);
         w.finish();
     }
-    static void TearDownTestSuite() { fs::remove_all(s_dir); }
+    static void TearDownTestSuite() { s_temp.reset(); }
 
     /// Runs swell-play with `args`, environment assignments `env` first.
     static Result run(const std::string& args, const std::string& env = "") {
         return swell::test::runApp(SWELL_PLAY_EXE, args, env, s_dir);
     }
     static std::string cachePath() { return (s_dir / "wave.swell").string(); }
+    static inline std::unique_ptr<swell::test::TempDir> s_temp;
     static inline fs::path s_dir;
 };
 

@@ -1,4 +1,4 @@
-// Replay stress (issue 8): swell-play bench at the extremes of its parameters and on degenerate
+// Replay stress (docs/validation.md, section 6): swell-play bench at the extremes of its parameters and on degenerate
 // caches. Every case must either give a finite result that matches the double-precision CPU
 // reference (exit 0) or stop with one clear stderr line (exit 1); never NaN, never a crash.
 // tools/stress runs the slower extremes (4096 x 4096 cells) besides these.
@@ -6,6 +6,7 @@
 
 #include "app_runner.h"
 #include "synthetic_frames.h"
+#include "temp_dir.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -13,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <unistd.h>
 
@@ -25,8 +27,8 @@ using Result = swell::test::AppResult;
 class PlayStress : public ::testing::Test {
 protected:
     static void SetUpTestSuite() {
-        s_dir = fs::temp_directory_path() / ("swell_play_stress_" + std::to_string(::getpid()));
-        fs::create_directories(s_dir);
+        s_temp = std::make_unique<swell::test::TempDir>("swell_play_stress_");
+        s_dir = s_temp->path();
         write("wave.swell", test::syntheticFrames(120, 200, 3));
         write("one.swell", test::syntheticFrames(1, 200, 3));       // a cache of one frame
         write("empty.swell", std::vector<cache::Frame>(40));         // no surface particle at all
@@ -35,7 +37,7 @@ protected:
         q.encoding = cache::Encoding::Quantized16;
         write("wave_q16.swell", test::syntheticFrames(120, 200, 3), q);
     }
-    static void TearDownTestSuite() { fs::remove_all(s_dir); }
+    static void TearDownTestSuite() { s_temp.reset(); }
 
     static void write(const std::string& name, const std::vector<cache::Frame>& frames,
                       const cache::Header& header = test::syntheticHeader()) {
@@ -75,6 +77,7 @@ protected:
         EXPECT_NE(r.err.find(what), std::string::npos) << r.err;
         EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
     }
+    static inline std::unique_ptr<swell::test::TempDir> s_temp;
     static inline fs::path s_dir;
 };
 

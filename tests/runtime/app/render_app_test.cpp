@@ -7,12 +7,14 @@
 
 #include "app_runner.h"
 #include "synthetic_frames.h"
+#include "temp_dir.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <filesystem>
+#include <memory>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -30,8 +32,8 @@ using swell::test::slurp;
 class RenderApp : public ::testing::Test {
 protected:
     static void SetUpTestSuite() {
-        s_dir = fs::temp_directory_path() / ("swell_render_test_" + std::to_string(::getpid()));
-        fs::create_directories(s_dir);
+        s_temp = std::make_unique<swell::test::TempDir>("swell_render_test_");
+        s_dir = s_temp->path();
         cache::Writer w(s_dir / "wave.swell", test::syntheticHeader());
         for (const cache::Frame& f : test::syntheticFrames(400, 200, 3))
             w.addFrame(f);
@@ -43,12 +45,13 @@ protected:
         }
         calm.finish();
     }
-    static void TearDownTestSuite() { fs::remove_all(s_dir); }
+    static void TearDownTestSuite() { s_temp.reset(); }
 
     static Result run(const std::string& args, const std::string& env = "") {
         return swell::test::runApp(SWELL_PLAY_EXE, args, env, s_dir);
     }
     static std::string cache(const char* name = "wave.swell") { return (s_dir / name).string(); }
+    static inline std::unique_ptr<swell::test::TempDir> s_temp;
     static inline fs::path s_dir;
 };
 

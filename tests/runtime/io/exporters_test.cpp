@@ -1,6 +1,8 @@
 #include "swell/runtime/error.h"
 #include "swell/runtime/io/exporters.h"
 
+#include "temp_dir.h"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -13,8 +15,13 @@ namespace {
 
 namespace fs = std::filesystem;
 
+const swell::test::TempDir& tempDir() {
+    static const swell::test::TempDir dir("swell_export_");
+    return dir;
+}
+
 fs::path tempFile(const std::string& name) {
-    return fs::temp_directory_path() / ("swell_export_" + std::to_string(::getpid()) + "_" + name);
+    return tempDir() / name;
 }
 
 Grid smallGrid(int n, int m) {

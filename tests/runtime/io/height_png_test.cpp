@@ -1,6 +1,8 @@
 #include "swell/runtime/error.h"
 #include "swell/runtime/io/height_png.h"
 
+#include "temp_dir.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -18,8 +20,8 @@ TEST(HeightPng, RoundTripWithinHalfAStep) {
             f.heights.push_back(0.4 + 0.1 * std::sin(n * 0.3 + m * 0.7));
     }
     const HeightScale scale{0.0, 1.0 / 65535.0};
-    const auto path = std::filesystem::temp_directory_path() /
-                      ("swell_height_png_" + std::to_string(::getpid()) + ".png");
+    const swell::test::TempDir temp("swell_height_png_");
+    const auto path = temp / "heights.png";
     writeHeightPng(path, f, scale);
     const HeightField back = readHeightPng(path, scale);
     std::filesystem::remove(path);

@@ -2,6 +2,8 @@
 #include "swell/runtime/io/height_png.h"
 #include "swell/runtime/io/image_io.h"
 
+#include "temp_dir.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -14,9 +16,13 @@ namespace {
 
 namespace fs = std::filesystem;
 
+const swell::test::TempDir& tempDir() {
+    static const swell::test::TempDir dir("swell_image_io_");
+    return dir;
+}
+
 fs::path tempFile(const std::string& name) {
-    return fs::temp_directory_path() /
-           ("swell_image_io_" + std::to_string(::getpid()) + "_" + name);
+    return tempDir() / name;
 }
 
 Image gradient(int w, int h) {

@@ -3,6 +3,8 @@
 #include "swell/runtime/gl/egl_context.h"
 #include "swell/runtime/modes/mode_replay.h"
 
+#include "gl_fixture.h"
+#include "hashing.h"
 #include "synthetic_frames.h"
 
 #define GL_GLEXT_PROTOTYPES
@@ -16,28 +18,19 @@
 namespace swell::runtime {
 namespace {
 
-class ModeReplayTest : public ::testing::Test {
+class ModeReplayTest : public swell::test::GlSuite {
 protected:
     static void SetUpTestSuite() {
-        s_context = std::make_unique<EglContext>();
+        GlSuite::SetUpTestSuite();
         s_frames = std::make_unique<FrameSet>(
             FrameSet::whole(test::syntheticHeader(), test::syntheticFrames(260, 320, 21)));
     }
     static void TearDownTestSuite() {
         s_frames.reset();
-        s_context.reset();
+        GlSuite::TearDownTestSuite();
     }
-    static inline std::unique_ptr<EglContext> s_context;
     static inline std::unique_ptr<FrameSet> s_frames;
 };
-
-std::uint64_t fnv1a(const void* data, std::size_t size) {
-    std::uint64_t h = 0xcbf29ce484222325ULL;
-    const auto* p = static_cast<const unsigned char*>(data);
-    for (std::size_t i = 0; i < size; ++i)
-        h = (h ^ p[i]) * 0x100000001b3ULL;
-    return h;
-}
 
 /// Largest |GPU - CPU| over the cells; fails on a non-finite GPU cell.
 double worstError(const HeightField& g, const HeightField& r) {
@@ -274,14 +267,14 @@ TEST_F(ModeReplayTest, SameInputsGiveByteIdenticalHeightsAndGoldenFrames) {
             a.update(tau);
             b.update(tau);
             for (const auto& f : a.readSliceFrames())
-                hashFrames = hashFrames * 31 + fnv1a(f.data(), f.size() * sizeof(std::uint32_t));
+                hashFrames = hashFrames * 31 + swell::test::fnv1a(f.data(), f.size() * sizeof(std::uint32_t));
             std::vector<float> ha, hb;
             for (double v : a.readHeights().heights)
                 ha.push_back(static_cast<float>(v));
             for (double v : b.readHeights().heights)
                 hb.push_back(static_cast<float>(v));
-            hashA = hashA * 31 + fnv1a(ha.data(), ha.size() * sizeof(float));
-            hashB = hashB * 31 + fnv1a(hb.data(), hb.size() * sizeof(float));
+            hashA = hashA * 31 + swell::test::fnv1a(ha.data(), ha.size() * sizeof(float));
+            hashB = hashB * 31 + swell::test::fnv1a(hb.data(), hb.size() * sizeof(float));
         }
         EXPECT_EQ(hashA, hashB) << toString(m);
         golden[i++] = hashFrames;

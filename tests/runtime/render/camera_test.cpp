@@ -1,6 +1,8 @@
 // The render camera: view and projection matrices, the inverse, the default framing.
 #include "swell/runtime/render/camera.h"
 
+#include "render/render_scene.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -9,18 +11,10 @@ namespace swell::runtime {
 namespace {
 
 Grid testGrid() {
-    Grid g;
-    g.cellsX = 64;
-    g.cellsZ = 48;
-    g.slices = 32;
-    g.x0 = -0.2;
-    g.dx = 4.4 / 64;
-    g.dz = g.dx;
-    g.extentZ = 48 * g.dz;
-    return g;
+    return test::renderGrid();
 }
 
-const cache::Domain kDomain{-0.2f, 0.0f, 4.2f, 0.9f};
+const cache::Domain kDomain = test::kRenderDomain;
 
 std::array<double, 4> transform(const Mat4& m, double x, double y, double z) {
     std::array<double, 4> r{};

@@ -3,6 +3,8 @@
 #include "swell/runtime/io/image_io.h"
 #include "swell/runtime/render/sky_cubemap.h"
 
+#include "temp_dir.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -64,9 +66,8 @@ TEST(SkyCubemap, ProceduralSkyIsDeterministicBlueAboveAndBrightAtTheSun) {
 }
 
 TEST(SkyCubemap, UserImagesLoadOrNameTheMissingFile) {
-    const auto dir =
-        std::filesystem::temp_directory_path() / ("swell_sky_" + std::to_string(::getpid()));
-    std::filesystem::create_directories(dir);
+    const swell::test::TempDir temp("swell_sky_");
+    const std::filesystem::path& dir = temp.path();
     SkyParams p;
     p.faceSize = 8;
     const CubeFaces faces = proceduralSky(p);

@@ -16,6 +16,9 @@
 #include "swell/runtime/render/sky_cubemap.h"
 #include "swell/runtime/render/water_renderer.h"
 
+#include "gl_fixture.h"
+#include "render/render_scene.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -26,19 +29,13 @@
 namespace swell::runtime {
 namespace {
 
+class WaterRendering : public swell::test::GlSuite {};
+
 Grid testGrid() {
-    Grid g;
-    g.cellsX = 64;
-    g.cellsZ = 48;
-    g.slices = 32;
-    g.x0 = -0.2;
-    g.dx = 4.4 / 64;
-    g.dz = g.dx;
-    g.extentZ = 48 * g.dz;
-    return g;
+    return test::renderGrid();
 }
 
-const cache::Domain kDomain{-0.2f, 0.0f, 4.2f, 0.9f};
+const cache::Domain kDomain = test::kRenderDomain;
 
 /// A crossing-wave height field around 0.5 m depth, [m * N + n].
 std::vector<float> waveHeights(const Grid& g, double phase) {
@@ -92,8 +89,7 @@ std::filesystem::path goldenPath() {
     return std::filesystem::path(SWELL_TEST_DATA_DIR) / "water_golden.png";
 }
 
-TEST(WaterRenderer, GoldenImage) {
-    const EglContext context;
+TEST_F(WaterRendering, GoldenImage) {
     Scene scene(160, 90, 1);
     const Image image = scene.render(fixedSplashes());
     if (std::getenv("SWELL_UPDATE_GOLDEN") != nullptr) {
@@ -102,7 +98,7 @@ TEST(WaterRenderer, GoldenImage) {
     }
     const Image golden = readPng(goldenPath());
     const ImageDifference d = compareImages(image, golden);
-    EXPECT_GE(d.psnr, 38.0) << "max channel error " << d.maxAbs << " on " << context.renderer();
+    EXPECT_GE(d.psnr, 38.0) << "max channel error " << d.maxAbs << " on " << s_context->renderer();
     EXPECT_LE(d.maxAbs, 64);
     if (d.psnr < 38.0)
         writePng(std::filesystem::temp_directory_path() / "water_golden_actual.png", image);
@@ -111,8 +107,7 @@ TEST(WaterRenderer, GoldenImage) {
     EXPECT_LT(compareImages(moved, golden).psnr, 38.0);
 }
 
-TEST(WaterRenderer, FrameIsNotBlankNorUniformAndShowsWaterAndSky) {
-    const EglContext context;
+TEST_F(WaterRendering, FrameIsNotBlankNorUniformAndShowsWaterAndSky) {
     Scene scene(160, 90, 1);
     const Image image = scene.render({});
     const ImageStats s = imageStats(image);
@@ -131,8 +126,7 @@ TEST(WaterRenderer, FrameIsNotBlankNorUniformAndShowsWaterAndSky) {
     EXPECT_GT(top / 160.0, mid[0] + mid[1] + mid[2]);
 }
 
-TEST(WaterRenderer, SplashesAreDrawnOnlyWhenThereAreAny) {
-    const EglContext context;
+TEST_F(WaterRendering, SplashesAreDrawnOnlyWhenThereAreAny) {
     Scene scene(160, 90, 1);
     const Image without = scene.render({});
     EXPECT_EQ(scene.lastSplashes, 0u);
@@ -143,10 +137,9 @@ TEST(WaterRenderer, SplashesAreDrawnOnlyWhenThereAreAny) {
     EXPECT_LT(d.meanAbs, 5.0); // ... in a small part of the picture
 }
 
-TEST(WaterRenderer, DrawingInTwoPartsGivesTheSamePictureAsOne) {
+TEST_F(WaterRendering, DrawingInTwoPartsGivesTheSamePictureAsOne) {
     // drawSurface, then (after the caller built the sprites) drawSplashes: the same frame as
     // draw(), which is the two in a row.
-    const EglContext context;
     const Grid grid = testGrid();
     SkyParams sky;
     sky.faceSize = 64;
@@ -174,8 +167,7 @@ TEST(WaterRenderer, DrawingInTwoPartsGivesTheSamePictureAsOne) {
     EXPECT_EQ(r.lastSplashCount(), 0u);
 }
 
-TEST(WaterRenderer, MultisamplingSmoothsButDoesNotChangeThePicture) {
-    const EglContext context;
+TEST_F(WaterRendering, MultisamplingSmoothsButDoesNotChangeThePicture) {
     Scene one(160, 90, 1), four(160, 90, 4);
     const Image a = one.render({});
     const Image b = four.render({});
@@ -184,8 +176,7 @@ TEST(WaterRenderer, MultisamplingSmoothsButDoesNotChangeThePicture) {
     EXPECT_GT(d.maxAbs, 0); // edges differ
 }
 
-TEST(WaterRenderer, BadParametersThrow) {
-    const EglContext context;
+TEST_F(WaterRendering, BadParametersThrow) {
     const Grid grid = testGrid();
     SkyParams sky;
     sky.faceSize = 16;

@@ -7,6 +7,7 @@
 #include "swell/runtime/replay/fidelity.h"
 #include "swell/runtime/replay/gpu_replay.h"
 
+#include "gl_fixture.h"
 #include "synthetic_frames.h"
 
 #include <gtest/gtest.h>
@@ -100,12 +101,7 @@ TEST(Fidelity, EnvelopeReplayOfTheAnalyticWaveConvergesWithResolution) {
     EXPECT_GT(paper.meanCrestLoss(), 2.0 * coarse.meanCrestLoss());
 }
 
-class CrossFadeReplay : public ::testing::Test {
-protected:
-    static void SetUpTestSuite() { s_context = std::make_unique<EglContext>(); }
-    static void TearDownTestSuite() { s_context.reset(); }
-    static inline std::unique_ptr<EglContext> s_context;
-};
+class CrossFadeReplay : public swell::test::GlSuite {};
 
 TEST_F(CrossFadeReplay, GpuMatchesCpuOnSeamlessTimelinesInBothReconstructions) {
     FrameSet set = FrameSet::whole(test::syntheticHeader(), test::syntheticFrames(60, 300, 11));

@@ -2,6 +2,8 @@
 #include "swell/runtime/gl/egl_context.h"
 #include "swell/runtime/replay/gpu_replay.h"
 
+#include "gl_fixture.h"
+#include "hashing.h"
 #include "synthetic_frames.h"
 
 #define GL_GLEXT_PROTOTYPES
@@ -16,21 +18,7 @@
 namespace swell::runtime {
 namespace {
 
-class GpuReconstruction : public ::testing::Test {
-protected:
-    static void SetUpTestSuite() { s_context = std::make_unique<EglContext>(); }
-    static void TearDownTestSuite() { s_context.reset(); }
-    static inline std::unique_ptr<EglContext> s_context;
-};
-
-/// FNV-1a over bytes.
-std::uint64_t fnv1a(const void* data, std::size_t size) {
-    std::uint64_t h = 0xcbf29ce484222325ULL;
-    const auto* p = static_cast<const unsigned char*>(data);
-    for (std::size_t i = 0; i < size; ++i)
-        h = (h ^ p[i]) * 0x100000001b3ULL;
-    return h;
-}
+class GpuReconstruction : public swell::test::GlSuite {};
 
 struct Case {
     int N, M, K;
@@ -180,14 +168,14 @@ TEST_F(GpuReconstruction, SameInputsGiveByteIdenticalHeights) {
         a.update(tau);
         b.update(tau);
         const auto fa = a.readSliceFrames();
-        hashFrames = hashFrames * 31 + fnv1a(fa.data(), fa.size() * sizeof(std::uint32_t));
+        hashFrames = hashFrames * 31 + swell::test::fnv1a(fa.data(), fa.size() * sizeof(std::uint32_t));
         std::vector<float> ha, hb;
         for (double v : a.readHeights().heights)
             ha.push_back(static_cast<float>(v));
         for (double v : b.readHeights().heights)
             hb.push_back(static_cast<float>(v));
-        hashA = hashA * 31 + fnv1a(ha.data(), ha.size() * sizeof(float));
-        hashB = hashB * 31 + fnv1a(hb.data(), hb.size() * sizeof(float));
+        hashA = hashA * 31 + swell::test::fnv1a(ha.data(), ha.size() * sizeof(float));
+        hashB = hashB * 31 + swell::test::fnv1a(hb.data(), hb.size() * sizeof(float));
     }
     EXPECT_EQ(hashA, hashB);
     // Golden: the frames chosen by eq. (5) are integers fixed by SplitMix64, FFTW and IEEE

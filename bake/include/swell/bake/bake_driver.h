@@ -1,5 +1,5 @@
 #pragma once
-// The bake driver (DESIGN.md "Bake", "Programs" -> swell-bake): runs a scene's MPS
+// The bake driver (README.md "Programs", docs/scenes.md): runs a scene's MPS
 // simulation, classifies water by eq. (4) on every stored frame and streams the surface and
 // splash particles into a cache. The I/O lives here, not in the solver.
 

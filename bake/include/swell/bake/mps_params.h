@@ -6,7 +6,7 @@ namespace swell::bake {
 /// Fluid properties (paper Table 1).
 struct PhysicsParams {
     double density = 1000.0; ///< rho (kg/m^3): water (paper Table 1)
-    /// nu (m^2/s): paper Table 1 value, as DESIGN.md fixes the defaults (about 1,100 times real
+    /// nu (m^2/s): the paper's Table 1 value, the project's default (about 1,100 times real
     /// water's 1e-6, which validation scenes against experiments set explicitly).
     double kinematicViscosity = 0.0011;
     double gravity = 9.81; ///< g (m/s^2), acting along -y (paper Table 1)

@@ -1,5 +1,5 @@
 #pragma once
-// Probes of a bake (DESIGN.md, Programs: swell-bake --probes): per stored frame the surge
+// Probes of a bake (README.md "Programs": swell-bake --probes): per stored frame the surge
 // front and the free-surface elevation at wave gauges. Pure functions; the driver writes
 // the CSV.
 

@@ -1,5 +1,5 @@
 #pragma once
-// Per-frame exports for other tools (issue 7): the surface as a triangle mesh and the splash
+// Per-frame exports for other tools (docs/render.md): the surface as a triangle mesh and the splash
 // particles as a point cloud, both binary little-endian PLY (Blender, MeshLab, ParaView read
 // it), with a reader for the same subset so every format is tested by a round trip. Height
 // maps are written by height_png.h (16-bit PNG with a JSON scale).

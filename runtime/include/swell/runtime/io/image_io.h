@@ -1,6 +1,6 @@
 #pragma once
 // 8-bit RGB images: PNG I/O (libpng), image differences for the golden test (PSNR, max error),
-// box downscaling and the contact sheet of a render (issue 7, "Outputs").
+// box downscaling and the contact sheet of a render (docs/render.md).
 
 #include <cstdint>
 #include <filesystem>

@@ -1,5 +1,5 @@
 #pragma once
-// The render camera (Sec. 5 rendering; issue 7): a pinhole at `position` looking at `target`,
+// The render camera (Sec. 5 rendering; docs/render.md): a pinhole at `position` looking at `target`,
 // y up, in the replay's world frame: x = propagation (cache x, metres), y = height (cache y),
 // z = transverse (0 .. extentZ, the slices' axis).
 
