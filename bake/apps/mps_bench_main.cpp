@@ -1,8 +1,8 @@
 // swell-mps-bench: per-step time of the MPS solver by phase at the paper's surging-wave size
 // (~8,400 water + ~1,660 fixed particles), for docs/BENCHMARKS.md. Not a test.
 #include <chrono>
-#include <ctime>
 #include <cstdio>
+#include <ctime>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -19,7 +19,8 @@ using namespace swell::bake;
 using nlohmann::json;
 
 int main(int argc, char** argv) {
-    CLI::App app{"swell-mps-bench: MPS step time by phase, ~10,000 particles (dam break in a 2 m tank)"};
+    CLI::App app{
+        "swell-mps-bench: MPS step time by phase, ~10,000 particles (dam break in a 2 m tank)"};
     int threads = 0;
     int warmup = 100;
     int steps = 400;
@@ -28,10 +29,13 @@ int main(int argc, char** argv) {
     app.add_option("--threads", threads, "OpenMP threads (default: all)");
     app.add_option("--warmup", warmup, "steps run before timing");
     app.add_option("--steps", steps, "timed steps");
-    app.add_option("--set", sets, "override a key of the built-in scene: section.key=value")->expected(1)->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+    app.add_option("--set", sets, "override a key of the built-in scene: section.key=value")
+        ->expected(1)
+        ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
     app.add_flag("--json", asJson, "print one JSON object on stdout");
     CLI11_PARSE(app, argc, argv);
-    if (threads > 0) omp_set_num_threads(threads);
+    if (threads > 0)
+        omp_set_num_threads(threads);
 
     // A 2.0 m x 1.04 m tank (l0 = 0.01 m, 2 wall + 2 dummy layers: 1,664 fixed particles) with
     // a 1.0 m x 0.84 m water column (8,400 particles) that collapses: a breaking surge like the
@@ -43,12 +47,14 @@ int main(int argc, char** argv) {
                 {"water", json::array({{{"x0", 0.0}, {"y0", 0.0}, {"x1", 1.0}, {"y1", 0.84}}})}}},
               {"solver", {{"dt", 0.0005}}}};
     try {
-        for (const auto& s : sets) applyOverride(j, s);
+        for (const auto& s : sets)
+            applyOverride(j, s);
         const Scene scene = parseScene(j);
         MpsSolver solver = makeSolver(scene);
         const auto& P = solver.particles();
         const std::size_t n = P.size();
-        for (int k = 0; k < warmup; ++k) solver.step();
+        for (int k = 0; k < warmup; ++k)
+            solver.step();
         std::array<double, kPhaseCount> phase{};
         double iterations = 0.0;
         int maxIterations = 0;
@@ -58,13 +64,15 @@ int main(int argc, char** argv) {
         const std::clock_t cpuStart = std::clock();
         for (int k = 0; k < steps; ++k) {
             const StepStats& s = solver.step();
-            for (std::size_t p = 0; p < kPhaseCount; ++p) phase[p] += s.phaseSeconds[p];
+            for (std::size_t p = 0; p < kPhaseCount; ++p)
+                phase[p] += s.phaseSeconds[p];
             iterations += s.ppeIterations;
             maxIterations = std::max(maxIterations, s.ppeIterations);
             maxResidual = std::max(maxResidual, s.ppeResidual);
             rebuilds += s.neighborRebuilds;
         }
-        const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        const double wall =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         const double cpu = static_cast<double>(std::clock() - cpuStart) / CLOCKS_PER_SEC;
         const double perStep = wall / steps;
         json out{{"threads", omp_get_max_threads()},

@@ -47,17 +47,21 @@ json damBreak(const Scene& scene, double tEnd, const std::string& csv) {
     const double tScale = std::sqrt(2.0 * g / a); // T = t sqrt(2 g / a)
     MpsSolver solver = makeSolver(scene);
     const double n0 = solver.densityConstants().n0;
-    std::vector<FrontPoint> series{{0.0, surgeFront(solver.particles(), n0, scene.output.splashRatio, column.x0) / a}};
+    std::vector<FrontPoint> series{
+        {0.0, surgeFront(solver.particles(), n0, scene.output.splashRatio, column.x0) / a}};
     RunTotals totals;
-    json out{{"scene", scene.name}, {"a", a}, {"l0", scene.geometry.particleSpacing},
+    json out{{"scene", scene.name},
+             {"a", a},
+             {"l0", scene.geometry.particleSpacing},
              {"particles", solver.particles().size()},
              {"water", solver.particles().count(ParticleKind::Water)}};
     try {
         while (solver.time() * tScale < tEnd) {
             const StepStats& s = solver.step();
             accumulate(totals, s);
-            series.push_back({solver.time() * tScale,
-                              surgeFront(solver.particles(), n0, scene.output.splashRatio, column.x0) / a});
+            series.push_back(
+                {solver.time() * tScale,
+                 surgeFront(solver.particles(), n0, scene.output.splashRatio, column.x0) / a});
         }
         out["outcome"] = "stable";
     } catch (const DivergenceError& e) {
@@ -66,14 +70,17 @@ json damBreak(const Scene& scene, double tEnd, const std::string& csv) {
     if (!csv.empty()) {
         std::ofstream f(csv);
         f << "T,Z\n";
-        for (const auto& p : series) f << fmt::format("{:.5f},{:.5f}\n", p.T, p.Z);
+        for (const auto& p : series)
+            f << fmt::format("{:.5f},{:.5f}\n", p.T, p.Z);
     }
     if (out["outcome"] == "stable") {
         const FrontError e225 = compareFront(series, martinMoyceA225(), 0.8, 3.0);
         const FrontError e1125 = compareFront(series, martinMoyceA1125(), 0.8, 3.0);
-        const double mean = (e225.mean * e225.points + e1125.mean * e1125.points) / (e225.points + e1125.points);
+        const double mean =
+            (e225.mean * e225.points + e1125.mean * e1125.points) / (e225.points + e1125.points);
         const double signedMean =
-            (e225.meanSigned * e225.points + e1125.meanSigned * e1125.points) / (e225.points + e1125.points);
+            (e225.meanSigned * e225.points + e1125.meanSigned * e1125.points) /
+            (e225.points + e1125.points);
         out["front_error_mean"] = mean;
         out["front_error_max"] = std::max(e225.max, e1125.max);
         out["front_error_mean_signed"] = signedMean;
@@ -99,7 +106,8 @@ json damBreak(const Scene& scene, double tEnd, const std::string& csv) {
 }
 
 json stillTank(const Scene& scene, double settle, long steps, long trace) {
-    if (!scene.geometry.tank) throw SceneError("geometry.tank", "the still-tank check needs a tank");
+    if (!scene.geometry.tank)
+        throw SceneError("geometry.tank", "the still-tank check needs a tank");
     const Box tank = *scene.geometry.tank;
     const Box water = scene.geometry.water.at(0);
     const double l0 = scene.geometry.particleSpacing;
@@ -111,7 +119,8 @@ json stillTank(const Scene& scene, double settle, long steps, long trace) {
     std::vector<std::size_t> gauge;
     const Particles& P = solver.particles();
     for (std::size_t i = 0; i < P.size(); ++i) {
-        if (P.kind[i] == ParticleKind::Wall && std::abs(P.y[i] - (tank.y0 - 0.5 * l0)) < 0.25 * l0 &&
+        if (P.kind[i] == ParticleKind::Wall &&
+            std::abs(P.y[i] - (tank.y0 - 0.5 * l0)) < 0.25 * l0 &&
             P.x[i] > tank.x0 + 0.25 * tank.width() && P.x[i] < tank.x1 - 0.25 * tank.width()) {
             gauge.push_back(i);
         }
@@ -121,8 +130,12 @@ json stillTank(const Scene& scene, double settle, long steps, long trace) {
     long pCount = 0;
     double maxSpeedAfter = 0.0;
     std::size_t escaped = 0;
-    json out{{"scene", scene.name}, {"H", H}, {"l0", l0}, {"particles", P.size()},
-             {"water", P.count(ParticleKind::Water)}, {"gauge_particles", gauge.size()}};
+    json out{{"scene", scene.name},
+             {"H", H},
+             {"l0", l0},
+             {"particles", P.size()},
+             {"water", P.count(ParticleKind::Water)},
+             {"gauge_particles", gauge.size()}};
     try {
         for (long k = 0; k < steps; ++k) {
             const StepStats& s = solver.step();
@@ -130,16 +143,21 @@ json stillTank(const Scene& scene, double settle, long steps, long trace) {
             if (trace > 0 && s.step % trace == 0) {
                 std::size_t fastest = 0;
                 for (std::size_t i = 0; i < P.size(); ++i) {
-                    if (std::hypot(P.vx[i], P.vy[i]) > std::hypot(P.vx[fastest], P.vy[fastest])) fastest = i;
+                    if (std::hypot(P.vx[i], P.vy[i]) > std::hypot(P.vx[fastest], P.vy[fastest]))
+                        fastest = i;
                 }
-                std::fprintf(stderr, "step %ld t %.3f max|u| %.4f (particle %zu at %.4f, %.4f n/n0 %.3f) ppe %d "
-                             "surface %zu collisions %zu\n", s.step, s.time, s.maxSpeed, fastest, P.x[fastest],
-                             P.y[fastest], P.n[fastest] / solver.densityConstants().n0, s.ppeIterations,
-                             s.surfaceParticles, s.collisions);
+                std::fprintf(
+                    stderr,
+                    "step %ld t %.3f max|u| %.4f (particle %zu at %.4f, %.4f n/n0 %.3f) ppe %d "
+                    "surface %zu collisions %zu\n",
+                    s.step, s.time, s.maxSpeed, fastest, P.x[fastest], P.y[fastest],
+                    P.n[fastest] / solver.densityConstants().n0, s.ppeIterations,
+                    s.surfaceParticles, s.collisions);
             }
             if (solver.time() >= settle) {
                 double p = 0.0;
-                for (std::size_t i : gauge) p += P.p[i];
+                for (std::size_t i : gauge)
+                    p += P.p[i];
                 pSum += p / static_cast<double>(gauge.size());
                 ++pCount;
                 maxSpeedAfter = std::max(maxSpeedAfter, s.maxSpeed);
@@ -150,7 +168,8 @@ json stillTank(const Scene& scene, double settle, long steps, long trace) {
         out["outcome"] = std::string("stopped: ") + e.what();
     }
     for (std::size_t i = 0; i < P.size(); ++i) {
-        if (P.kind[i] == ParticleKind::Water && !tank.contains(P.x[i], P.y[i])) ++escaped;
+        if (P.kind[i] == ParticleKind::Water && !tank.contains(P.x[i], P.y[i]))
+            ++escaped;
     }
     const double pMean = pCount ? pSum / static_cast<double>(pCount) : 0.0;
     out["steps"] = totals.steps;
@@ -168,8 +187,9 @@ json stillTank(const Scene& scene, double settle, long steps, long trace) {
 
 json regularWave(const Scene& scene, double from, double to, const std::string& keep) {
     namespace fs = std::filesystem;
-    const fs::path dir = keep.empty() ? fs::temp_directory_path() / fmt::format("swell_regular_wave_{}", ::getpid())
-                                      : fs::path(keep);
+    const fs::path dir =
+        keep.empty() ? fs::temp_directory_path() / fmt::format("swell_regular_wave_{}", ::getpid())
+                     : fs::path(keep);
     fs::create_directories(dir);
     BakeOptions opt;
     opt.output = dir / (scene.name + ".swell");
@@ -182,14 +202,18 @@ json regularWave(const Scene& scene, double from, double to, const std::string& 
         out["outcome"] = "stable";
     } catch (const DivergenceError& e) {
         out["outcome"] = std::string("stopped: ") + e.what();
-        if (keep.empty()) fs::remove_all(dir);
+        if (keep.empty())
+            fs::remove_all(dir);
         return out;
     }
     const std::vector<ProbeSample> samples = readProbeCsv(opt.probes);
-    if (keep.empty()) fs::remove_all(dir);
+    if (keep.empty())
+        fs::remove_all(dir);
     WaveWindow window = regularWaveWindow(scene);
-    if (from >= 0.0) window.start = from;
-    if (to >= 0.0) window.end = to;
+    if (from >= 0.0)
+        window.start = from;
+    if (to >= 0.0)
+        window.end = to;
     const RegularWaveCheck c = checkRegularWave(scene, samples, window);
     out["water"] = summary.particlesWater;
     out["fixed"] = summary.particlesWall;
@@ -202,7 +226,8 @@ json regularWave(const Scene& scene, double from, double to, const std::string& 
     out["height_theory"] = c.theory.height;
     out["heights"] = c.heights;
     json errors = json::array();
-    for (std::size_t g = 0; g < c.heights.size(); ++g) errors.push_back(c.heightError(g));
+    for (std::size_t g = 0; g < c.heights.size(); ++g)
+        errors.push_back(c.heightError(g));
     out["height_errors"] = errors;
     out["wavelength_theory"] = c.theory.wavelength;
     out["wavelength"] = c.wavelength;
@@ -210,7 +235,8 @@ json regularWave(const Scene& scene, double from, double to, const std::string& 
     out["steepness_theory"] = c.theory.steepness;
     out["ms_per_step"] = summary.msPerStep;
     out["us_per_particle_step"] =
-        1e3 * summary.msPerStep / static_cast<double>(summary.particlesWater + summary.particlesWall);
+        1e3 * summary.msPerStep /
+        static_cast<double>(summary.particlesWater + summary.particlesWall);
     out["ppe_iterations_mean"] = summary.ppeIterationsMean;
     out["ppe_tolerance"] = scene.solver.pressure.tolerance;
     return out;
@@ -219,22 +245,27 @@ json regularWave(const Scene& scene, double from, double to, const std::string& 
 } // namespace
 
 int main(int argc, char** argv) {
-    CLI::App app{"swell-validate: dam-break, still-tank and regular-wave validation runs of the MPS solver"};
+    CLI::App app{
+        "swell-validate: dam-break, still-tank and regular-wave validation runs of the MPS solver"};
     app.require_subcommand(1);
     app.fallthrough();
     std::vector<std::string> sets;
     int threads = 0;
     bool asJson = false;
-    app.add_option("--set", sets, "override a scene key: section.key=value (repeatable)")->expected(1)->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+    app.add_option("--set", sets, "override a scene key: section.key=value (repeatable)")
+        ->expected(1)
+        ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
     app.add_option("--threads", threads, "OpenMP threads (default: all)");
     app.add_flag("--json", asJson, "print one JSON object on stdout");
 
-    auto* dam = app.add_subcommand("dam-break", "run a dam-break scene and compare the surge front with "
-                                                "Martin & Moyce (1952) over T in [0.8, 3.0]");
+    auto* dam =
+        app.add_subcommand("dam-break", "run a dam-break scene and compare the surge front with "
+                                        "Martin & Moyce (1952) over T in [0.8, 3.0]");
     std::string damScene;
     double tEnd = 3.2;
     std::string csv;
-    dam->add_option("scene", damScene, "scene JSON (the first water rectangle is the column)")->required();
+    dam->add_option("scene", damScene, "scene JSON (the first water rectangle is the column)")
+        ->required();
     dam->add_option("--until", tEnd, "stop at this T = t sqrt(2g/a)");
     dam->add_option("--csv", csv, "write the front series T,Z to this file");
 
@@ -243,25 +274,32 @@ int main(int argc, char** argv) {
     double settle = 2.0;
     long steps = -1;
     long trace = 0;
-    still->add_option("scene", stillScene, "scene JSON (the first water rectangle sets H)")->required();
+    still->add_option("scene", stillScene, "scene JSON (the first water rectangle sets H)")
+        ->required();
     still->add_option("--settle", settle, "time (s) after which averages start");
     still->add_option("--steps", steps, "steps to run (default: end_time / dt)");
     still->add_option("--trace", trace, "print step stats to stderr every N steps");
 
-    auto* wave = app.add_subcommand("regular-wave", "bake a sinusoidal-piston scene and compare the wave height "
-                                                    "with Biesel's transfer function and the wavelength with the "
-                                                    "dispersion relation");
+    auto* wave = app.add_subcommand("regular-wave",
+                                    "bake a sinusoidal-piston scene and compare the wave height "
+                                    "with Biesel's transfer function and the wavelength with the "
+                                    "dispersion relation");
     std::string waveScene;
     double waveFrom = -1.0;
     double waveTo = -1.0;
     std::string keep;
-    wave->add_option("scene", waveScene, "scene JSON with piston.kind sinusoidal and two or more gauges")->required();
-    wave->add_option("--from", waveFrom, "start of the fit window (s); default: after the ramp and the wave's arrival");
-    wave->add_option("--to", waveTo, "end of the fit window (s); default: before reflections return");
+    wave->add_option("scene", waveScene,
+                     "scene JSON with piston.kind sinusoidal and two or more gauges")
+        ->required();
+    wave->add_option("--from", waveFrom,
+                     "start of the fit window (s); default: after the ramp and the wave's arrival");
+    wave->add_option("--to", waveTo,
+                     "end of the fit window (s); default: before reflections return");
     wave->add_option("--keep", keep, "keep the cache and probes CSV in this folder");
 
     CLI11_PARSE(app, argc, argv);
-    if (threads > 0) omp_set_num_threads(threads);
+    if (threads > 0)
+        omp_set_num_threads(threads);
     try {
         json out;
         const auto start = std::chrono::steady_clock::now();
@@ -271,16 +309,19 @@ int main(int argc, char** argv) {
             out = regularWave(loadScene(waveScene, sets), waveFrom, waveTo, keep);
         } else {
             const Scene scene = loadScene(stillScene, sets);
-            if (steps < 0) steps = std::lround(scene.run.endTime / scene.solver.time.dt);
+            if (steps < 0)
+                steps = std::lround(scene.run.endTime / scene.solver.time.dt);
             out = stillTank(scene, settle, steps, trace);
         }
-        out["wall_seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        out["wall_seconds"] =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         out["threads"] = omp_get_max_threads();
         out["overrides"] = sets;
         if (asJson) {
             std::printf("%s\n", out.dump().c_str());
         } else {
-            for (const auto& [k, v] : out.items()) std::printf("%-26s %s\n", k.c_str(), v.dump().c_str());
+            for (const auto& [k, v] : out.items())
+                std::printf("%-26s %s\n", k.c_str(), v.dump().c_str());
         }
         return out["outcome"] == "stable" ? 0 : 2;
     } catch (const std::exception& e) {

@@ -27,17 +27,21 @@ namespace {
 using nlohmann::json;
 using Clock = std::chrono::steady_clock;
 
-double secondsSince(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+double secondsSince(Clock::time_point t0) {
+    return std::chrono::duration<double>(Clock::now() - t0).count();
+}
 
 /// Probes CSV written to a temporary name and renamed when the bake completes.
 class ProbeFile {
 public:
     ProbeFile(const std::filesystem::path& path, std::span<const double> gauges) : m_path(path) {
-        if (path.empty()) return;
+        if (path.empty())
+            return;
         m_tmp = path;
         m_tmp += ".tmp";
         m_out.open(m_tmp);
-        if (!m_out) throw std::runtime_error(fmt::format("cannot write probes file {}", m_tmp.string()));
+        if (!m_out)
+            throw std::runtime_error(fmt::format("cannot write probes file {}", m_tmp.string()));
         m_out << probeCsvHeader(gauges) << '\n';
     }
     ~ProbeFile() {
@@ -50,9 +54,11 @@ public:
     bool enabled() const { return !m_path.empty(); }
     void add(const std::string& row) { m_out << row << '\n'; }
     void finish() {
-        if (!enabled()) return;
+        if (!enabled())
+            return;
         m_out.close();
-        if (m_out.fail()) throw std::runtime_error(fmt::format("error writing probes file {}", m_tmp.string()));
+        if (m_out.fail())
+            throw std::runtime_error(fmt::format("error writing probes file {}", m_tmp.string()));
         std::filesystem::rename(m_tmp, m_path);
     }
 
@@ -76,14 +82,16 @@ std::size_t recycle(MpsSolver& solver, const Scene& scene) {
     std::vector<std::size_t> leaving;
     std::vector<double> nearY; // heights of water near the slot column
     for (std::size_t i = 0; i < P.size(); ++i) {
-        if (P.kind[i] != ParticleKind::Water) continue;
+        if (P.kind[i] != ParticleKind::Water)
+            continue;
         if (P.x[i] > r.outflowX) {
             leaving.push_back(i);
         } else if (std::abs(P.x[i] - slotX) < 0.9 * l0) {
             nearY.push_back(P.y[i]);
         }
     }
-    if (leaving.empty()) return 0;
+    if (leaving.empty())
+        return 0;
     const long rows = std::lround((stillWaterLevel(scene) - tank.y0) / l0);
     std::size_t moved = 0;
     for (long j = 0; j < rows && moved < leaving.size(); ++j) {
@@ -93,7 +101,8 @@ std::size_t recycle(MpsSolver& solver, const Scene& scene) {
             // distance in x is below 0.9 l0 for every particle of nearY; check the full distance
             free = std::abs(nearY[k] - y) >= 0.9 * l0;
         }
-        if (!free) continue;
+        if (!free)
+            continue;
         const std::size_t i = leaving[moved++];
         solver.relocateWater(i, slotX, y, r.velocity, 0.0);
         nearY.push_back(y);
@@ -114,29 +123,37 @@ void removeStaleTemporaries(const std::filesystem::path& output) {
         const std::string f = e.path().filename().string();
         std::string rest;
         for (const std::string& prefix : {name + ".tmp-", name + ".ckpt.tmp-"}) {
-            if (f.size() > prefix.size() && f.compare(0, prefix.size(), prefix) == 0) rest = f.substr(prefix.size());
+            if (f.size() > prefix.size() && f.compare(0, prefix.size(), prefix) == 0)
+                rest = f.substr(prefix.size());
         }
-        if (rest.empty() || rest.size() > 9 || rest.find_first_not_of("0123456789") != std::string::npos) continue;
+        if (rest.empty() || rest.size() > 9 ||
+            rest.find_first_not_of("0123456789") != std::string::npos)
+            continue;
         const long pid = std::stol(rest);
-        if (pid <= 0 || pid == ::getpid()) continue;
-        if (::kill(static_cast<pid_t>(pid), 0) == 0 || errno != ESRCH) continue; // still running (or not ours)
+        if (pid <= 0 || pid == ::getpid())
+            continue;
+        if (::kill(static_cast<pid_t>(pid), 0) == 0 || errno != ESRCH)
+            continue; // still running (or not ours)
         stale.push_back(e.path());
     }
-    for (const fs::path& p : stale) fs::remove(p, ec);
+    for (const fs::path& p : stale)
+        fs::remove(p, ec);
 }
 
 } // namespace
 
 long frameIntervalSteps(const Scene& scene) {
     if (scene.solver.time.adaptive) {
-        throw SceneError("solver.adaptive_dt", "swell-bake needs a fixed time step (stored frames are evenly spaced in "
-                                               "steps); set it to false");
+        throw SceneError("solver.adaptive_dt",
+                         "swell-bake needs a fixed time step (stored frames are evenly spaced in "
+                         "steps); set it to false");
     }
     const double ratio = scene.output.frameInterval / scene.solver.time.dt;
     const double k = std::round(ratio);
     if (k < 1.0 || std::abs(ratio - k) > 1e-6 * k) {
-        throw SceneError("output.frame_interval", fmt::format("{} s is not a whole number of time steps dt = {} s",
-                                                              scene.output.frameInterval, scene.solver.time.dt));
+        throw SceneError("output.frame_interval",
+                         fmt::format("{} s is not a whole number of time steps dt = {} s",
+                                     scene.output.frameInterval, scene.solver.time.dt));
     }
     return static_cast<long>(k);
 }
@@ -144,30 +161,35 @@ long frameIntervalSteps(const Scene& scene) {
 long totalSteps(const Scene& scene) {
     const double k = std::round(scene.run.endTime / scene.solver.time.dt);
     if (k < 1.0 || k > 1e9) {
-        throw SceneError("solver.end_time", fmt::format("{} s is {} steps of dt = {} s: must be 1 to 1e9",
-                                                        scene.run.endTime, k, scene.solver.time.dt));
+        throw SceneError("solver.end_time",
+                         fmt::format("{} s is {} steps of dt = {} s: must be 1 to 1e9",
+                                     scene.run.endTime, k, scene.solver.time.dt));
     }
     return static_cast<long>(k);
 }
 
 std::vector<std::string> sceneWarnings(const Scene& scene) {
     std::vector<std::string> out;
-    if (!scene.piston || !scene.geometry.tank) return out;
+    if (!scene.piston || !scene.geometry.tank)
+        return out;
     const PistonParams& p = *scene.piston;
     const double depth = stillWaterLevel(scene) - scene.geometry.tank->y0;
-    if (!(depth > 0.0)) return out;
+    if (!(depth > 0.0))
+        return out;
     // Linear theory: Biesel transfer H/S and dispersion give H/L; Miche limits it.
     // Random motion: the steepest combination is the largest stroke at the shortest period.
     const bool sinus = p.kind == PistonKind::Sinusoidal;
     const double stroke = sinus ? p.stroke : p.strokeMax;
     const double period = sinus ? p.period : p.periodMin;
-    if (!(stroke > 0.0)) return out;
+    if (!(stroke > 0.0))
+        return out;
     const LinearPistonWave w = linearPistonWave(stroke, period, depth, scene.physics.gravity);
     if (w.breaks()) {
-        out.push_back(fmt::format("piston wave breaks: linear theory gives H = {:.3g} m, L = {:.3g} m, H/L = {:.3f} "
-                                  "above the Miche limit {:.3f} (kh = {:.2f}, stroke {} m, period {} s{})",
-                                  w.height, w.wavelength, w.steepness, w.breakingSteepness, w.kh, stroke, period,
-                                  sinus ? "" : ", steepest random cycle"));
+        out.push_back(fmt::format(
+            "piston wave breaks: linear theory gives H = {:.3g} m, L = {:.3g} m, H/L = {:.3f} "
+            "above the Miche limit {:.3f} (kh = {:.2f}, stroke {} m, period {} s{})",
+            w.height, w.wavelength, w.steepness, w.breakingSteepness, w.kh, stroke, period,
+            sinus ? "" : ", steepest random cycle"));
     }
     return out;
 }
@@ -182,9 +204,11 @@ Conservation measureConservation(const MpsSolver& solver, const Scene& scene, do
     double nSum = 0.0;
     std::size_t interior = 0;
     for (std::size_t i = 0; i < P.size(); ++i) {
-        if (P.kind[i] != ParticleKind::Water) continue;
+        if (P.kind[i] != ParticleKind::Water)
+            continue;
         ++c.water;
-        if (!scene.geometry.tank || scene.geometry.tank->contains(P.x[i], P.y[i])) ++c.inTank;
+        if (!scene.geometry.tank || scene.geometry.tank->contains(P.x[i], P.y[i]))
+            ++c.inTank;
         if (P.n[i] >= scene.output.surfaceRatio * n0) {
             nSum += P.n[i];
             ++interior;
@@ -199,8 +223,11 @@ Conservation measureConservation(const MpsSolver& solver, const Scene& scene, do
 
 namespace {
 json conservationJson(const Conservation& c) {
-    return json{{"water", c.water}, {"in_tank", c.inTank}, {"volume", c.volume},
-                {"kinetic_energy", c.kineticEnergy}, {"potential_energy", c.potentialEnergy},
+    return json{{"water", c.water},
+                {"in_tank", c.inTank},
+                {"volume", c.volume},
+                {"kinetic_energy", c.kineticEnergy},
+                {"potential_energy", c.potentialEnergy},
                 {"energy", c.kineticEnergy + c.potentialEnergy}};
 }
 } // namespace
@@ -208,23 +235,38 @@ json conservationJson(const Conservation& c) {
 json toJson(const BakeSummary& s) {
     const double e0 = s.start.kineticEnergy + s.start.potentialEnergy;
     const double e1 = s.end.kineticEnergy + s.end.potentialEnergy;
-    return json{{"conservation",
-                 {{"start", conservationJson(s.start)},
-                  {"end", conservationJson(s.end)},
-                  {"water_lost", static_cast<long long>(s.start.water) - static_cast<long long>(s.end.water)},
-                  {"volume_change", s.start.volume > 0.0 ? s.end.volume / s.start.volume - 1.0 : 0.0},
-                  {"energy_drift", e0 > 0.0 ? e1 / e0 - 1.0 : 0.0}}},
-                {"particles_water", s.particlesWater}, {"particles_wall", s.particlesWall},
-                {"steps", s.steps}, {"frame_interval_steps", s.frameIntervalSteps},
-                {"frames", s.frames}, {"surface_mean", s.surfaceMean}, {"splash_mean", s.splashMean},
-                {"kept_mean", s.surfaceMean + s.splashMean}, {"kept_max", s.keptMax},
-                {"reduction", s.reduction}, {"wall_seconds", s.wallSeconds}, {"ms_per_step", s.msPerStep},
-                {"ppe_iterations_mean", s.ppeIterationsMean}, {"max_courant", s.maxCourant},
-                {"recycled", s.recycled}, {"cache_bytes", s.cacheBytes}, {"raw_bytes", s.rawBytes},
-                {"resumed_from_step", s.resumedFromStep}, {"checkpoints", s.checkpoints},
-                {"checkpoint_bytes", s.checkpointBytes}, {"checkpoint_seconds", s.checkpointSeconds},
-                {"compression_ratio", s.cacheBytes ? static_cast<double>(s.rawBytes) / s.cacheBytes : 0.0},
-                {"replay", toJson(s.replay)}, {"warnings", s.warnings}};
+    return json{
+        {"conservation",
+         {{"start", conservationJson(s.start)},
+          {"end", conservationJson(s.end)},
+          {"water_lost",
+           static_cast<long long>(s.start.water) - static_cast<long long>(s.end.water)},
+          {"volume_change", s.start.volume > 0.0 ? s.end.volume / s.start.volume - 1.0 : 0.0},
+          {"energy_drift", e0 > 0.0 ? e1 / e0 - 1.0 : 0.0}}},
+        {"particles_water", s.particlesWater},
+        {"particles_wall", s.particlesWall},
+        {"steps", s.steps},
+        {"frame_interval_steps", s.frameIntervalSteps},
+        {"frames", s.frames},
+        {"surface_mean", s.surfaceMean},
+        {"splash_mean", s.splashMean},
+        {"kept_mean", s.surfaceMean + s.splashMean},
+        {"kept_max", s.keptMax},
+        {"reduction", s.reduction},
+        {"wall_seconds", s.wallSeconds},
+        {"ms_per_step", s.msPerStep},
+        {"ppe_iterations_mean", s.ppeIterationsMean},
+        {"max_courant", s.maxCourant},
+        {"recycled", s.recycled},
+        {"cache_bytes", s.cacheBytes},
+        {"raw_bytes", s.rawBytes},
+        {"resumed_from_step", s.resumedFromStep},
+        {"checkpoints", s.checkpoints},
+        {"checkpoint_bytes", s.checkpointBytes},
+        {"checkpoint_seconds", s.checkpointSeconds},
+        {"compression_ratio", s.cacheBytes ? static_cast<double>(s.rawBytes) / s.cacheBytes : 0.0},
+        {"replay", toJson(s.replay)},
+        {"warnings", s.warnings}};
 }
 
 BakeSummary runBake(const Scene& scene, const BakeOptions& opt) {
@@ -241,10 +283,12 @@ BakeSummary runBake(const Scene& scene, const BakeOptions& opt) {
     const Particles& P = solver.particles();
     // Conservation at the start: the scene's initial state (also when resuming, before the
     // checkpoint's state is imported below).
-    double bed = scene.geometry.tank ? scene.geometry.tank->y0 : std::numeric_limits<double>::infinity();
+    double bed =
+        scene.geometry.tank ? scene.geometry.tank->y0 : std::numeric_limits<double>::infinity();
     if (!scene.geometry.tank) {
         for (std::size_t i = 0; i < P.size(); ++i) {
-            if (P.kind[i] == ParticleKind::Water) bed = std::min(bed, P.y[i]);
+            if (P.kind[i] == ParticleKind::Water)
+                bed = std::min(bed, P.y[i]);
         }
     }
     sum.start = measureConservation(solver, scene, bed);
@@ -256,31 +300,32 @@ BakeSummary runBake(const Scene& scene, const BakeOptions& opt) {
     // Header: everything needed to reproduce the bake (docs/cache-format.md).
     cache::Header header;
     const Box& dom = solver.domain();
-    header.domain = cache::Domain{static_cast<float>(dom.x0), static_cast<float>(dom.y0), static_cast<float>(dom.x1),
-                                  static_cast<float>(dom.y1)};
+    header.domain = cache::Domain{static_cast<float>(dom.x0), static_cast<float>(dom.y0),
+                                  static_cast<float>(dom.x1), static_cast<float>(dom.y1)};
     header.dt = scene.solver.time.dt;
     header.frameInterval = static_cast<std::uint32_t>(interval);
     header.seed = scene.seed;
-    const json meta{{"program", "swell-bake"},
-                    {"version", opt.programVersion},
-                    {"scene_file", opt.sceneFile},
-                    {"overrides", opt.overrides},
-                    {"scene", toJson(scene)},
-                    {"seed", scene.seed},
-                    {"threads", opt.threads},
-                    {"dt", scene.solver.time.dt},
-                    {"steps", steps},
-                    {"frame_interval_steps", interval},
-                    {"n0", n0},
-                    {"still_water_level", stillWaterLevel(scene)},
-                    {"particles_water", sum.particlesWater},
-                    {"particles_wall", sum.particlesWall},
-                    // What the runtime cannot guess: water extent and steady start (replay_window.h).
-                    {"replay", toJson(sum.replay)}};
+    const json meta{
+        {"program", "swell-bake"},
+        {"version", opt.programVersion},
+        {"scene_file", opt.sceneFile},
+        {"overrides", opt.overrides},
+        {"scene", toJson(scene)},
+        {"seed", scene.seed},
+        {"threads", opt.threads},
+        {"dt", scene.solver.time.dt},
+        {"steps", steps},
+        {"frame_interval_steps", interval},
+        {"n0", n0},
+        {"still_water_level", stillWaterLevel(scene)},
+        {"particles_water", sum.particlesWater},
+        {"particles_wall", sum.particlesWall},
+        // What the runtime cannot guess: water extent and steady start (replay_window.h).
+        {"replay", toJson(sum.replay)}};
     header.metadataJson = meta.dump();
 
-    // Checkpoints (docs/scenes.md "Checkpoints"): what a resume must match is everything the cache records, plus
-    // the build of the program (a different build may step differently).
+    // Checkpoints (docs/scenes.md "Checkpoints"): what a resume must match is everything the cache
+    // records, plus the build of the program (a different build may step differently).
     const std::filesystem::path ckptPath = checkpointPath(opt.output);
     const std::string fingerprint = json{{"cache_metadata", meta}, {"build", opt.buildId}}.dump();
     std::optional<Checkpoint> resumed;
@@ -290,22 +335,25 @@ BakeSummary runBake(const Scene& scene, const BakeOptions& opt) {
         resumed = readCheckpoint(ckptPath);
         checkFingerprint(ckptPath, resumed->fingerprint, fingerprint);
         first = resumed->solver.step;
-        if (first < 1 || first > steps || resumed->frames.size() != static_cast<std::size_t>(first / interval + 1)) {
-            throw CheckpointError(fmt::format("{}: damaged checkpoint: step {} with {} stored frames does not fit "
-                                              "this bake ({} steps, a frame every {})", ckptPath.string(), first,
-                                              resumed->frames.size(), steps, interval));
+        if (first < 1 || first > steps ||
+            resumed->frames.size() != static_cast<std::size_t>(first / interval + 1)) {
+            throw CheckpointError(
+                fmt::format("{}: damaged checkpoint: step {} with {} stored frames does not fit "
+                            "this bake ({} steps, a frame every {})",
+                            ckptPath.string(), first, resumed->frames.size(), steps, interval));
         }
         try {
             solver.importState(resumed->solver);
         } catch (const std::invalid_argument& e) {
-            throw CheckpointError(
-                fmt::format("{}: checkpoint does not fit the scene: {}", ckptPath.string(), e.what()));
+            throw CheckpointError(fmt::format("{}: checkpoint does not fit the scene: {}",
+                                              ckptPath.string(), e.what()));
         }
         tot = resumed->totals;
         sum.resumedFromStep = first;
         removeStaleTemporaries(opt.output);
     }
-    const long every = opt.checkpointEvery > 0 ? opt.checkpointEvery : (resumed ? resumed->checkpointEvery : 0);
+    const long every =
+        opt.checkpointEvery > 0 ? opt.checkpointEvery : (resumed ? resumed->checkpointEvery : 0);
 
     cache::Writer writer(opt.output, header);
     ProbeFile probes(opt.probes, scene.output.gauges);
@@ -326,10 +374,13 @@ BakeSummary runBake(const Scene& scene, const BakeOptions& opt) {
         tot.rawBytes += (c.frame.surface.size() + c.frame.splash.size()) * sizeof(float);
         if (probes.enabled() || keep) {
             std::string row = probeCsvRow(sampleProbes(P, solver.time(), probeParams));
-            if (probes.enabled()) probes.add(row);
-            if (keep) keptRows.push_back(std::move(row));
+            if (probes.enabled())
+                probes.add(row);
+            if (keep)
+                keptRows.push_back(std::move(row));
         }
-        if (keep) keptFrames.push_back(std::move(c.frame));
+        if (keep)
+            keptFrames.push_back(std::move(c.frame));
     };
     const auto saveCheckpoint = [&] {
         const auto t0 = Clock::now();
@@ -351,7 +402,8 @@ BakeSummary runBake(const Scene& scene, const BakeOptions& opt) {
         // The frames stored before the checkpoint, re-encoded exactly as the first run did.
         for (std::size_t f = 0; f < resumed->frames.size(); ++f) {
             writer.addFrame(resumed->frames[f]);
-            if (probes.enabled()) probes.add(resumed->probeRows[f]);
+            if (probes.enabled())
+                probes.add(resumed->probeRows[f]);
         }
         if (keep) {
             keptFrames = std::move(resumed->frames);
@@ -364,25 +416,30 @@ BakeSummary runBake(const Scene& scene, const BakeOptions& opt) {
     const auto solveStart = Clock::now();
     for (long k = first + 1; k <= steps; ++k) {
         const StepStats& st = solver.step();
-        if (scene.recycling) tot.recycled += recycle(solver, scene);
+        if (scene.recycling)
+            tot.recycled += recycle(solver, scene);
         tot.solverSeconds += st.seconds();
         tot.ppeIterations += st.ppeIterations;
         tot.maxCourant = std::max(tot.maxCourant, st.courant);
-        if (k % interval == 0) store();
+        if (k % interval == 0)
+            store();
         if (opt.onProgress) {
-            opt.onProgress(BakeProgress{k, first, steps, solver.time(), secondsSince(solveStart), writer.frameCount()});
+            opt.onProgress(BakeProgress{k, first, steps, solver.time(), secondsSince(solveStart),
+                                        writer.frameCount()});
         }
         if (opt.cancelled && opt.cancelled()) {
             if (every > 0) {
                 saveCheckpoint();
-                throw BakeCancelled(fmt::format("bake cancelled at step {} (t = {:.4f} s); no cache written; "
-                                                "checkpoint {} saved: continue with --resume", k, solver.time(),
-                                                ckptPath.string()));
+                throw BakeCancelled(
+                    fmt::format("bake cancelled at step {} (t = {:.4f} s); no cache written; "
+                                "checkpoint {} saved: continue with --resume",
+                                k, solver.time(), ckptPath.string()));
             }
-            throw BakeCancelled(fmt::format("bake cancelled at step {} (t = {:.4f} s); no cache written", k,
-                                            solver.time()));
+            throw BakeCancelled(fmt::format(
+                "bake cancelled at step {} (t = {:.4f} s); no cache written", k, solver.time()));
         }
-        if (every > 0 && k % every == 0 && k < steps) saveCheckpoint();
+        if (every > 0 && k % every == 0 && k < steps)
+            saveCheckpoint();
     }
     sum.end = measureConservation(solver, scene, bed);
     sum.frames = writer.frameCount();

@@ -26,10 +26,13 @@ namespace fs = std::filesystem;
 constexpr std::uint8_t kMagic[8] = {0x89, 'S', 'W', 'K', '\r', '\n', 0x1a, '\n'};
 constexpr std::uint32_t kVersion = 1;
 constexpr std::size_t kHeaderSize = 48;
-constexpr std::uint64_t kMaxRawPayload = std::uint64_t{64} << 30; // 64 GiB: a damaged size fails fast
+constexpr std::uint64_t kMaxRawPayload = std::uint64_t{64}
+                                         << 30; // 64 GiB: a damaged size fails fast
 constexpr int kLevel = 3;
 
-std::string where(const fs::path& p) { return p.string(); }
+std::string where(const fs::path& p) {
+    return p.string();
+}
 
 /// Little-endian payload writer (the project is little-endian only, as the cache format).
 class Out {
@@ -67,21 +70,25 @@ public:
     }
     template <class T> std::vector<T> vec() {
         const std::uint64_t n = pod<std::uint64_t>();
-        if (n > (m_b.size() - m_pos) / sizeof(T)) damaged("an array runs past the end of the payload");
+        if (n > (m_b.size() - m_pos) / sizeof(T))
+            damaged("an array runs past the end of the payload");
         std::vector<T> v(static_cast<std::size_t>(n));
-        if (!v.empty()) std::memcpy(v.data(), m_b.data() + m_pos, v.size() * sizeof(T));
+        if (!v.empty())
+            std::memcpy(v.data(), m_b.data() + m_pos, v.size() * sizeof(T));
         m_pos += v.size() * sizeof(T);
         return v;
     }
     std::string str() {
         const std::uint64_t n = pod<std::uint64_t>();
         need(n);
-        std::string s(reinterpret_cast<const char*>(m_b.data() + m_pos), static_cast<std::size_t>(n));
+        std::string s(reinterpret_cast<const char*>(m_b.data() + m_pos),
+                      static_cast<std::size_t>(n));
         m_pos += static_cast<std::size_t>(n);
         return s;
     }
     void end() const {
-        if (m_pos != m_b.size()) damaged(fmt::format("{} unread bytes after the payload", m_b.size() - m_pos));
+        if (m_pos != m_b.size())
+            damaged(fmt::format("{} unread bytes after the payload", m_b.size() - m_pos));
     }
     [[noreturn]] void damaged(const std::string& what) const {
         throw CheckpointError(fmt::format("{}: damaged checkpoint: {}", where(m_path), what));
@@ -89,7 +96,8 @@ public:
 
 private:
     void need(std::uint64_t n) const {
-        if (n > m_b.size() - m_pos) damaged("the payload ends early");
+        if (n > m_b.size() - m_pos)
+            damaged("the payload ends early");
     }
     std::span<const std::uint8_t> m_b;
     std::size_t m_pos = 0;
@@ -115,7 +123,8 @@ Particles getParticles(In& in) {
     p.p = in.vec<double>();
     p.n = in.vec<double>();
     p.kind = in.vec<ParticleKind>();
-    if (!p.consistent()) in.damaged("particle arrays differ in length");
+    if (!p.consistent())
+        in.damaged("particle arrays differ in length");
     for (ParticleKind k : p.kind) {
         if (k != ParticleKind::Water && k != ParticleKind::Wall && k != ParticleKind::Dummy) {
             in.damaged("unknown particle kind");
@@ -152,7 +161,8 @@ std::vector<std::uint8_t> encodePayload(const Checkpoint& c) {
         o.vec(f.splash);
     }
     o.pod<std::uint64_t>(c.probeRows.size());
-    for (const std::string& r : c.probeRows) o.str(r);
+    for (const std::string& r : c.probeRows)
+        o.str(r);
     return std::move(o.bytes());
 }
 
@@ -180,28 +190,36 @@ Checkpoint decodePayload(std::span<const std::uint8_t> raw, const fs::path& path
     t.maxCourant = in.pod<double>();
     t.recycled = in.pod<std::uint64_t>();
     const std::uint64_t frames = in.pod<std::uint64_t>();
-    if (frames > raw.size()) in.damaged("impossible frame count");
+    if (frames > raw.size())
+        in.damaged("impossible frame count");
     c.frames.resize(static_cast<std::size_t>(frames));
     for (cache::Frame& f : c.frames) {
         f.surface = in.vec<float>();
         f.splash = in.vec<float>();
-        if (f.surface.size() % 2 != 0 || f.splash.size() % 4 != 0) in.damaged("a frame has a partial particle");
+        if (f.surface.size() % 2 != 0 || f.splash.size() % 4 != 0)
+            in.damaged("a frame has a partial particle");
     }
     const std::uint64_t rows = in.pod<std::uint64_t>();
-    if (rows > raw.size()) in.damaged("impossible probe row count");
+    if (rows > raw.size())
+        in.damaged("impossible probe row count");
     c.probeRows.resize(static_cast<std::size_t>(rows));
-    for (std::string& r : c.probeRows) r = in.str();
+    for (std::string& r : c.probeRows)
+        r = in.str();
     in.end();
-    if (s.step < 0 || c.checkpointEvery < 0) in.damaged("negative step or checkpoint interval");
+    if (s.step < 0 || c.checkpointEvery < 0)
+        in.damaged("negative step or checkpoint interval");
     if (s.neighborX.size() != s.particles.size() || s.neighborY.size() != s.particles.size() ||
         (!s.wallRestX.empty() && s.wallRestX.size() != s.particles.size())) {
         in.damaged("solver arrays differ in length");
     }
-    if (c.probeRows.size() != c.frames.size()) in.damaged("probe rows and frames differ in number");
+    if (c.probeRows.size() != c.frames.size())
+        in.damaged("probe rows and frames differ in number");
     return c;
 }
 
-template <class T> void put(std::uint8_t* p, T v) { std::memcpy(p, &v, sizeof(T)); }
+template <class T> void put(std::uint8_t* p, T v) {
+    std::memcpy(p, &v, sizeof(T));
+}
 template <class T> T get(const std::uint8_t* p) {
     T v;
     std::memcpy(&v, p, sizeof(T));
@@ -210,7 +228,8 @@ template <class T> T get(const std::uint8_t* p) {
 
 std::string shorten(const nlohmann::json& v) {
     std::string s = v.dump();
-    if (s.size() > 80) s = s.substr(0, 77) + "...";
+    if (s.size() > 80)
+        s = s.substr(0, 77) + "...";
     return s;
 }
 
@@ -225,10 +244,11 @@ fs::path checkpointPath(const fs::path& cache) {
 std::uint64_t writeCheckpoint(const fs::path& path, const Checkpoint& c) {
     const std::vector<std::uint8_t> raw = encodePayload(c);
     std::vector<std::uint8_t> file(kHeaderSize + ZSTD_compressBound(raw.size()));
-    const std::size_t n = ZSTD_compress(file.data() + kHeaderSize, file.size() - kHeaderSize, raw.data(),
-                                        raw.size(), kLevel);
+    const std::size_t n = ZSTD_compress(file.data() + kHeaderSize, file.size() - kHeaderSize,
+                                        raw.data(), raw.size(), kLevel);
     if (ZSTD_isError(n)) {
-        throw CheckpointError(fmt::format("{}: cannot compress the checkpoint: {}", where(path), ZSTD_getErrorName(n)));
+        throw CheckpointError(fmt::format("{}: cannot compress the checkpoint: {}", where(path),
+                                          ZSTD_getErrorName(n)));
     }
     file.resize(kHeaderSize + n);
     std::uint8_t* h = file.data();
@@ -246,15 +266,18 @@ std::uint64_t writeCheckpoint(const fs::path& path, const Checkpoint& c) {
         const std::string reason = std::strerror(errno);
         std::error_code ec;
         fs::remove(tmp, ec);
-        throw CheckpointError(fmt::format("{}: cannot write the checkpoint ({} {}): {}", where(path), what,
-                                          tmp.string(), reason));
+        throw CheckpointError(fmt::format("{}: cannot write the checkpoint ({} {}): {}",
+                                          where(path), what, tmp.string(), reason));
     };
     std::FILE* f = std::fopen(tmp.c_str(), "wb");
-    if (!f) fail("create");
-    const bool ok = std::fwrite(file.data(), 1, file.size(), f) == file.size() && std::fflush(f) == 0 &&
-                    ::fsync(::fileno(f)) == 0;
-    if (std::fclose(f) != 0 || !ok) fail("write");
-    if (std::rename(tmp.c_str(), path.c_str()) != 0) fail("rename");
+    if (!f)
+        fail("create");
+    const bool ok = std::fwrite(file.data(), 1, file.size(), f) == file.size() &&
+                    std::fflush(f) == 0 && ::fsync(::fileno(f)) == 0;
+    if (std::fclose(f) != 0 || !ok)
+        fail("write");
+    if (std::rename(tmp.c_str(), path.c_str()) != 0)
+        fail("rename");
     const fs::path dir = path.has_parent_path() ? path.parent_path() : fs::path(".");
     if (int dfd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY); dfd >= 0) {
         ::fsync(dfd); // the rename itself survives a power cut
@@ -266,47 +289,59 @@ std::uint64_t writeCheckpoint(const fs::path& path, const Checkpoint& c) {
 Checkpoint readCheckpoint(const fs::path& path) {
     std::error_code ec;
     if (!fs::exists(path, ec)) {
-        throw CheckpointError(fmt::format("{}: no checkpoint to resume from (a bake writes one with "
-                                          "--checkpoint-every N, or when stopped by SIGINT/SIGTERM with it)",
-                                          where(path)));
+        throw CheckpointError(
+            fmt::format("{}: no checkpoint to resume from (a bake writes one with "
+                        "--checkpoint-every N, or when stopped by SIGINT/SIGTERM with it)",
+                        where(path)));
     }
     std::ifstream in(path, std::ios::binary);
     if (!in) {
-        throw CheckpointError(fmt::format("{}: cannot open the checkpoint: {}", where(path), std::strerror(errno)));
+        throw CheckpointError(
+            fmt::format("{}: cannot open the checkpoint: {}", where(path), std::strerror(errno)));
     }
-    const std::vector<std::uint8_t> file{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-    if (in.bad()) throw CheckpointError(fmt::format("{}: cannot read the checkpoint", where(path)));
+    const std::vector<std::uint8_t> file{std::istreambuf_iterator<char>(in),
+                                         std::istreambuf_iterator<char>()};
+    if (in.bad())
+        throw CheckpointError(fmt::format("{}: cannot read the checkpoint", where(path)));
     const auto damaged = [&](const std::string& what) {
-        throw CheckpointError(fmt::format("{}: damaged checkpoint: {}; bake without --resume to start over",
-                                          where(path), what));
+        throw CheckpointError(fmt::format(
+            "{}: damaged checkpoint: {}; bake without --resume to start over", where(path), what));
     };
     if (file.size() < kHeaderSize) {
         damaged(fmt::format("{} bytes, shorter than the {}-byte header", file.size(), kHeaderSize));
     }
     const std::uint8_t* h = file.data();
     if (std::memcmp(h, kMagic, sizeof kMagic) != 0) {
-        throw CheckpointError(fmt::format("{}: not a swell-bake checkpoint (wrong magic bytes)", where(path)));
+        throw CheckpointError(
+            fmt::format("{}: not a swell-bake checkpoint (wrong magic bytes)", where(path)));
     }
-    if (get<std::uint64_t>(h + 40) != XXH3_64bits(h, 40)) damaged("header checksum mismatch");
+    if (get<std::uint64_t>(h + 40) != XXH3_64bits(h, 40))
+        damaged("header checksum mismatch");
     if (const auto v = get<std::uint32_t>(h + 8); v != kVersion) {
-        throw CheckpointError(fmt::format("{}: checkpoint format version {}; this swell-bake reads version {}",
-                                          where(path), v, kVersion));
+        throw CheckpointError(
+            fmt::format("{}: checkpoint format version {}; this swell-bake reads version {}",
+                        where(path), v, kVersion));
     }
     const auto packed = get<std::uint64_t>(h + 16);
     const auto rawSize = get<std::uint64_t>(h + 24);
     if (packed != file.size() - kHeaderSize) {
-        damaged(fmt::format("{} payload bytes, the header says {} (truncated?)", file.size() - kHeaderSize, packed));
+        damaged(fmt::format("{} payload bytes, the header says {} (truncated?)",
+                            file.size() - kHeaderSize, packed));
     }
-    if (get<std::uint64_t>(h + 32) != XXH3_64bits(h + kHeaderSize, packed)) damaged("payload checksum mismatch");
-    if (rawSize > kMaxRawPayload) damaged("impossible payload size");
+    if (get<std::uint64_t>(h + 32) != XXH3_64bits(h + kHeaderSize, packed))
+        damaged("payload checksum mismatch");
+    if (rawSize > kMaxRawPayload)
+        damaged("impossible payload size");
     std::vector<std::uint8_t> raw(static_cast<std::size_t>(rawSize));
     const std::size_t n = ZSTD_decompress(raw.data(), raw.size(), h + kHeaderSize, packed);
-    if (ZSTD_isError(n) || n != raw.size()) damaged("payload does not decompress to its recorded size");
+    if (ZSTD_isError(n) || n != raw.size())
+        damaged("payload does not decompress to its recorded size");
     return decodePayload(raw, path);
 }
 
 void checkFingerprint(const fs::path& path, const std::string& stored, const std::string& current) {
-    if (stored == current) return;
+    if (stored == current)
+        return;
     using nlohmann::json;
     const json a = json::parse(stored, nullptr, false);
     const json b = json::parse(current, nullptr, false);
@@ -320,14 +355,18 @@ void checkFingerprint(const fs::path& path, const std::string& stored, const std
                                b.contains(ptr) ? shorten(b.at(ptr)) : "absent");
         }
     }
-    throw CheckpointError(fmt::format("{}: checkpoint of a different bake ({}); resume with the same scene, "
-                                      "--set overrides, --threads and swell-bake build, or bake without --resume "
-                                      "to start over", where(path), what));
+    throw CheckpointError(
+        fmt::format("{}: checkpoint of a different bake ({}); resume with the same scene, "
+                    "--set overrides, --threads and swell-bake build, or bake without --resume "
+                    "to start over",
+                    where(path), what));
 }
 
 std::string fileDigest(const fs::path& path) {
     std::ifstream in(path, std::ios::binary);
-    if (!in) throw CheckpointError(fmt::format("{}: cannot read: {}", path.string(), std::strerror(errno)));
+    if (!in)
+        throw CheckpointError(
+            fmt::format("{}: cannot read: {}", path.string(), std::strerror(errno)));
     XXH3_state_t* st = XXH3_createState();
     XXH3_64bits_reset(st);
     std::vector<char> buf(1 << 16);

@@ -10,15 +10,20 @@ ClassifiedFrame classifyParticles(const Particles& P, double n0, double d1, doub
     ClassifiedFrame out;
     std::vector<std::pair<double, double>> surface;
     for (std::size_t i = 0; i < P.size(); ++i) {
-        if (P.kind[i] != ParticleKind::Water) continue;
+        if (P.kind[i] != ParticleKind::Water)
+            continue;
         switch (classifyWater(P.n[i], n0, d1, d2)) { // eq. (4)
         case WaterClass::Splash:
             out.frame.splash.insert(out.frame.splash.end(),
                                     {static_cast<float>(P.x[i]), static_cast<float>(P.y[i]),
                                      static_cast<float>(P.vx[i]), static_cast<float>(P.vy[i])});
             break;
-        case WaterClass::Surface: surface.emplace_back(P.x[i], P.y[i]); break;
-        case WaterClass::Deep: ++out.deep; break;
+        case WaterClass::Surface:
+            surface.emplace_back(P.x[i], P.y[i]);
+            break;
+        case WaterClass::Deep:
+            ++out.deep;
+            break;
         }
     }
     std::sort(surface.begin(), surface.end());

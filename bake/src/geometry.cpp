@@ -27,12 +27,15 @@ ParticleKind layerKind(long layer, int wallLayers) {
 }
 
 void checkBox(const Box& b, const std::string& key) {
-    if (!std::isfinite(b.x0) || !std::isfinite(b.x1) || !std::isfinite(b.y0) || !std::isfinite(b.y1)) {
+    if (!std::isfinite(b.x0) || !std::isfinite(b.x1) || !std::isfinite(b.y0) ||
+        !std::isfinite(b.y1)) {
         throw SceneError(key, "coordinates must be finite numbers");
     }
     if (!(b.x1 > b.x0) || !(b.y1 > b.y0)) {
-        throw SceneError(key, fmt::format("empty rectangle: need x1 > x0 and y1 > y0 (got x0 = {}, x1 = {}, "
-                                          "y0 = {}, y1 = {})", b.x0, b.x1, b.y0, b.y1));
+        throw SceneError(
+            key, fmt::format("empty rectangle: need x1 > x0 and y1 > y0 (got x0 = {}, x1 = {}, "
+                             "y0 = {}, y1 = {})",
+                             b.x0, b.x1, b.y0, b.y1));
     }
 }
 
@@ -41,11 +44,15 @@ void checkBox(const Box& b, const std::string& key) {
 GeneratedGeometry generateGeometry(const GeometryParams& g) {
     const double l0 = g.particleSpacing;
     if (!(l0 > 0.0) || !std::isfinite(l0)) {
-        throw SceneError("geometry.particle_spacing", fmt::format("must be a positive length in m, got {}", l0));
+        throw SceneError("geometry.particle_spacing",
+                         fmt::format("must be a positive length in m, got {}", l0));
     }
-    if (g.wallLayers < 1) throw SceneError("geometry.wall_layers", "must be at least 1");
-    if (g.dummyLayers < 0) throw SceneError("geometry.dummy_layers", "must not be negative");
-    if (g.water.empty()) throw SceneError("geometry.water", "the scene has no water rectangle");
+    if (g.wallLayers < 1)
+        throw SceneError("geometry.wall_layers", "must be at least 1");
+    if (g.dummyLayers < 0)
+        throw SceneError("geometry.dummy_layers", "must not be negative");
+    if (g.water.empty())
+        throw SceneError("geometry.water", "the scene has no water rectangle");
     const int layers = g.wallLayers + g.dummyLayers;
 
     // Solid regions (m) used to reject water placed inside walls.
@@ -54,8 +61,10 @@ GeneratedGeometry generateGeometry(const GeometryParams& g) {
         const Box& t = *g.tank;
         checkBox(t, "geometry.tank");
         if (!isWholeMultiple(t.width(), l0) || !isWholeMultiple(t.height(), l0)) {
-            throw SceneError("geometry.tank", fmt::format("width {} m and height {} m must be whole multiples of "
-                                                          "particle_spacing {} m", t.width(), t.height(), l0));
+            throw SceneError("geometry.tank",
+                             fmt::format("width {} m and height {} m must be whole multiples of "
+                                         "particle_spacing {} m",
+                                         t.width(), t.height(), l0));
         }
         const double L = layers * l0;
         solidRegions.push_back({Box{t.x0 - L, t.y0 - L, t.x1 + L, t.y0}, "geometry.tank (bed)"});
@@ -83,8 +92,10 @@ GeneratedGeometry generateGeometry(const GeometryParams& g) {
         const long nx = cellsIn(b.width(), l0);
         const long ny = cellsIn(b.height(), l0);
         if (nx < 1 || ny < 1) {
-            throw SceneError(key, fmt::format("holds no particle: {} x {} m is smaller than particle_spacing {} m",
-                                              b.width(), b.height(), l0));
+            throw SceneError(
+                key,
+                fmt::format("holds no particle: {} x {} m is smaller than particle_spacing {} m",
+                            b.width(), b.height(), l0));
         }
         for (std::size_t v = 0; v < w; ++v) {
             const Box& o = g.water[v];
@@ -101,7 +112,9 @@ GeneratedGeometry generateGeometry(const GeometryParams& g) {
                 for (const auto& [box, name] : solidRegions) {
                     const double m = 0.25 * l0; // a particle centre strictly inside a solid
                     if (x > box.x0 + m && x < box.x1 - m && y > box.y0 + m && y < box.y1 - m) {
-                        throw SceneError(key, fmt::format("water at ({:.6g}, {:.6g}) m lies inside {}", x, y, name));
+                        throw SceneError(
+                            key,
+                            fmt::format("water at ({:.6g}, {:.6g}) m lies inside {}", x, y, name));
                     }
                 }
                 P.add(x, y, ParticleKind::Water);
@@ -115,7 +128,8 @@ GeneratedGeometry generateGeometry(const GeometryParams& g) {
         const long nIn = std::lround(t.width() / l0);
         const long nUp = std::lround(t.height() / l0);
         // Bed extension behind the back wall (piston travel), in whole spacings.
-        const long back = static_cast<long>(std::ceil(std::max(0.0, g.bedExtensionBack) / l0 - 1e-6));
+        const long back =
+            static_cast<long>(std::ceil(std::max(0.0, g.bedExtensionBack) / l0 - 1e-6));
         for (long k = 0; k < layers; ++k) { // bed rows, corners included
             const double y = t.y0 - (static_cast<double>(k) + 0.5) * l0;
             for (long i = -layers - back; i < nIn + layers; ++i) {
@@ -141,9 +155,10 @@ GeneratedGeometry generateGeometry(const GeometryParams& g) {
         for (long j = 0; j < ny; ++j) {
             for (long i = 0; i < nx; ++i) {
                 const long layer = std::min({i, j, nx - 1 - i, ny - 1 - j});
-                if (layer >= layers) continue;
-                P.add(s.x0 + (static_cast<double>(i) + 0.5) * l0, s.y0 + (static_cast<double>(j) + 0.5) * l0,
-                      layerKind(layer, g.wallLayers));
+                if (layer >= layers)
+                    continue;
+                P.add(s.x0 + (static_cast<double>(i) + 0.5) * l0,
+                      s.y0 + (static_cast<double>(j) + 0.5) * l0, layerKind(layer, g.wallLayers));
             }
         }
     }
@@ -155,8 +170,10 @@ GeneratedGeometry generateGeometry(const GeometryParams& g) {
     sorted.reserve(P.size());
     for (ParticleKind k : {ParticleKind::Water, ParticleKind::Wall, ParticleKind::Dummy}) {
         for (std::size_t i = 0; i < P.size(); ++i) {
-            if (P.kind[i] != k) continue;
-            if (k != ParticleKind::Water && isBackWall(i)) out.backWall.push_back(static_cast<std::uint32_t>(sorted.size()));
+            if (P.kind[i] != k)
+                continue;
+            if (k != ParticleKind::Water && isBackWall(i))
+                out.backWall.push_back(static_cast<std::uint32_t>(sorted.size()));
             sorted.add(P.x[i], P.y[i], k);
         }
     }
@@ -170,14 +187,19 @@ GeneratedGeometry generateGeometry(const GeometryParams& g) {
         by0 = std::min(by0, out.particles.y[i]);
         by1 = std::max(by1, out.particles.y[i]);
     }
-    bx0 -= l0; bx1 += l0; by0 -= l0; by1 += l0;
+    bx0 -= l0;
+    bx1 += l0;
+    by0 -= l0;
+    by1 += l0;
     if (g.domain) {
         checkBox(*g.domain, "geometry.domain");
         const Box& d = *g.domain;
         if (bx0 < d.x0 || bx1 > d.x1 || by0 < d.y0 || by1 > d.y1) {
-            throw SceneError("geometry.domain", fmt::format("must contain every particle with a margin of one "
-                                                            "spacing: particles span [{:.6g}, {:.6g}] x [{:.6g}, {:.6g}] m",
-                                                            bx0 + l0, bx1 - l0, by0 + l0, by1 - l0));
+            throw SceneError(
+                "geometry.domain",
+                fmt::format("must contain every particle with a margin of one "
+                            "spacing: particles span [{:.6g}, {:.6g}] x [{:.6g}, {:.6g}] m",
+                            bx0 + l0, bx1 - l0, by0 + l0, by1 - l0));
         }
         out.domain = d;
     } else {

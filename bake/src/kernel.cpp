@@ -14,11 +14,12 @@ LatticeConstants latticeConstants(double spacing, double re) {
     double sumR2W = 0.0;
     for (int j = -reach; j <= reach; ++j) {
         for (int i = -reach; i <= reach; ++i) {
-            if (i == 0 && j == 0) continue;
+            if (i == 0 && j == 0)
+                continue;
             const double r = spacing * std::hypot(static_cast<double>(i), static_cast<double>(j));
             const double w = mpsWeight(r, re);
-            sumW += w;              // K&O 1996: n0 on the initial lattice
-            sumR2W += r * r * w;    // K&O 1996 Laplacian model: lambda = sum r^2 w / sum w
+            sumW += w;           // K&O 1996: n0 on the initial lattice
+            sumR2W += r * r * w; // K&O 1996 Laplacian model: lambda = sum r^2 w / sum w
         }
     }
     return {sumW, sumW > 0.0 ? sumR2W / sumW : 0.0};

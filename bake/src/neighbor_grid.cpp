@@ -11,7 +11,8 @@ void NeighborGrid::configure(const Box& domain, double cellSize, std::size_t cap
                              int maxNeighbors) {
     if (!(cellSize > 0.0) || !(domain.width() > 0.0) || !(domain.height() > 0.0) ||
         maxNeighbors < 1) {
-        throw std::invalid_argument("NeighborGrid: need a non-empty domain, cellSize > 0, maxNeighbors >= 1");
+        throw std::invalid_argument(
+            "NeighborGrid: need a non-empty domain, cellSize > 0, maxNeighbors >= 1");
     }
     const double nx = std::ceil(domain.width() / cellSize);
     const double ny = std::ceil(domain.height() / cellSize);
@@ -41,7 +42,8 @@ int NeighborGrid::cellOf(double x, double y) const {
     return cy * m_nx + cx;
 }
 
-bool NeighborGrid::build(std::span<const double> x, std::span<const double> y, double radius, double shortRadius) {
+bool NeighborGrid::build(std::span<const double> x, std::span<const double> y, double radius,
+                         double shortRadius) {
     const std::size_t count = x.size();
     if (count > m_cellOf.size() || y.size() != count) {
         throw std::invalid_argument("NeighborGrid::build: more particles than configured");
@@ -64,7 +66,8 @@ bool NeighborGrid::build(std::span<const double> x, std::span<const double> y, d
         m_cellOf[i] = c;
         ++m_cellStart[c + 1];
     }
-    for (std::size_t c = 1; c < m_cellStart.size(); ++c) m_cellStart[c] += m_cellStart[c - 1];
+    for (std::size_t c = 1; c < m_cellStart.size(); ++c)
+        m_cellStart[c] += m_cellStart[c - 1];
     // m_cellStart[c] is now the first slot of cell c; scatter, advancing it as a cursor.
     for (std::size_t i = 0; i < count; ++i) {
         const std::uint32_t c = m_cellOf[i];
@@ -72,9 +75,11 @@ bool NeighborGrid::build(std::span<const double> x, std::span<const double> y, d
         m_sorted[slot] = static_cast<std::uint32_t>(i);
     }
     // m_cellStart[c] now holds the end of cell c = start of c + 1: shift back.
-    for (std::size_t c = m_cellStart.size() - 1; c > 0; --c) m_cellStart[c] = m_cellStart[c - 1];
+    for (std::size_t c = m_cellStart.size() - 1; c > 0; --c)
+        m_cellStart[c] = m_cellStart[c - 1];
     m_cellStart[0] = 0;
-    for (std::size_t k = 0; k < count; ++k) m_rank[m_sorted[k]] = static_cast<std::uint32_t>(k);
+    for (std::size_t k = 0; k < count; ++k)
+        m_rank[m_sorted[k]] = static_cast<std::uint32_t>(k);
 
     // Neighbour lists: each particle scans the 3x3 cells around it. Cells are visited in
     // increasing index and particles within a cell in increasing rank, so each list is
@@ -82,7 +87,7 @@ bool NeighborGrid::build(std::span<const double> x, std::span<const double> y, d
     const double r2max = radius * radius;
     const double r2short = shortRadius * shortRadius;
     std::size_t overflow = count;
-#pragma omp parallel for schedule(static) reduction(min : overflow) if(count >= 4096)
+#pragma omp parallel for schedule(static) reduction(min : overflow) if (count >= 4096)
     for (std::size_t i = 0; i < count; ++i) {
         const int c = static_cast<int>(m_cellOf[i]);
         const int cx = c % m_nx;
@@ -94,11 +99,14 @@ bool NeighborGrid::build(std::span<const double> x, std::span<const double> y, d
         bool full = false;
         for (int jy = std::max(0, cy - 1); jy <= std::min(m_ny - 1, cy + 1); ++jy) {
             const int rowStart = jy * m_nx;
-            const std::uint32_t begin = m_cellStart[static_cast<std::size_t>(rowStart + std::max(0, cx - 1))];
-            const std::uint32_t end = m_cellStart[static_cast<std::size_t>(rowStart + std::min(m_nx - 1, cx + 1)) + 1];
+            const std::uint32_t begin =
+                m_cellStart[static_cast<std::size_t>(rowStart + std::max(0, cx - 1))];
+            const std::uint32_t end =
+                m_cellStart[static_cast<std::size_t>(rowStart + std::min(m_nx - 1, cx + 1)) + 1];
             for (std::uint32_t k = begin; k < end; ++k) {
                 const std::uint32_t j = m_sorted[k];
-                if (j == i) continue;
+                if (j == i)
+                    continue;
                 const double dx = x[j] - x[i];
                 const double dy = y[j] - y[i];
                 const double r2 = dx * dx + dy * dy;
@@ -108,13 +116,15 @@ bool NeighborGrid::build(std::span<const double> x, std::span<const double> y, d
                         break;
                     }
                     out[found++] = j;
-                    if (r2 < r2short) outShort[foundShort++] = j;
+                    if (r2 < r2short)
+                        outShort[foundShort++] = j;
                 }
             }
         }
         m_listCount[i] = static_cast<std::uint32_t>(found);
         m_shortCount[i] = static_cast<std::uint32_t>(foundShort);
-        if (full) overflow = std::min(overflow, i);
+        if (full)
+            overflow = std::min(overflow, i);
     }
     m_overflow = overflow;
     return overflow == count;

@@ -6,9 +6,12 @@ namespace swell::bake {
 
 std::string_view toString(ParticleKind kind) {
     switch (kind) {
-    case ParticleKind::Water: return "water";
-    case ParticleKind::Wall: return "wall";
-    case ParticleKind::Dummy: return "dummy";
+    case ParticleKind::Water:
+        return "water";
+    case ParticleKind::Wall:
+        return "wall";
+    case ParticleKind::Dummy:
+        return "dummy";
     }
     return "?";
 }
@@ -35,7 +38,8 @@ void Particles::reserve(std::size_t count) {
 
 bool Particles::consistent() const {
     const std::size_t s = size();
-    return y.size() == s && vx.size() == s && vy.size() == s && p.size() == s && n.size() == s && kind.size() == s;
+    return y.size() == s && vx.size() == s && vy.size() == s && p.size() == s && n.size() == s &&
+           kind.size() == s;
 }
 
 std::size_t Particles::count(ParticleKind k) const {

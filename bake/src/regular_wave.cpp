@@ -21,7 +21,8 @@ const PistonParams& sinusoidalPiston(const Scene& scene) {
     if (!scene.piston || scene.piston->kind != PistonKind::Sinusoidal) {
         throw SceneError("piston.kind", "the regular-wave check needs a sinusoidal piston");
     }
-    if (!scene.geometry.tank) throw SceneError("geometry.tank", "the regular-wave check needs a tank");
+    if (!scene.geometry.tank)
+        throw SceneError("geometry.tank", "the regular-wave check needs a tank");
     if (scene.output.gauges.size() < 2) {
         throw SceneError("output.gauges", "the regular-wave check needs at least two gauges");
     }
@@ -42,7 +43,8 @@ WaveWindow regularWaveWindow(const Scene& scene) {
     const PistonParams& p = *scene.piston;
     // Group velocity of linear theory: c_g = c / 2 (1 + 2kh / sinh 2kh), c = omega / k.
     const double cg = groupVelocity(2.0 * std::numbers::pi / p.period, h, scene.physics.gravity);
-    const auto [gMin, gMax] = std::minmax_element(scene.output.gauges.begin(), scene.output.gauges.end());
+    const auto [gMin, gMax] =
+        std::minmax_element(scene.output.gauges.begin(), scene.output.gauges.end());
     const Box& tank = *scene.geometry.tank;
     WaveWindow win;
     win.start = p.rampTime + (*gMax - tank.x0) / cg + p.period;
@@ -51,7 +53,8 @@ WaveWindow regularWaveWindow(const Scene& scene) {
     return win;
 }
 
-RegularWaveCheck checkRegularWave(const Scene& scene, std::span<const ProbeSample> samples, const WaveWindow& window) {
+RegularWaveCheck checkRegularWave(const Scene& scene, std::span<const ProbeSample> samples,
+                                  const WaveWindow& window) {
     RegularWaveCheck out;
     out.theory = theoryOf(scene, out.depth);
     out.window = window;
@@ -60,15 +63,18 @@ RegularWaveCheck checkRegularWave(const Scene& scene, std::span<const ProbeSampl
     std::vector<double> t;
     std::vector<std::vector<double>> v(nGauges);
     for (const ProbeSample& s : samples) {
-        if (s.time < window.start || s.time > window.end) continue;
+        if (s.time < window.start || s.time > window.end)
+            continue;
         if (s.elevations.size() != nGauges) {
-            throw std::invalid_argument(fmt::format("probe sample at t = {} s has {} gauges, the scene {}", s.time,
-                                                    s.elevations.size(), nGauges));
+            throw std::invalid_argument(
+                fmt::format("probe sample at t = {} s has {} gauges, the scene {}", s.time,
+                            s.elevations.size(), nGauges));
         }
         for (std::size_t g = 0; g < nGauges; ++g) {
             if (!std::isfinite(s.elevations[g])) {
                 throw std::invalid_argument(
-                    fmt::format("gauge at x = {} m is dry at t = {} s, inside the fit window", out.gauges[g], s.time));
+                    fmt::format("gauge at x = {} m is dry at t = {} s, inside the fit window",
+                                out.gauges[g], s.time));
             }
             v[g].push_back(s.elevations[g]);
         }
@@ -85,37 +91,43 @@ RegularWaveCheck checkRegularWave(const Scene& scene, std::span<const ProbeSampl
     const double twoPi = 2.0 * std::numbers::pi;
     const double dx = out.gauges[1] - out.gauges[0];
     const double lag = std::fmod(fits[1].phase - fits[0].phase + 2.0 * twoPi, twoPi);
-    out.wavelength = lag > 0.0 ? twoPi * std::abs(dx) / lag : std::numeric_limits<double>::infinity();
+    out.wavelength =
+        lag > 0.0 ? twoPi * std::abs(dx) / lag : std::numeric_limits<double>::infinity();
     return out;
 }
 
 std::vector<ProbeSample> readProbeCsv(const std::filesystem::path& path) {
     std::ifstream in(path);
-    if (!in) throw std::runtime_error(fmt::format("{}: cannot open the probes file", path.string()));
+    if (!in)
+        throw std::runtime_error(fmt::format("{}: cannot open the probes file", path.string()));
     std::string line;
     if (!std::getline(in, line) || line.rfind("time,front_x", 0) != 0) {
-        throw std::runtime_error(fmt::format("{}:1: not a probes file (header must start with time,front_x)",
-                                             path.string()));
+        throw std::runtime_error(fmt::format(
+            "{}:1: not a probes file (header must start with time,front_x)", path.string()));
     }
     const auto columns = static_cast<std::size_t>(std::count(line.begin(), line.end(), ',')) + 1;
     std::vector<ProbeSample> out;
     for (long lineNo = 2; std::getline(in, line); ++lineNo) {
-        if (line.empty()) continue;
+        if (line.empty())
+            continue;
         std::vector<double> values;
         std::stringstream ss(line);
         std::string cell;
         while (std::getline(ss, cell, ',')) {
             try {
                 std::size_t used = 0;
-                values.push_back(cell == "nan" ? std::numeric_limits<double>::quiet_NaN() : std::stod(cell, &used));
-                if (cell != "nan" && used != cell.size()) throw std::invalid_argument(cell);
+                values.push_back(cell == "nan" ? std::numeric_limits<double>::quiet_NaN()
+                                               : std::stod(cell, &used));
+                if (cell != "nan" && used != cell.size())
+                    throw std::invalid_argument(cell);
             } catch (const std::exception&) {
-                throw std::runtime_error(fmt::format("{}:{}: '{}' is not a number", path.string(), lineNo, cell));
+                throw std::runtime_error(
+                    fmt::format("{}:{}: '{}' is not a number", path.string(), lineNo, cell));
             }
         }
         if (values.size() != columns) {
-            throw std::runtime_error(fmt::format("{}:{}: {} values, the header has {} columns", path.string(), lineNo,
-                                                 values.size(), columns));
+            throw std::runtime_error(fmt::format("{}:{}: {} values, the header has {} columns",
+                                                 path.string(), lineNo, values.size(), columns));
         }
         ProbeSample s;
         s.time = values[0];

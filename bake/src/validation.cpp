@@ -9,37 +9,64 @@ namespace swell::bake {
 namespace {
 
 // Martin & Moyce (1952) Fig. 3, n^2 = 2, digitised in PySPH's db_exp_data.py.
-constexpr std::array<FrontPoint, 15> kA225{{{0.832, 1.217}, {1.219, 1.474}, {1.997, 2.292}, {2.547, 2.995},
-                                             {3.345, 4.134}, {4.034, 4.944}, {4.418, 5.881}, {5.091, 6.980},
-                                             {5.685, 7.945}, {6.306, 8.966}, {6.822, 9.986}, {7.439, 10.963},
-                                             {8.031, 11.977}, {8.633, 13.005}, {9.237, 13.970}}};
-constexpr std::array<FrontPoint, 10> kA1125{{{0.849, 1.245}, {1.212, 1.443}, {1.602, 1.884}, {2.283, 2.689},
-                                              {2.950, 3.728}, {3.598, 4.528}, {3.905, 4.999}, {4.592, 5.841},
-                                              {4.961, 6.271}, {5.316, 6.717}}};
+constexpr std::array<FrontPoint, 15> kA225{{{0.832, 1.217},
+                                            {1.219, 1.474},
+                                            {1.997, 2.292},
+                                            {2.547, 2.995},
+                                            {3.345, 4.134},
+                                            {4.034, 4.944},
+                                            {4.418, 5.881},
+                                            {5.091, 6.980},
+                                            {5.685, 7.945},
+                                            {6.306, 8.966},
+                                            {6.822, 9.986},
+                                            {7.439, 10.963},
+                                            {8.031, 11.977},
+                                            {8.633, 13.005},
+                                            {9.237, 13.970}}};
+constexpr std::array<FrontPoint, 10> kA1125{{{0.849, 1.245},
+                                             {1.212, 1.443},
+                                             {1.602, 1.884},
+                                             {2.283, 2.689},
+                                             {2.950, 3.728},
+                                             {3.598, 4.528},
+                                             {3.905, 4.999},
+                                             {4.592, 5.841},
+                                             {4.961, 6.271},
+                                             {5.316, 6.717}}};
 
 } // namespace
 
-std::span<const FrontPoint> martinMoyceA225() { return kA225; }
-std::span<const FrontPoint> martinMoyceA1125() { return kA1125; }
+std::span<const FrontPoint> martinMoyceA225() {
+    return kA225;
+}
+std::span<const FrontPoint> martinMoyceA1125() {
+    return kA1125;
+}
 
 double surgeFront(const Particles& particles, double n0, double splashRatio, double x0) {
     double front = x0;
     for (std::size_t i = 0; i < particles.size(); ++i) {
-        if (particles.kind[i] != ParticleKind::Water) continue;
-        if (particles.n[i] < splashRatio * n0) continue; // splash, paper eq. (4)
+        if (particles.kind[i] != ParticleKind::Water)
+            continue;
+        if (particles.n[i] < splashRatio * n0)
+            continue; // splash, paper eq. (4)
         front = std::max(front, particles.x[i]);
     }
     return front - x0;
 }
 
-FrontError compareFront(std::span<const FrontPoint> sim, std::span<const FrontPoint> exp, double tLo,
-                        double tHi) {
-    if (sim.size() < 2) throw std::invalid_argument("compareFront: need at least two simulated points");
+FrontError compareFront(std::span<const FrontPoint> sim, std::span<const FrontPoint> exp,
+                        double tLo, double tHi) {
+    if (sim.size() < 2)
+        throw std::invalid_argument("compareFront: need at least two simulated points");
     FrontError e;
     for (const FrontPoint& p : exp) {
-        if (p.T < tLo || p.T > tHi) continue;
+        if (p.T < tLo || p.T > tHi)
+            continue;
         if (p.T < sim.front().T || p.T > sim.back().T) {
-            throw std::invalid_argument("compareFront: the simulation does not cover the experimental times");
+            throw std::invalid_argument(
+                "compareFront: the simulation does not cover the experimental times");
         }
         const auto hi = std::lower_bound(sim.begin(), sim.end(), p.T,
                                          [](const FrontPoint& a, double t) { return a.T < t; });
@@ -60,34 +87,41 @@ FrontError compareFront(std::span<const FrontPoint> sim, std::span<const FrontPo
 }
 
 HarmonicFit fitHarmonic(std::span<const double> t, std::span<const double> v, double omega) {
-    if (t.size() != v.size() || t.size() < 3) throw std::invalid_argument("fitHarmonic: need >= 3 samples of t and v");
+    if (t.size() != v.size() || t.size() < 3)
+        throw std::invalid_argument("fitHarmonic: need >= 3 samples of t and v");
     // Normal equations M x = r for x = (a, b, c).
     double M[3][4] = {};
     for (std::size_t i = 0; i < t.size(); ++i) {
         const double basis[3] = {std::cos(omega * t[i]), std::sin(omega * t[i]), 1.0};
         for (int r = 0; r < 3; ++r) {
-            for (int c = 0; c < 3; ++c) M[r][c] += basis[r] * basis[c];
+            for (int c = 0; c < 3; ++c)
+                M[r][c] += basis[r] * basis[c];
             M[r][3] += basis[r] * v[i];
         }
     }
     for (int c = 0; c < 3; ++c) { // Gaussian elimination with partial pivoting
         int p = c;
         for (int r = c + 1; r < 3; ++r) {
-            if (std::abs(M[r][c]) > std::abs(M[p][c])) p = r;
+            if (std::abs(M[r][c]) > std::abs(M[p][c]))
+                p = r;
         }
         if (!(std::abs(M[p][c]) > 1e-12 * static_cast<double>(t.size()))) {
-            throw std::invalid_argument("fitHarmonic: singular fit (samples do not resolve the frequency)");
+            throw std::invalid_argument(
+                "fitHarmonic: singular fit (samples do not resolve the frequency)");
         }
-        for (int k = 0; k < 4; ++k) std::swap(M[c][k], M[p][k]);
+        for (int k = 0; k < 4; ++k)
+            std::swap(M[c][k], M[p][k]);
         for (int r = c + 1; r < 3; ++r) {
             const double f = M[r][c] / M[c][c];
-            for (int k = c; k < 4; ++k) M[r][k] -= f * M[c][k];
+            for (int k = c; k < 4; ++k)
+                M[r][k] -= f * M[c][k];
         }
     }
     double x[3];
     for (int r = 2; r >= 0; --r) {
         double s = M[r][3];
-        for (int k = r + 1; k < 3; ++k) s -= M[r][k] * x[k];
+        for (int k = r + 1; k < 3; ++k)
+            s -= M[r][k] * x[k];
         x[r] = s / M[r][r];
     }
     return HarmonicFit{std::hypot(x[0], x[1]), std::atan2(x[1], x[0]), x[2]};

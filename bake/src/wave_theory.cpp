@@ -37,7 +37,9 @@ double bieselHeightOverStroke(double kh) {
     return 2.0 * (std::cosh(k2) - 1.0) / (std::sinh(k2) + k2);
 }
 
-double micheLimitSteepness(double kh) { return 0.142 * std::tanh(kh); }
+double micheLimitSteepness(double kh) {
+    return 0.142 * std::tanh(kh);
+}
 
 LinearPistonWave linearPistonWave(double stroke, double period, double depth, double gravity) {
     if (!(period > 0.0))

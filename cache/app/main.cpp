@@ -65,8 +65,7 @@ void printInfo(const json& j) {
     fmt::print("format version     {}\n", j["version"].get<int>());
     fmt::print("encoding           {} (shuffle {}, delta {}), max position error {:.3g} m\n",
                j["encoding"].get<std::string>(), j["shuffle"].get<bool>() ? "on" : "off",
-               j["delta"].get<bool>() ? "on" : "off",
-               j["max_position_error_m"].get<double>());
+               j["delta"].get<bool>() ? "on" : "off", j["max_position_error_m"].get<double>());
     fmt::print("frames             {} every {} steps of {} s ({} s apart)\n",
                j["frames"].get<std::size_t>(), j["frame_interval"].get<unsigned>(),
                j["dt"].get<double>(), j["frame_time"].get<double>());
@@ -80,7 +79,8 @@ void printInfo(const json& j) {
     fmt::print("seed               {}\n", j["seed"].get<std::uint64_t>());
     // The bake's "replay" block (docs/cache-format.md), when this cache has one.
     const json& meta = j["metadata"];
-    if (!meta.is_object() || !meta.contains("replay") || !meta["replay"].is_object()) return;
+    if (!meta.is_object() || !meta.contains("replay") || !meta["replay"].is_object())
+        return;
     const json& r = meta["replay"];
     const auto number = [&](const char* key) {
         return r.contains(key) && r[key].is_number() ? fmt::format("{:g}", r[key].get<double>())
@@ -95,143 +95,163 @@ void printInfo(const json& j) {
                    : std::string("no reason given"));
 }
 
-} // namespace
-
-int main(int argc, char** argv) {
-    CLI::App app{"swell-cache: inspect, verify, dump and synthesize .swell caches"};
-    app.require_subcommand(1);
-
+/// Options of every subcommand (each reads its own).
+struct CacheOptions {
     std::string path;
     bool asJson = false;
-    auto* info = app.add_subcommand("info", "Summarize a cache (header, counts, sizes)");
-    info->add_option("CACHE", path, "cache file")->required();
-    info->add_flag("--json", asJson, "print one JSON object");
-
-    auto* verify = app.add_subcommand("verify", "Decode every frame and check every checksum");
-    verify->add_option("CACHE", path, "cache file")->required();
-    verify->add_flag("--json", asJson, "print one JSON object");
-
     std::size_t frameIndex = 0;
-    auto* dump = app.add_subcommand("dump", "Print one frame's particles as CSV");
-    dump->add_option("CACHE", path, "cache file")->required();
-    dump->add_option("--frame", frameIndex, "frame index")->required();
-
     std::string recodeOut;
-    auto* recode = app.add_subcommand(
-        "recode", "Copy a cache with another encoding or filters (frames, header and metadata kept)");
-    recode->add_option("CACHE", path, "input cache file")->required();
-    recode->add_option("OUT", recodeOut, "output cache file")->required();
-
     SyntheticWave wave;
     std::size_t frames = 1200;
     std::string encoding = "float32";
     bool noShuffle = false;
     bool noDelta = false;
     int level = 3;
+
+    /// The encoding and filter options applied to `h`.
+    void applyEncoding(Header& h) const {
+        h.encoding = encoding == "float32" ? Encoding::Float32 : Encoding::Quantized16;
+        h.shuffle = !noShuffle;
+        h.delta = !noDelta;
+        h.compressionLevel = level;
+    }
+};
+
+void addEncodingOptions(CLI::App* cmd, CacheOptions& o) {
+    cmd->add_option("--encoding", o.encoding, "float32 or quantized16")
+        ->check(CLI::IsMember({"float32", "quantized16"}));
+    cmd->add_flag("--no-shuffle", o.noShuffle, "disable the byte-shuffle filter");
+    cmd->add_flag("--no-delta", o.noDelta, "disable the delta filter");
+    cmd->add_option("--level", o.level, "zstd level")->check(CLI::Range(1, 19));
+}
+
+void runVerify(const CacheOptions& o) {
+    Reader r(o.path);
+    std::uint64_t particles = 0;
+    for (std::size_t i = 0; i < r.frameCount(); ++i) {
+        const Frame f = r.readFrame(i);
+        particles += f.surfaceCount() + f.splashCount();
+        // A NaN or infinity (position or splash velocity) is damage too.
+        const auto bad = [](float v) { return !std::isfinite(v); };
+        if (std::any_of(f.surface.begin(), f.surface.end(), bad) ||
+            std::any_of(f.splash.begin(), f.splash.end(), bad))
+            throw CacheError(
+                fmt::format("{}: frame {}: holds a non-finite value (NaN or infinity)", o.path, i));
+    }
+    if (o.asJson)
+        std::cout << json{{"file", o.path},
+                          {"ok", true},
+                          {"frames", r.frameCount()},
+                          {"particles", particles},
+                          {"nonfinite", 0}}
+                         .dump()
+                  << "\n";
+    else
+        fmt::print("{}: OK, {} frames, {} particles, every checksum matches\n", o.path,
+                   r.frameCount(), particles);
+}
+
+void runDump(const CacheOptions& o) {
+    Reader r(o.path);
+    if (o.frameIndex >= r.frameCount())
+        throw CacheError(fmt::format("{}: frame {} does not exist (the cache has {})", o.path,
+                                     o.frameIndex, r.frameCount()));
+    const Frame f = r.readFrame(o.frameIndex);
+    fmt::print("kind,x,y,vx,vy\n");
+    for (std::size_t i = 0; i < f.surfaceCount(); ++i)
+        fmt::print("surface,{:.9g},{:.9g},,\n", f.surface[2 * i], f.surface[2 * i + 1]);
+    for (std::size_t i = 0; i < f.splashCount(); ++i)
+        fmt::print("splash,{:.9g},{:.9g},{:.9g},{:.9g}\n", f.splash[4 * i], f.splash[4 * i + 1],
+                   f.splash[4 * i + 2], f.splash[4 * i + 3]);
+}
+
+void runRecode(const CacheOptions& o) {
+    const Reader r(o.path);
+    Header h = r.header();
+    o.applyEncoding(h);
+    Writer w(o.recodeOut, h);
+    for (std::size_t i = 0; i < r.frameCount(); ++i)
+        w.addFrame(r.readFrame(i));
+    w.finish();
+    fmt::print(stderr, "wrote {} ({} frames, {}, {} bytes)\n", o.recodeOut, r.frameCount(),
+               o.encoding, w.bytesWritten());
+}
+
+void runSynth(const CacheOptions& o) {
+    const SyntheticWave& wave = o.wave;
+    Header h;
+    o.applyEncoding(h);
+    h.domain = syntheticDomain(wave);
+    h.dt = 0.001;
+    h.frameInterval = static_cast<std::uint32_t>(std::lround(wave.frameTime / h.dt));
+    h.seed = wave.seed;
+    h.metadataJson = json{{"generator", "swell-cache synth"},
+                          {"scene", "synthetic travelling wave"},
+                          {"surface_count", wave.surfaceCount},
+                          {"splash_count", wave.splashCount},
+                          {"length_m", wave.length},
+                          {"depth_m", wave.depth},
+                          {"amplitude_m", wave.amplitude},
+                          {"wavelength_m", wave.wavelength},
+                          {"period_s", wave.period},
+                          {"replay", syntheticReplayJson(wave)}}
+                         .dump();
+    Writer w(o.path, h);
+    for (std::size_t i = 0; i < o.frames; ++i)
+        w.addFrame(syntheticFrame(wave, i));
+    w.finish();
+    fmt::print(stderr, "wrote {} ({} frames, {} bytes)\n", o.path, o.frames, w.bytesWritten());
+}
+
+void runInfo(const CacheOptions& o) {
+    const json j = infoJson(Reader(o.path));
+    if (o.asJson)
+        std::cout << j.dump() << "\n";
+    else
+        printInfo(j);
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{"swell-cache: inspect, verify, dump and synthesize .swell caches"};
+    app.require_subcommand(1);
+    CacheOptions o;
+    auto* info = app.add_subcommand("info", "Summarize a cache (header, counts, sizes)");
+    info->add_option("CACHE", o.path, "cache file")->required();
+    info->add_flag("--json", o.asJson, "print one JSON object");
+    auto* verify = app.add_subcommand("verify", "Decode every frame and check every checksum");
+    verify->add_option("CACHE", o.path, "cache file")->required();
+    verify->add_flag("--json", o.asJson, "print one JSON object");
+    auto* dump = app.add_subcommand("dump", "Print one frame's particles as CSV");
+    dump->add_option("CACHE", o.path, "cache file")->required();
+    dump->add_option("--frame", o.frameIndex, "frame index")->required();
+    auto* recode = app.add_subcommand(
+        "recode",
+        "Copy a cache with another encoding or filters (frames, header and metadata kept)");
+    recode->add_option("CACHE", o.path, "input cache file")->required();
+    recode->add_option("OUT", o.recodeOut, "output cache file")->required();
     auto* synth = app.add_subcommand(
         "synth", "Write a synthetic cache (travelling wave) for demos and benchmarks");
-    synth->add_option("OUT", path, "output cache file")->required();
-    synth->add_option("--frames", frames, "number of frames")->check(CLI::Range(1, 1000000));
-    synth->add_option("--surface", wave.surfaceCount, "surface particles per frame")
+    synth->add_option("OUT", o.path, "output cache file")->required();
+    synth->add_option("--frames", o.frames, "number of frames")->check(CLI::Range(1, 1000000));
+    synth->add_option("--surface", o.wave.surfaceCount, "surface particles per frame")
         ->check(CLI::Range(0, 10000000));
-    synth->add_option("--splash", wave.splashCount, "splash particles per frame")
+    synth->add_option("--splash", o.wave.splashCount, "splash particles per frame")
         ->check(CLI::Range(0, 10000000));
-    synth->add_option("--seed", wave.seed, "seed of the jitter and splash placement");
-    synth->add_option("--encoding", encoding, "float32 or quantized16")
-        ->check(CLI::IsMember({"float32", "quantized16"}));
-    synth->add_flag("--no-shuffle", noShuffle, "disable the byte-shuffle filter");
-    synth->add_flag("--no-delta", noDelta, "disable the delta filter");
-    synth->add_option("--level", level, "zstd level")->check(CLI::Range(1, 19));
-
-    recode->add_option("--encoding", encoding, "float32 or quantized16")
-        ->check(CLI::IsMember({"float32", "quantized16"}));
-    recode->add_flag("--no-shuffle", noShuffle, "disable the byte-shuffle filter");
-    recode->add_flag("--no-delta", noDelta, "disable the delta filter");
-    recode->add_option("--level", level, "zstd level")->check(CLI::Range(1, 19));
-
+    synth->add_option("--seed", o.wave.seed, "seed of the jitter and splash placement");
+    addEncodingOptions(synth, o);
+    addEncodingOptions(recode, o);
     CLI11_PARSE(app, argc, argv);
-
     try {
-        if (*info) {
-            const json j = infoJson(Reader(path));
-            if (asJson)
-                std::cout << j.dump() << "\n";
-            else
-                printInfo(j);
-        } else if (*verify) {
-            Reader r(path);
-            std::uint64_t particles = 0;
-            for (std::size_t i = 0; i < r.frameCount(); ++i) {
-                const Frame f = r.readFrame(i);
-                particles += f.surfaceCount() + f.splashCount();
-                // A NaN or infinity (position or splash velocity) is damage too.
-                const auto bad = [](float v) { return !std::isfinite(v); };
-                if (std::any_of(f.surface.begin(), f.surface.end(), bad) ||
-                    std::any_of(f.splash.begin(), f.splash.end(), bad))
-                    throw CacheError(
-                        fmt::format("{}: frame {}: holds a non-finite value (NaN or infinity)",
-                                    path, i));
-            }
-            if (asJson)
-                std::cout << json{{"file", path}, {"ok", true}, {"frames", r.frameCount()},
-                                  {"particles", particles}, {"nonfinite", 0}}
-                                 .dump()
-                          << "\n";
-            else
-                fmt::print("{}: OK, {} frames, {} particles, every checksum matches\n", path,
-                           r.frameCount(), particles);
-        } else if (*dump) {
-            Reader r(path);
-            if (frameIndex >= r.frameCount())
-                throw CacheError(fmt::format("{}: frame {} does not exist (the cache has {})",
-                                             path, frameIndex, r.frameCount()));
-            const Frame f = r.readFrame(frameIndex);
-            fmt::print("kind,x,y,vx,vy\n");
-            for (std::size_t i = 0; i < f.surfaceCount(); ++i)
-                fmt::print("surface,{:.9g},{:.9g},,\n", f.surface[2 * i], f.surface[2 * i + 1]);
-            for (std::size_t i = 0; i < f.splashCount(); ++i)
-                fmt::print("splash,{:.9g},{:.9g},{:.9g},{:.9g}\n", f.splash[4 * i],
-                           f.splash[4 * i + 1], f.splash[4 * i + 2], f.splash[4 * i + 3]);
-        } else if (*recode) {
-            const Reader r(path);
-            Header h = r.header();
-            h.encoding = encoding == "float32" ? Encoding::Float32 : Encoding::Quantized16;
-            h.shuffle = !noShuffle;
-            h.delta = !noDelta;
-            h.compressionLevel = level;
-            Writer w(recodeOut, h);
-            for (std::size_t i = 0; i < r.frameCount(); ++i)
-                w.addFrame(r.readFrame(i));
-            w.finish();
-            fmt::print(stderr, "wrote {} ({} frames, {}, {} bytes)\n", recodeOut, r.frameCount(),
-                       encoding, w.bytesWritten());
-        } else if (*synth) {
-            Header h;
-            h.encoding = encoding == "float32" ? Encoding::Float32 : Encoding::Quantized16;
-            h.shuffle = !noShuffle;
-            h.delta = !noDelta;
-            h.compressionLevel = level;
-            h.domain = syntheticDomain(wave);
-            h.dt = 0.001;
-            h.frameInterval = static_cast<std::uint32_t>(std::lround(wave.frameTime / h.dt));
-            h.seed = wave.seed;
-            h.metadataJson = json{{"generator", "swell-cache synth"},
-                                  {"scene", "synthetic travelling wave"},
-                                  {"surface_count", wave.surfaceCount},
-                                  {"splash_count", wave.splashCount},
-                                  {"length_m", wave.length},
-                                  {"depth_m", wave.depth},
-                                  {"amplitude_m", wave.amplitude},
-                                  {"wavelength_m", wave.wavelength},
-                                  {"period_s", wave.period},
-                                  {"replay", syntheticReplayJson(wave)}}
-                                 .dump();
-            Writer w(path, h);
-            for (std::size_t i = 0; i < frames; ++i)
-                w.addFrame(syntheticFrame(wave, i));
-            w.finish();
-            fmt::print(stderr, "wrote {} ({} frames, {} bytes)\n", path, frames,
-                       w.bytesWritten());
+        const std::pair<CLI::App*, void (*)(const CacheOptions&)> commands[] = {{info, runInfo},
+                                                                                {verify, runVerify},
+                                                                                {dump, runDump},
+                                                                                {recode, runRecode},
+                                                                                {synth, runSynth}};
+        for (const auto& [cmd, run] : commands) {
+            if (*cmd)
+                run(o);
         }
     } catch (const std::exception& e) {
         fmt::print(stderr, "swell-cache: {}\n", e.what());

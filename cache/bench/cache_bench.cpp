@@ -32,7 +32,8 @@ Header headerFor(Encoding enc, bool filters) {
 }
 
 fs::path tempPath(const char* name) {
-    return fs::temp_directory_path() / (std::string(name) + "-" + std::to_string(::getpid()) + ".swell");
+    return fs::temp_directory_path() /
+           (std::string(name) + "-" + std::to_string(::getpid()) + ".swell");
 }
 
 const std::vector<Frame>& frames() {
@@ -74,8 +75,8 @@ void BM_Write(benchmark::State& state) {
     for (auto _ : state)
         writeCache(p, enc, filters);
     const double rawBytes = static_cast<double>(kFrames * (400 * 8 + 8 * 16));
-    state.counters["MB_per_s"] = benchmark::Counter(rawBytes / 1e6 * static_cast<double>(state.iterations()),
-                                                    benchmark::Counter::kIsRate);
+    state.counters["MB_per_s"] = benchmark::Counter(
+        rawBytes / 1e6 * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
     setCounters(state, p);
     fs::remove(p);
 }

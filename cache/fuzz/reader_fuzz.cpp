@@ -11,7 +11,8 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     static const std::string path =
-        (std::filesystem::temp_directory_path() / ("swell-fuzz-" + std::to_string(::getpid()))).string();
+        (std::filesystem::temp_directory_path() / ("swell-fuzz-" + std::to_string(::getpid())))
+            .string();
     if (std::FILE* f = std::fopen(path.c_str(), "wb")) {
         std::fwrite(data, 1, size, f);
         std::fclose(f);

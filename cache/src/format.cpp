@@ -21,15 +21,16 @@ std::vector<Section> sections(Encoding enc, std::uint64_t ns, std::uint64_t nsp)
 }
 
 /// Element-wise integer delta (mod 2^bits) with the given component stride.
-template <class U> void deltaSection(std::uint8_t* base, std::size_t n, std::size_t stride, bool inverse) {
+template <class U>
+void deltaSection(std::uint8_t* base, std::size_t n, std::size_t stride, bool inverse) {
     if (inverse) {
         for (std::size_t i = stride; i < n; ++i)
-            put<U>(base + i * sizeof(U),
-                   static_cast<U>(get<U>(base + i * sizeof(U)) + get<U>(base + (i - stride) * sizeof(U))));
+            put<U>(base + i * sizeof(U), static_cast<U>(get<U>(base + i * sizeof(U)) +
+                                                        get<U>(base + (i - stride) * sizeof(U))));
     } else {
         for (std::size_t i = n; i-- > stride;)
-            put<U>(base + i * sizeof(U),
-                   static_cast<U>(get<U>(base + i * sizeof(U)) - get<U>(base + (i - stride) * sizeof(U))));
+            put<U>(base + i * sizeof(U), static_cast<U>(get<U>(base + i * sizeof(U)) -
+                                                        get<U>(base + (i - stride) * sizeof(U))));
     }
 }
 
@@ -138,7 +139,9 @@ void delta(Encoding enc, std::uint32_t ns, std::uint32_t nsp, std::span<std::uin
     }
 }
 
-std::uint64_t checksum(const void* data, std::size_t size) { return XXH3_64bits(data, size); }
+std::uint64_t checksum(const void* data, std::size_t size) {
+    return XXH3_64bits(data, size);
+}
 
 std::uint64_t headerChecksum(std::span<const std::uint8_t> head) {
     XXH3_state_t* st = XXH3_createState();

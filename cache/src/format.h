@@ -45,7 +45,9 @@ enum Offset : std::size_t {
     kOffHeaderChecksum = 88,
 };
 
-template <class T> void put(std::uint8_t* p, T v) { std::memcpy(p, &v, sizeof(T)); }
+template <class T> void put(std::uint8_t* p, T v) {
+    std::memcpy(p, &v, sizeof(T));
+}
 template <class T> T get(const std::uint8_t* p) {
     T v;
     std::memcpy(&v, p, sizeof(T));

@@ -56,8 +56,8 @@ bool readAt(int fd, void* dst, std::size_t size, std::uint64_t offset) {
 
 /// Decompresses, unshuffles, checksums and decodes frame `i` from its compressed bytes.
 Frame decodeFrame(const fs::path& path, const Header& h, const FrameInfo& e, std::size_t i,
-                  const std::uint8_t* compressed, ZSTD_DCtx* dctx,
-                  std::vector<std::uint8_t>& buf, std::vector<std::uint8_t>& raw) {
+                  const std::uint8_t* compressed, ZSTD_DCtx* dctx, std::vector<std::uint8_t>& buf,
+                  std::vector<std::uint8_t>& raw) {
     auto fail = [&](const std::string& what) {
         return CacheError(path.string() + ": frame " + std::to_string(i) + ": " + what);
     };
@@ -65,8 +65,8 @@ Frame decodeFrame(const fs::path& path, const Header& h, const FrameInfo& e, std
     if (stated == ZSTD_CONTENTSIZE_ERROR)
         throw fail("compressed data is not a zstd frame");
     if (stated != e.rawSize)
-        throw fail("zstd content size disagrees with the index (" +
-                   std::to_string(e.rawSize) + " bytes expected)");
+        throw fail("zstd content size disagrees with the index (" + std::to_string(e.rawSize) +
+                   " bytes expected)");
     buf.resize(e.rawSize);
     const std::size_t n =
         ZSTD_decompressDCtx(dctx, buf.data(), buf.size(), compressed, e.compressedSize);
@@ -179,7 +179,7 @@ Reader::Reader(fs::path path) : m_path(std::move(path)) {
     for (std::size_t i = 0; i < count; ++i) {
         const std::uint8_t* p = &index[i * kIndexEntrySize];
         FrameInfo& e = m_index[i];
-        e = {get<std::uint64_t>(p), get<std::uint64_t>(p + 8), get<std::uint64_t>(p + 16),
+        e = {get<std::uint64_t>(p),      get<std::uint64_t>(p + 8),  get<std::uint64_t>(p + 16),
              get<std::uint32_t>(p + 24), get<std::uint32_t>(p + 28), get<std::uint64_t>(p + 32)};
         auto bad = [&](const std::string& what) {
             return fail("frame " + std::to_string(i) + ": " + what);
@@ -201,7 +201,8 @@ Reader::Reader(fs::path path) : m_path(std::move(path)) {
                       std::to_string(e.compressedSize) + " extends past the frame data (ends at " +
                       std::to_string(indexOffset) + ")");
         if (e.offset < expectedOffset)
-            throw bad(i == 0 ? "starts inside the header" : "overlaps frame " + std::to_string(i - 1));
+            throw bad(i == 0 ? "starts inside the header"
+                             : "overlaps frame " + std::to_string(i - 1));
         if (e.offset > expectedOffset)
             throw bad("unaccounted gap of " + std::to_string(e.offset - expectedOffset) +
                       " bytes before the frame");

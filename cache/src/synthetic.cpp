@@ -63,7 +63,8 @@ Frame syntheticFrame(const SyntheticWave& w, std::size_t index) {
 
 nlohmann::json syntheticReplayJson(const SyntheticWave& w) {
     const double spacing =
-        w.surfaceCount > 1 ? static_cast<double>(w.length) / static_cast<double>(w.surfaceCount - 1) : 0.0;
+        w.surfaceCount > 1 ? static_cast<double>(w.length) / static_cast<double>(w.surfaceCount - 1)
+                           : 0.0;
     return nlohmann::json{{"water_x_min", 0.0},
                           {"water_x_max", static_cast<double>(w.length)},
                           {"still_water_level", static_cast<double>(w.depth)},

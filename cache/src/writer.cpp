@@ -152,8 +152,8 @@ void Writer::addFrame(const Frame& frame) {
     const std::size_t n = ZSTD_compress2(static_cast<ZSTD_CCtx*>(m_cctx), m_compressed.data(),
                                          m_compressed.size(), src->data(), src->size());
     if (ZSTD_isError(n))
-        throw CacheError(describe(m_path, std::string("zstd compression failed: ") +
-                                              ZSTD_getErrorName(n)));
+        throw CacheError(
+            describe(m_path, std::string("zstd compression failed: ") + ZSTD_getErrorName(n)));
     info.compressedSize = n;
     writeBytes(m_compressed.data(), n);
     m_index.push_back(info);

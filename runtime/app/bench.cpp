@@ -59,8 +59,8 @@ ReferenceCheck checkAgainstReference(ModeReplay& gpu, const CpuModeReference& cp
     ReferenceCheck c;
     c.frames = count;
     for (int e = 0; e < count; ++e) {
-        const double tau = timed[static_cast<std::size_t>(e) * timed.size() /
-                                 static_cast<std::size_t>(count)];
+        const double tau =
+            timed[static_cast<std::size_t>(e) * timed.size() / static_cast<std::size_t>(count)];
         gpu.update(tau);
         const auto sliceFrames = gpu.readSliceFrames();
         for (std::size_t d = 0; d < setup.samplers.size(); ++d)
@@ -73,8 +73,8 @@ ReferenceCheck checkAgainstReference(ModeReplay& gpu, const CpuModeReference& cp
 class BenchCommand : public Command {
 public:
     CLI::App* add(CLI::App& app) override {
-        CLI::App* cmd =
-            app.add_subcommand("bench", "time the GPU replay and check it against the CPU reference");
+        CLI::App* cmd = app.add_subcommand(
+            "bench", "time the GPU replay and check it against the CPU reference");
         addCommon(cmd, m_o);
         cmd->add_option("--frames", m_frames, "timed frames")
             ->capture_default_str()
@@ -99,7 +99,8 @@ public:
         finishOptions(m_o);
         const cache::Reader reader(m_o.cache);
         resolveAutoRes(m_o, reader.header());
-        const std::vector<double> taus = frameTaus(m_o, static_cast<std::size_t>(m_warmup + m_frames));
+        const std::vector<double> taus =
+            frameTaus(m_o, static_cast<std::size_t>(m_warmup + m_frames));
         auto t0 = Clock::now();
         const ReplaySetup setup = prepareReplay(m_o, reader, taus);
         const double decodeMs = msSince(t0);
@@ -109,7 +110,8 @@ public:
         const double uploadMs = msSince(t0);
 
         const std::vector<double> frameMs = syncedFrameMs(gpu, taus, m_warmup);
-        const std::span<const double> timedTaus = std::span(taus).subspan(static_cast<std::size_t>(m_warmup));
+        const std::span<const double> timedTaus =
+            std::span(taus).subspan(static_cast<std::size_t>(m_warmup));
         const int stageFrames = std::min(m_frames, 200);
         const StageTimes stage = stageMeans(gpu, taus, m_warmup, stageFrames);
         // With --reference-cache the reference reads the same frames from that cache (e.g. the
@@ -128,7 +130,8 @@ public:
         const double cpuMs = cpuCount > 0 ? msSince(t0) / cpuCount : 0.0;
 
         json out = paramsJson(m_o, setup);
-        out.update(report(context, gpu, setup, frameMs, stage, stageFrames, check, cpuCount, cpuMs));
+        out.update(
+            report(context, gpu, setup, frameMs, stage, stageFrames, check, cpuCount, cpuMs));
         out.update({{"decode_ms", decodeMs}, {"upload_ms", uploadMs}});
         if (m_o.json)
             std::cout << out.dump() << "\n";
@@ -209,13 +212,14 @@ private:
             "  error vs CPU reference ({} frames): max {:.3g} m, rms {:.3g} m, max {:.3g} of depth "
             "{:.3g} m; frame choice {}\n"
             "  CPU reference: {:.1f} fps ({:.2f} ms/frame)\n",
-            context.renderer(), context.version(), context.platform(), m_o.mode, p.cellsX,
-            p.cellsZ, p.slices, 2 * p.slices - 1, p.seed, p.fluctuation, setup.set.ids.size(),
+            context.renderer(), context.version(), context.platform(), m_o.mode, p.cellsX, p.cellsZ,
+            p.slices, 2 * p.slices - 1, p.seed, p.fluctuation, setup.set.ids.size(),
             setup.set.frameCount, 1000.0 * static_cast<double>(frameMs.size()) / total, m_frames,
             percentile(frameMs, 0.5), percentile(frameMs, 0.95), stage.sliceLookupMs,
-            stage.reconstructMs, stage.synthesisMs, stage.spiralMs, gpu.columnPassMs(), check.frames,
-            check.difference.maxAbs, check.difference.rms(), check.difference.maxAbs / depth, depth,
-            check.framesExact ? "exact" : "DIFFERS", cpuMs > 0 ? 1000.0 / cpuMs : 0.0, cpuMs);
+            stage.reconstructMs, stage.synthesisMs, stage.spiralMs, gpu.columnPassMs(),
+            check.frames, check.difference.maxAbs, check.difference.rms(),
+            check.difference.maxAbs / depth, depth, check.framesExact ? "exact" : "DIFFERS",
+            cpuMs > 0 ? 1000.0 / cpuMs : 0.0, cpuMs);
     }
 
     /// 0, or 2 when the GPU is not within 1e-4 of the depth of the reference or a frame choice

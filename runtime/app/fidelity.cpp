@@ -75,7 +75,7 @@ double overWater(const Grid& grid, const SurfaceEnvelope& env, double binWidth) 
 struct F0Result {
     FidelityStats envelope, analytic;
     bool hasAnalytic = false;
-    double spread = 0.0;         ///< mean height spread of the measured frames' rows (m)
+    double spread = 0.0; ///< mean height spread of the measured frames' rows (m)
     double overWaterMean = 0.0, overWaterMin = 1.0;
     Grid grid;
     double l0 = 0.0, step = 0.0, binWidth = 0.0;
@@ -138,7 +138,8 @@ private:
     F0Result measureF0(const cache::Reader& reader) const {
         const std::size_t window = m_plan0.timeline.size();
         const std::size_t measured =
-            m_frames > 0 ? std::min<std::size_t>(window, static_cast<std::size_t>(m_frames)) : window;
+            m_frames > 0 ? std::min<std::size_t>(window, static_cast<std::size_t>(m_frames))
+                         : window;
         const double A = framesPerTimeUnit(reader.header(), m_o0.params);
         std::vector<double> taus(measured);
         for (std::size_t i = 0; i < measured; ++i) // s = floor(k + 1/2) = k: window frame k
@@ -216,8 +217,9 @@ private:
     /// The largest per-cell change between consecutive output frames of the steady bake at
     /// F = 0, at the same output rate: its 99.9th percentile.
     double steadyChangeP999(const cache::Reader& reader) const {
-        const auto n = static_cast<std::size_t>(std::floor(
-            static_cast<double>(m_plan0.timeline.size() - 1) * m_plan0.frameTime * m_o.playbackFps));
+        const auto n =
+            static_cast<std::size_t>(std::floor(static_cast<double>(m_plan0.timeline.size() - 1) *
+                                                m_plan0.frameTime * m_o.playbackFps));
         std::vector<double> taus(n + 1);
         for (std::size_t i = 0; i <= n; ++i)
             taus[i] = static_cast<double>(i) / m_o.playbackFps / m_o0.params.timeUnitSeconds;
@@ -310,9 +312,8 @@ private:
         if (f0.hasAnalytic)
             std::cout << line("F = 0 vs the analytic wave", f0.analytic);
         if (m_o.params.fluctuation > 0.0 && m_mixTimes > 0)
-            std::cout << line(fmt::format("F = {} slice rows vs their frames",
-                                          m_o.params.fluctuation),
-                              mixing);
+            std::cout << line(
+                fmt::format("F = {} slice rows vs their frames", m_o.params.fluctuation), mixing);
         if (const auto& l = setup.plan.timeline.loop()) {
             std::cout << fmt::format("  loop: frames {} -> {} ({:.2f} s), cross-fade {} frames, "
                                      "residual {:.3g} m (typical frame difference {:.3g} m)\n",

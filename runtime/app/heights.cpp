@@ -24,7 +24,8 @@ public:
         CLI::App* cmd = app.add_subcommand("heights", "write height fields (16-bit PNG + JSON)");
         addCommon(cmd, m_o);
         cmd->add_option("--out", m_outDir, "output folder")->required();
-        cmd->add_option("--seconds", m_seconds, "simulated seconds to write")->capture_default_str();
+        cmd->add_option("--seconds", m_seconds, "simulated seconds to write")
+            ->capture_default_str();
         return cmd;
     }
 
@@ -64,9 +65,10 @@ public:
                              .dump()
                       << "\n";
         } else {
-            std::cout << fmt::format("swell-play heights: {} frames ({}x{}) in {}, metadata {} ({})\n",
-                                     taus.size(), m_o.params.cellsX, m_o.params.cellsZ, m_outDir,
-                                     metaPath.string(), context.renderer());
+            std::cout << fmt::format(
+                "swell-play heights: {} frames ({}x{}) in {}, metadata {} ({})\n", taus.size(),
+                m_o.params.cellsX, m_o.params.cellsZ, m_outDir, metaPath.string(),
+                context.renderer());
         }
         return 0;
     }

@@ -228,8 +228,8 @@ std::vector<double> frameTaus(const Options& o, std::size_t count) {
 }
 
 std::vector<double> outputTaus(const Options& o, double seconds) {
-    return frameTaus(
-        o, static_cast<std::size_t>(std::max(1.0, std::round(seconds * o.playbackFps))));
+    return frameTaus(o,
+                     static_cast<std::size_t>(std::max(1.0, std::round(seconds * o.playbackFps))));
 }
 
 void checkSeconds(double seconds) {
@@ -248,8 +248,8 @@ Progress::Progress(std::string name, std::size_t count, bool wanted)
 void Progress::step(std::size_t i) {
     if (!m_on)
         return;
-    const double eta = msSince(m_t0) / 1000.0 * static_cast<double>(m_count - i - 1) /
-                       static_cast<double>(i + 1);
+    const double eta =
+        msSince(m_t0) / 1000.0 * static_cast<double>(m_count - i - 1) / static_cast<double>(i + 1);
     std::cerr << fmt::format("\r{}: {}/{} frames, ETA {:.0f} s ", m_name, i + 1, m_count, eta);
 }
 

@@ -4,8 +4,8 @@
 
 #include "swell/cache/reader.h"
 #include "swell/runtime/io/height_png.h"
-#include "swell/runtime/replay/frame_set.h"
 #include "swell/runtime/modes/mode_params.h"
+#include "swell/runtime/replay/frame_set.h"
 #include "swell/runtime/replay/replay_params.h"
 #include "swell/runtime/replay/slice_sampler.h"
 #include "swell/runtime/replay/timeline.h"

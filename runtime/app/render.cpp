@@ -53,7 +53,8 @@ struct RenderOptions {
         char x = 0, extra = 0;
         if (std::sscanf(size.c_str(), "%d%c%d%c", &width, &x, &height, &extra) != 3 ||
             (x != 'x' && x != 'X')) {
-            throw std::invalid_argument(fmt::format("--size must look like 1280x720, got '{}'", size));
+            throw std::invalid_argument(
+                fmt::format("--size must look like 1280x720, got '{}'", size));
         }
         shading.width = width;
         shading.height = height;
@@ -65,8 +66,8 @@ struct RenderOptions {
         for (std::size_t start = 0; start < exports.size();) {
             const std::size_t end = std::min(exports.find(',', start), exports.size());
             const std::string item = exports.substr(start, end - start);
-            bool* flag = item == "heights" ? &exportHeights
-                         : item == "mesh"  ? &exportMesh
+            bool* flag = item == "heights"    ? &exportHeights
+                         : item == "mesh"     ? &exportMesh
                          : item == "splashes" ? &exportSplashes
                                               : nullptr;
             if (flag == nullptr && !item.empty()) {
@@ -80,7 +81,8 @@ struct RenderOptions {
         if (eye.empty() != target.empty())
             throw std::invalid_argument("--camera and --target go together");
         if (!video.empty() && video.find(".mp4") == std::string::npos)
-            throw std::invalid_argument(fmt::format("--video must name an .mp4 file, got '{}'", video));
+            throw std::invalid_argument(
+                fmt::format("--video must name an .mp4 file, got '{}'", video));
     }
 };
 
@@ -132,9 +134,9 @@ public:
             // others, so the queries do not slow what is measured (not frame 0: set-up).
             const bool timed = i % kTimedEvery == kTimedEvery / 2 || count <= kTimedEvery / 2;
             const std::vector<SplashSprite> sprites = drawFrame(taus[i], secondsOf(m_o, i), timed);
-            const bool onSheet = m_sheet.size() < sheetCount &&
-                                 i == m_sheet.size() * (count - 1) /
-                                          std::max<std::size_t>(sheetCount - 1, 1);
+            const bool onSheet =
+                m_sheet.size() < sheetCount &&
+                i == m_sheet.size() * (count - 1) / std::max<std::size_t>(sheetCount - 1, 1);
             writeFrame(i, taus[i], sprites, onSheet);
             progress.step(i);
         }
@@ -316,8 +318,9 @@ private:
         return static_cast<double>(m_frames.size() - m_totals.timedFrames);
     }
     double drawMsPerFrame() const {
-        return untimedFrames() > 0 ? m_totals.drawMs / untimedFrames()
-                                   : m_totals.timedDrawMs / static_cast<double>(m_totals.timedFrames);
+        return untimedFrames() > 0
+                   ? m_totals.drawMs / untimedFrames()
+                   : m_totals.timedDrawMs / static_cast<double>(m_totals.timedFrames);
     }
 
     json renderRecord() const {
@@ -363,7 +366,9 @@ private:
                   {"sprites_mean", static_cast<double>(m_totals.sprites) / n},
                   {"culled_under_water_mean", static_cast<double>(m_totals.culled) / n}}},
                 {"exports",
-                 {{"heights", r.exportHeights}, {"mesh", r.exportMesh}, {"splashes", r.exportSplashes}}},
+                 {{"heights", r.exportHeights},
+                  {"mesh", r.exportMesh},
+                  {"splashes", r.exportSplashes}}},
                 {"height_scale",
                  {{"offset", m_scale.offset},
                   {"scale", m_scale.scale},
@@ -439,9 +444,9 @@ public:
         const ReplaySetup setup = prepareReplay(m_o, reader, taus);
         const fs::path out(m_r.outDir);
         fs::create_directories(out);
-        for (const auto& [on, folder] : {std::pair{m_r.exportHeights, "heights"},
-                                         std::pair{m_r.exportMesh, "mesh"},
-                                         std::pair{m_r.exportSplashes, "splashes"}}) {
+        for (const auto& [on, folder] :
+             {std::pair{m_r.exportHeights, "heights"}, std::pair{m_r.exportMesh, "mesh"},
+              std::pair{m_r.exportSplashes, "splashes"}}) {
             if (on)
                 fs::create_directories(out / folder);
         }
@@ -464,19 +469,24 @@ private:
         RenderOptions& r = m_r;
         cmd->add_option("--out", r.outDir, "output folder")->required();
         cmd->add_option("--size", r.size, "image width x height")->capture_default_str();
-        cmd->add_option("--seconds", r.seconds, "simulated seconds to render")->capture_default_str();
+        cmd->add_option("--seconds", r.seconds, "simulated seconds to render")
+            ->capture_default_str();
         cmd->add_option("--video", r.video, "also encode FILE.mp4 with ffmpeg (when installed)");
         cmd->add_option("--export", r.exports,
                         "per-frame exports, comma list of: heights (16-bit PNG + JSON), mesh "
                         "(PLY), splashes (PLY)");
-        cmd->add_option("--samples", r.shading.samples, "multisampling (1: off)")->capture_default_str();
-        cmd->add_option("--camera", r.eye, "camera position x y z (metres; default: framing of the domain)")
+        cmd->add_option("--samples", r.shading.samples, "multisampling (1: off)")
+            ->capture_default_str();
+        cmd->add_option("--camera", r.eye,
+                        "camera position x y z (metres; default: framing of the domain)")
             ->expected(3);
         cmd->add_option("--target", r.target, "camera target x y z (metres)")->expected(3);
         cmd->add_option("--fov", r.fov, "vertical field of view, degrees")->capture_default_str();
-        cmd->add_option("--sky", r.skyDir,
-                        "folder of six sky images px nx py ny pz nz .png (default: procedural sky)");
-        cmd->add_option("--sun-azimuth", r.sky.sunAzimuthDegrees, "sun azimuth, degrees (0 = +x, 90 = +z)")
+        cmd->add_option(
+            "--sky", r.skyDir,
+            "folder of six sky images px nx py ny pz nz .png (default: procedural sky)");
+        cmd->add_option("--sun-azimuth", r.sky.sunAzimuthDegrees,
+                        "sun azimuth, degrees (0 = +x, 90 = +z)")
             ->capture_default_str();
         cmd->add_option("--sun-elevation", r.sky.sunElevationDegrees, "sun elevation, degrees")
             ->capture_default_str();

@@ -11,12 +11,12 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "temp_dir.h"
 #include "swell/bake/bake_driver.h"
 #include "swell/bake/checkpoint.h"
 #include "swell/bake/classification.h"
 #include "swell/bake/error.h"
 #include "swell/cache/reader.h"
+#include "temp_dir.h"
 
 using namespace swell::bake;
 using nlohmann::json;
@@ -28,9 +28,7 @@ const fs::path kScenes = SWELL_SCENES_DIR;
 
 class BakeDriver : public ::testing::Test {
 protected:
-    void SetUp() override {
-        m_dir = m_tmp.path();
-    }
+    void SetUp() override { m_dir = m_tmp.path(); }
 
     /// A shipped scene shortened to `endTime` seconds.
     static Scene shortened(const char* file, double endTime) {
@@ -43,7 +41,8 @@ protected:
     }
     /// Files in the test directory (a cancelled bake must leave no temporary behind).
     std::size_t filesInDir() const {
-        return static_cast<std::size_t>(std::distance(fs::directory_iterator(m_dir), fs::directory_iterator()));
+        return static_cast<std::size_t>(
+            std::distance(fs::directory_iterator(m_dir), fs::directory_iterator()));
     }
     /// Bakes `scene` with checkpoints every `every` steps and "crashes" (an exception out of
     /// the progress callback, so no checkpoint is written at that step) after step `crashAt`.
@@ -52,7 +51,8 @@ protected:
         BakeOptions opt = base;
         opt.checkpointEvery = every;
         opt.onProgress = [&](const BakeProgress& p) {
-            if (p.step == crashAt) throw Crash{};
+            if (p.step == crashAt)
+                throw Crash{};
         };
         EXPECT_THROW(runBake(scene, opt), Crash);
         EXPECT_FALSE(fs::exists(opt.output));
@@ -123,17 +123,20 @@ TEST_F(BakeDriver, SmallSurgingBakeWritesAVerifiableCacheThatDescribesItself) {
     EXPECT_DOUBLE_EQ(replay["water_x_min"].get<double>(), 0.0);
     EXPECT_DOUBLE_EQ(replay["water_x_max"].get<double>(), 2.0);
     EXPECT_DOUBLE_EQ(replay["still_water_level"].get<double>(), 0.16);
-    EXPECT_DOUBLE_EQ(replay["still_water_level"].get<double>(), meta["still_water_level"].get<double>());
+    EXPECT_DOUBLE_EQ(replay["still_water_level"].get<double>(),
+                     meta["still_water_level"].get<double>());
     EXPECT_DOUBLE_EQ(replay["particle_spacing"].get<double>(), 0.02);
     EXPECT_NEAR(replay["steady_start_s"].get<double>(), 3.1694, 1e-3);
-    EXPECT_NE(replay["steady_reason"].get<std::string>().find("= 3.17 s"), std::string::npos) << replay.dump();
+    EXPECT_NE(replay["steady_reason"].get<std::string>().find("= 3.17 s"), std::string::npos)
+        << replay.dump();
     EXPECT_EQ(toJson(s)["replay"], replay); // the --json summary shows the same block
 
     std::size_t surface = 0;
     for (std::size_t f = 0; f < r.frameCount(); ++f) {
         const swell::cache::Frame fr = r.readFrame(f);
         surface += fr.surfaceCount();
-        for (std::size_t k = 2; k < fr.surface.size(); k += 2) ASSERT_LE(fr.surface[k - 2], fr.surface[k]); // by x
+        for (std::size_t k = 2; k < fr.surface.size(); k += 2)
+            ASSERT_LE(fr.surface[k - 2], fr.surface[k]); // by x
     }
     EXPECT_NEAR(static_cast<double>(surface) / 51.0, s.surfaceMean, 1e-9);
 
@@ -142,7 +145,8 @@ TEST_F(BakeDriver, SmallSurgingBakeWritesAVerifiableCacheThatDescribesItself) {
     std::getline(csv, line);
     EXPECT_EQ(line, "time,front_x,gauge_0.5,gauge_1,gauge_1.5");
     int rows = 0;
-    while (std::getline(csv, line)) ++rows;
+    while (std::getline(csv, line))
+        ++rows;
     EXPECT_EQ(rows, 51); // one per stored frame
     EXPECT_EQ(filesInDir(), 2u);
 }
@@ -225,7 +229,7 @@ TEST(BakeWarnings, SteepPistonWaveIsReported) {
         "solver": {"dt": 0.002}
     })");
     EXPECT_TRUE(sceneWarnings(parseScene(j)).empty()); // H/L about 0.015
-    j["piston"]["stroke"] = 0.3;                        // H/L about 0.2: beyond Miche's 0.12
+    j["piston"]["stroke"] = 0.3;                       // H/L about 0.2: beyond Miche's 0.12
     const auto w = sceneWarnings(parseScene(j));
     ASSERT_EQ(w.size(), 1u);
     EXPECT_NE(w[0].find("Miche"), std::string::npos);
@@ -272,7 +276,8 @@ TEST_F(BakeDriver, ResumedBakeIsByteIdenticalToAnUninterruptedOne) {
     opt.resume = true;
     long first = -1, last = 0;
     opt.onProgress = [&](const BakeProgress& p) {
-        if (first < 0) first = p.step;
+        if (first < 0)
+            first = p.step;
         EXPECT_EQ(p.firstStep, 180);
         last = p.step;
     };

@@ -10,8 +10,8 @@
 #include <nlohmann/json.hpp>
 
 #include "expect_same_particles.h"
-#include "temp_dir.h"
 #include "swell/bake/checkpoint.h"
+#include "temp_dir.h"
 
 using namespace swell::bake;
 namespace fs = std::filesystem;
@@ -20,7 +20,8 @@ namespace {
 
 Checkpoint sample() {
     Checkpoint c;
-    c.fingerprint = R"({"build":"abc","cache_metadata":{"scene":{"solver":{"dt":0.002}},"threads":2}})";
+    c.fingerprint =
+        R"({"build":"abc","cache_metadata":{"scene":{"solver":{"dt":0.002}},"threads":2}})";
     c.checkpointEvery = 50;
     c.writerPid = 4242;
     MpsState& s = c.solver;
@@ -143,8 +144,8 @@ TEST_F(CheckpointFile, MissingFileIsNamed) {
 TEST_F(CheckpointFile, TruncatedFileIsDamagedAndNamed) {
     writeCheckpoint(m_path, sample());
     const std::string whole = bytes(m_path);
-    for (std::size_t keep : {std::size_t{0}, std::size_t{10}, std::size_t{47}, std::size_t{48}, whole.size() / 2,
-                             whole.size() - 1}) {
+    for (std::size_t keep : {std::size_t{0}, std::size_t{10}, std::size_t{47}, std::size_t{48},
+                             whole.size() / 2, whole.size() - 1}) {
         SCOPED_TRACE(keep);
         writeBytes(m_path, whole.substr(0, keep));
         const std::string e = readError();
@@ -182,15 +183,18 @@ TEST_F(CheckpointFile, FingerprintOfADifferentBakeNamesTheValue) {
         }
         return "";
     };
-    const std::string dt =
-        message(R"({"build":"abc","cache_metadata":{"scene":{"solver":{"dt":0.001}},"threads":2}})");
+    const std::string dt = message(
+        R"({"build":"abc","cache_metadata":{"scene":{"solver":{"dt":0.001}},"threads":2}})");
     EXPECT_EQ(dt.rfind(m_path.string() + ": ", 0), 0u) << dt;
-    EXPECT_NE(dt.find("/cache_metadata/scene/solver/dt is 0.002 there, 0.001 now"), std::string::npos) << dt;
-    const std::string threads =
-        message(R"({"build":"abc","cache_metadata":{"scene":{"solver":{"dt":0.002}},"threads":1}})");
-    EXPECT_NE(threads.find("/cache_metadata/threads is 2 there, 1 now"), std::string::npos) << threads;
-    const std::string build =
-        message(R"({"build":"abd","cache_metadata":{"scene":{"solver":{"dt":0.002}},"threads":2}})");
+    EXPECT_NE(dt.find("/cache_metadata/scene/solver/dt is 0.002 there, 0.001 now"),
+              std::string::npos)
+        << dt;
+    const std::string threads = message(
+        R"({"build":"abc","cache_metadata":{"scene":{"solver":{"dt":0.002}},"threads":1}})");
+    EXPECT_NE(threads.find("/cache_metadata/threads is 2 there, 1 now"), std::string::npos)
+        << threads;
+    const std::string build = message(
+        R"({"build":"abd","cache_metadata":{"scene":{"solver":{"dt":0.002}},"threads":2}})");
     EXPECT_NE(build.find("/build"), std::string::npos) << build;
 }
 

@@ -31,13 +31,13 @@ void addWater(Particles& P, double x, double y, double n, double vx = 0.0, doubl
 // eq. (4) over a hand-made set: n0 = 10, d1 = 0.49, d2 = 0.96.
 TEST(Classification, KeepsSurfaceSortedByXAndSplashWithVelocity) {
     Particles P;
-    addWater(P, 0.30, 0.10, 9.0);              // surface
-    addWater(P, 0.10, 0.20, 4.9);              // surface (n = d1 n0)
-    addWater(P, 0.20, 0.05, 9.7);              // deep
-    addWater(P, 0.50, 0.40, 1.0, 1.5, -2.0);   // splash
-    addWater(P, 0.05, 0.00, 12.0);             // deep
-    addWater(P, 0.10, 0.15, 9.6);              // surface (n = d2 n0), same x as the second: y orders
-    P.add(0.0, 0.0, ParticleKind::Wall);       // walls are never classified, whatever n
+    addWater(P, 0.30, 0.10, 9.0);            // surface
+    addWater(P, 0.10, 0.20, 4.9);            // surface (n = d1 n0)
+    addWater(P, 0.20, 0.05, 9.7);            // deep
+    addWater(P, 0.50, 0.40, 1.0, 1.5, -2.0); // splash
+    addWater(P, 0.05, 0.00, 12.0);           // deep
+    addWater(P, 0.10, 0.15, 9.6);            // surface (n = d2 n0), same x as the second: y orders
+    P.add(0.0, 0.0, ParticleKind::Wall);     // walls are never classified, whatever n
     P.n.back() = 2.0;
     P.add(0.0, -0.01, ParticleKind::Dummy);
     const ClassifiedFrame c = classifyParticles(P, 10.0, 0.49, 0.96);
@@ -52,7 +52,8 @@ TEST(Classification, KeepsSurfaceSortedByXAndSplashWithVelocity) {
 
 TEST(Classification, NoSplashGivesNoSplashRecords) {
     Particles P;
-    for (int i = 0; i < 5; ++i) addWater(P, 0.01 * i, 0.0, 8.0);
+    for (int i = 0; i < 5; ++i)
+        addWater(P, 0.01 * i, 0.0, 8.0);
     const ClassifiedFrame c = classifyParticles(P, 10.0, 0.49, 0.96);
     EXPECT_TRUE(c.frame.splash.empty());
     EXPECT_EQ(c.surface(), 5u);

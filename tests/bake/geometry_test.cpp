@@ -18,8 +18,7 @@ GeometryParams tankWithColumn() {
     return g;
 }
 
-template <typename F>
-std::string sceneErrorKey(F&& f) {
+template <typename F> std::string sceneErrorKey(F&& f) {
     try {
         f();
     } catch (const SceneError& e) {
@@ -37,10 +36,12 @@ TEST(Geometry, TankAndColumnParticleCounts) {
     // Bed: 4 layers x (50 + 2 * 4) sites; side walls: 2 x 4 layers x 30 sites.
     const std::size_t fixed = 4 * 58 + 2 * 4 * 30;
     EXPECT_EQ(P.count(ParticleKind::Wall) + P.count(ParticleKind::Dummy), fixed);
-    // Innermost two layers are wall: bed 2 x 54 (corners beyond the 2nd layer are dummy), sides 2 x 2 x 30.
+    // Innermost two layers are wall: bed 2 x 54 (corners beyond the 2nd layer are dummy), sides 2 x
+    // 2 x 30.
     EXPECT_EQ(P.count(ParticleKind::Wall), 2u * 54u + 2u * 2u * 30u);
     // Water first, then wall, then dummy.
-    for (std::size_t i = 1; i < P.size(); ++i) EXPECT_LE(P.kind[i - 1], P.kind[i]);
+    for (std::size_t i = 1; i < P.size(); ++i)
+        EXPECT_LE(P.kind[i - 1], P.kind[i]);
 }
 
 TEST(Geometry, WaterSitsOnTheLatticeOneSpacingFromTheWalls) {
@@ -48,7 +49,8 @@ TEST(Geometry, WaterSitsOnTheLatticeOneSpacingFromTheWalls) {
     const Particles& P = g.particles;
     double minX = 1.0, minY = 1.0;
     for (std::size_t i = 0; i < P.size(); ++i) {
-        if (P.kind[i] != ParticleKind::Water) continue;
+        if (P.kind[i] != ParticleKind::Water)
+            continue;
         minX = std::min(minX, P.x[i]);
         minY = std::min(minY, P.y[i]);
         const double fx = P.x[i] / 0.01 - 0.5, fy = P.y[i] / 0.01 - 0.5;
@@ -78,8 +80,9 @@ TEST(Geometry, SolidBlockHasWallSkinAndDummyCore) {
     g.water = {Box{0.0, 0.0, 0.05, 0.05}};
     g.solids = {Box{0.1, 0.0, 0.2, 0.1}}; // 10 x 10 sites
     const GeneratedGeometry out = generateGeometry(g);
-    EXPECT_EQ(out.particles.count(ParticleKind::Wall), 100u - 36u);  // layers 0-1
-    EXPECT_EQ(out.particles.count(ParticleKind::Dummy), 36u - 4u);   // layers 2-3; the 2x2 core is left out
+    EXPECT_EQ(out.particles.count(ParticleKind::Wall), 100u - 36u); // layers 0-1
+    EXPECT_EQ(out.particles.count(ParticleKind::Dummy),
+              36u - 4u); // layers 2-3; the 2x2 core is left out
 }
 
 TEST(Geometry, BadRectanglesNameTheirKey) {

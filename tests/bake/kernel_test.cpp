@@ -34,7 +34,10 @@ TEST(Kernel, LatticeConstantsMatchClosedFormFor21) {
 TEST(Kernel, LatticeConstantsMatchClosedFormFor31) {
     const double l0 = 0.025;
     const double re = 3.1;
-    struct Shell { double r2; int count; };
+    struct Shell {
+        double r2;
+        int count;
+    };
     const Shell shells[] = {{1, 4}, {2, 4}, {4, 4}, {5, 8}, {8, 4}, {9, 4}};
     double n0 = 0.0, r2w = 0.0;
     for (const Shell& s : shells) {

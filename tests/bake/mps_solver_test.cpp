@@ -28,11 +28,16 @@ std::atomic<long> g_allocations{0};
 #if SWELL_COUNT_ALLOCATIONS
 void* operator new(std::size_t size) {
     g_allocations.fetch_add(1, std::memory_order_relaxed);
-    if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
+    if (void* p = std::malloc(size == 0 ? 1 : size))
+        return p;
     throw std::bad_alloc();
 }
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+void operator delete(void* p) noexcept {
+    std::free(p);
+}
+void operator delete(void* p, std::size_t) noexcept {
+    std::free(p);
+}
 #endif
 
 namespace {
@@ -49,7 +54,8 @@ Scene smallDamBreak() {
 /// Runs `steps` steps and returns the DivergenceError message, or "" if none.
 std::string runUntilFailure(MpsSolver& solver, int steps) {
     try {
-        for (int k = 0; k < steps; ++k) solver.step();
+        for (int k = 0; k < steps; ++k)
+            solver.step();
     } catch (const DivergenceError& e) {
         return e.what();
     }
@@ -66,7 +72,8 @@ TEST(MpsSolver, PpeMatrixIsSymmetricDiagonallyDominantAndSolvedExactly) {
         scene.solver.pressure.preconditioner = pc;
         scene.solver.pressure.tolerance = 1e-10;
         MpsSolver solver = makeSolver(scene);
-        for (int k = 0; k < 30; ++k) solver.step();
+        for (int k = 0; k < 30; ++k)
+            solver.step();
         const Eigen::SparseMatrix<double, Eigen::RowMajor> A = solver.ppeMatrix();
         ASSERT_GT(A.rows(), 100);
         const Eigen::SparseMatrix<double, Eigen::RowMajor> At = A.transpose();
@@ -74,7 +81,8 @@ TEST(MpsSolver, PpeMatrixIsSymmetricDiagonallyDominantAndSolvedExactly) {
         for (Eigen::Index r = 0; r < A.rows(); ++r) {
             double off = 0.0, diag = 0.0;
             for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(A, r); it; ++it) {
-                if (it.col() == r) diag = it.value();
+                if (it.col() == r)
+                    diag = it.value();
                 else {
                     EXPECT_LE(it.value(), 0.0);
                     off += std::abs(it.value());
@@ -100,7 +108,8 @@ TEST(MpsSolver, PreconditionersCutIterations) {
         Scene scene = smallDamBreak();
         scene.solver.pressure.preconditioner = pc;
         MpsSolver solver = makeSolver(scene);
-        for (int s = 0; s < 20; ++s) iterations[k] += solver.step().ppeIterations;
+        for (int s = 0; s < 20; ++s)
+            iterations[k] += solver.step().ppeIterations;
         ++k;
     }
     EXPECT_LT(iterations[1], iterations[0]);
@@ -120,7 +129,8 @@ TEST(MpsSolver, StepReportsStatsAndPhaseTimes) {
     EXPECT_GT(s.surfaceParticles, 0u);
     EXPECT_EQ(s.outOfBounds, 0u);
     EXPECT_NEAR(s.courant, s.maxSpeed * s.dt / 0.01, 1e-12);
-    for (double t : s.phaseSeconds) EXPECT_GE(t, 0.0);
+    for (double t : s.phaseSeconds)
+        EXPECT_GE(t, 0.0);
     EXPECT_GT(s.seconds(), 0.0);
 }
 
@@ -129,7 +139,8 @@ TEST(MpsSolver, WaterAtRestOnALatticeWithoutGravityStaysAtRest) {
     scene.physics.gravity = 0.0;
     MpsSolver solver = makeSolver(scene);
     const Particles before = solver.particles();
-    for (int k = 0; k < 50; ++k) solver.step();
+    for (int k = 0; k < 50; ++k)
+        solver.step();
     const Particles& after = solver.particles();
     for (std::size_t i = 0; i < after.size(); ++i) {
         ASSERT_NEAR(after.x[i], before.x[i], 1e-9);
@@ -153,12 +164,15 @@ TEST(MpsSolver, AdaptiveStepKeepsTheCourantTarget) {
 }
 
 TEST(MpsSolver, StepLoopDoesNotAllocate) {
-    if (!SWELL_COUNT_ALLOCATIONS) GTEST_SKIP() << "allocation counting is off under AddressSanitizer";
+    if (!SWELL_COUNT_ALLOCATIONS)
+        GTEST_SKIP() << "allocation counting is off under AddressSanitizer";
     MpsSolver solver = makeSolver(smallDamBreak());
-    for (int k = 0; k < 20; ++k) solver.step(); // warm-up (OpenMP thread pool, first rebuilds)
+    for (int k = 0; k < 20; ++k)
+        solver.step(); // warm-up (OpenMP thread pool, first rebuilds)
     const long before = g_allocations.load();
     int rebuilds = 0;
-    for (int k = 0; k < 100; ++k) rebuilds += solver.step().neighborRebuilds;
+    for (int k = 0; k < 100; ++k)
+        rebuilds += solver.step().neighborRebuilds;
     EXPECT_EQ(g_allocations.load() - before, 0);
     EXPECT_GT(rebuilds, 0); // the rebuild path was exercised too
 }
@@ -188,7 +202,8 @@ TEST(MpsSolver, DetectorNamesStepTimeAndParticleForNonFiniteState) {
         const Particles& P = g.particles;
         const std::size_t named = e.particle();
         EXPECT_LT(std::hypot(P.x[named] - P.x[17], P.y[named] - P.y[17]), 3.6 * 0.01) << e.what();
-        EXPECT_NE(std::string(e.what()).find(fmt::format("particle {}", named)), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find(fmt::format("particle {}", named)), std::string::npos)
+            << e.what();
         EXPECT_NE(std::string(e.what()).find("non-finite"), std::string::npos) << e.what();
     }
 }
@@ -198,7 +213,7 @@ TEST(MpsSolver, DetectorStopsWhenAParticleLeavesTheDomain) {
     GeneratedGeometry g = generateGeometry(scene.geometry);
     g.particles.vx[5] = 400.0; // 0.4 m per step: out of the domain at once
     SolverParams par = scene.solver;
-    par.time.courantLimit = 1e9;    // so the domain check is the one that fires
+    par.time.courantLimit = 1e9; // so the domain check is the one that fires
     MpsSolver solver(PhysicsParams{}, par, g.particles, 0.01, g.domain);
     const std::string msg = runUntilFailure(solver, 3);
     ASSERT_FALSE(msg.empty());
@@ -219,24 +234,30 @@ TEST(MpsSolver, RejectsUnusableConstruction) {
     const GeneratedGeometry g = generateGeometry(smallDamBreak().geometry);
     SolverParams bad;
     bad.time.dt = 0.0;
-    EXPECT_THROW(MpsSolver(PhysicsParams{}, bad, g.particles, 0.01, g.domain), std::invalid_argument);
-    EXPECT_THROW(MpsSolver(PhysicsParams{}, SolverParams{}, g.particles, 0.01, Box{0, 0, 0.01, 0.01}),
+    EXPECT_THROW(MpsSolver(PhysicsParams{}, bad, g.particles, 0.01, g.domain),
                  std::invalid_argument);
+    EXPECT_THROW(
+        MpsSolver(PhysicsParams{}, SolverParams{}, g.particles, 0.01, Box{0, 0, 0.01, 0.01}),
+        std::invalid_argument);
     Particles walls;
     walls.add(0.0, 0.0, ParticleKind::Wall);
-    EXPECT_THROW(MpsSolver(PhysicsParams{}, SolverParams{}, walls, 0.01, g.domain), std::invalid_argument);
+    EXPECT_THROW(MpsSolver(PhysicsParams{}, SolverParams{}, walls, 0.01, g.domain),
+                 std::invalid_argument);
 }
 
 TEST(MpsSolver, TwoSolversInOneProcessAreIndependent) {
     MpsSolver a = makeSolver(smallDamBreak());
     MpsSolver b = makeSolver(smallDamBreak());
-    for (int k = 0; k < 10; ++k) a.step();
+    for (int k = 0; k < 10; ++k)
+        a.step();
     b.step();
     EXPECT_EQ(a.stepCount(), 10);
     EXPECT_EQ(b.stepCount(), 1);
     MpsSolver c = makeSolver(smallDamBreak());
-    for (int k = 0; k < 9; ++k) b.step();
-    for (int k = 0; k < 10; ++k) c.step();
+    for (int k = 0; k < 9; ++k)
+        b.step();
+    for (int k = 0; k < 10; ++k)
+        c.step();
     for (std::size_t i = 0; i < a.particles().size(); ++i) {
         ASSERT_NEAR(a.particles().x[i], b.particles().x[i], 1e-8);
         ASSERT_NEAR(c.particles().y[i], b.particles().y[i], 1e-8);
@@ -265,7 +286,8 @@ TEST(MpsSolver, PistonBackWallFollowsItsMotionAndPushesWater) {
     const PistonMotion motion(*scene.piston, scene.run.endTime);
     const Particles& P = solver.particles();
     double meanU = 0.0;
-    for (int k = 0; k < 125; ++k) solver.step(); // a quarter period: the piston moves forward
+    for (int k = 0; k < 125; ++k)
+        solver.step(); // a quarter period: the piston moves forward
     const PistonState s = motion.at(solver.time());
     ASSERT_GT(s.displacement, 0.02);
     std::vector<std::uint8_t> isBack(P.size(), 0);

@@ -16,14 +16,17 @@ namespace {
 
 const std::filesystem::path kScenes = SWELL_SCENES_DIR;
 
-Scene sceneFile(const char* name) { return loadScene(kScenes / name); }
+Scene sceneFile(const char* name) {
+    return loadScene(kScenes / name);
+}
 
 } // namespace
 
 TEST(MpsState, ImportedStateContinuesBitForBitWithAPistonWall) {
     const Scene scene = sceneFile("surging_small.json");
     MpsSolver a = makeSolver(scene);
-    for (int k = 0; k < 120; ++k) a.step(); // the piston has started moving (ramp)
+    for (int k = 0; k < 120; ++k)
+        a.step(); // the piston has started moving (ramp)
     const MpsState s = a.exportState();
     EXPECT_EQ(s.step, 120);
     EXPECT_FALSE(s.wallRestX.empty());
@@ -47,7 +50,8 @@ TEST(MpsState, ParticleMovedBetweenStepsIsCarriedOver) {
     // must rebuild at the same step as the exporting one.
     const Scene scene = sceneFile("ripple_small.json");
     MpsSolver a = makeSolver(scene);
-    for (int k = 0; k < 40; ++k) a.step();
+    for (int k = 0; k < 40; ++k)
+        a.step();
     const Particles& P = a.particles();
     a.relocateWater(5, P.x[5], P.y[5], P.vx[5] * 0.5, P.vy[5]);
     const MpsState s = a.exportState();

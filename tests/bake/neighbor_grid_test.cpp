@@ -40,7 +40,8 @@ TEST(NeighborGrid, ListsEqualBruteForce) {
         std::set<std::uint32_t> expected;
         for (std::size_t j = 0; j < c.x.size(); ++j) {
             const double dx = c.x[j] - c.x[i], dy = c.y[j] - c.y[i];
-            if (j != i && dx * dx + dy * dy < radius * radius) expected.insert(static_cast<std::uint32_t>(j));
+            if (j != i && dx * dx + dy * dy < radius * radius)
+                expected.insert(static_cast<std::uint32_t>(j));
         }
         const auto list = grid.neighbors(i);
         const std::set<std::uint32_t> got(list.begin(), list.end());
@@ -62,7 +63,8 @@ TEST(NeighborGrid, ShortListsAreTheFullListsCutAtTheShortRadiusInTheSameOrder) {
         std::vector<std::uint32_t> expected;
         for (std::uint32_t j : grid.neighbors(i)) {
             const double dx = c.x[j] - c.x[i], dy = c.y[j] - c.y[i];
-            if (dx * dx + dy * dy < shortRadius * shortRadius) expected.push_back(j);
+            if (dx * dx + dy * dy < shortRadius * shortRadius)
+                expected.push_back(j);
         }
         const auto got = grid.shortNeighbors(i);
         ASSERT_EQ(std::vector<std::uint32_t>(got.begin(), got.end()), expected) << "particle " << i;
@@ -73,7 +75,8 @@ TEST(NeighborGrid, ShortListsAreTheFullListsCutAtTheShortRadiusInTheSameOrder) {
     EXPECT_LT(shortTotal, fullTotal);
     EXPECT_THROW(grid.build(c.x, c.y, radius, 2.0 * radius), std::invalid_argument);
     ASSERT_TRUE(grid.build(c.x, c.y, radius)); // no short radius: empty short lists
-    for (std::size_t i = 0; i < c.x.size(); ++i) EXPECT_TRUE(grid.shortNeighbors(i).empty());
+    for (std::size_t i = 0; i < c.x.size(); ++i)
+        EXPECT_TRUE(grid.shortNeighbors(i).empty());
 }
 
 TEST(NeighborGrid, SortedOrderGroupsCellsAndListsAreRankOrdered) {
@@ -98,7 +101,8 @@ TEST(NeighborGrid, SortedOrderGroupsCellsAndListsAreRankOrdered) {
     }
     for (std::size_t i = 0; i < c.x.size(); ++i) {
         const auto list = grid.neighbors(i);
-        for (std::size_t k = 1; k < list.size(); ++k) ASSERT_LT(grid.rank(list[k - 1]), grid.rank(list[k]));
+        for (std::size_t k = 1; k < list.size(); ++k)
+            ASSERT_LT(grid.rank(list[k - 1]), grid.rank(list[k]));
     }
 }
 
@@ -120,7 +124,8 @@ TEST(NeighborGrid, RebuildAfterMotionGivesNewLists) {
 TEST(NeighborGrid, ReportsOverflowInsteadOfTruncatingSilently) {
     const Box domain{0.0, 0.0, 1.0, 1.0};
     std::vector<double> x(20, 0.5), y(20, 0.5);
-    for (std::size_t i = 0; i < x.size(); ++i) x[i] += 1e-4 * static_cast<double>(i);
+    for (std::size_t i = 0; i < x.size(); ++i)
+        x[i] += 1e-4 * static_cast<double>(i);
     NeighborGrid grid;
     grid.configure(domain, 0.1, x.size(), 8);
     EXPECT_FALSE(grid.build(x, y, 0.1));

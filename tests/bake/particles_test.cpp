@@ -19,7 +19,8 @@ TEST(Particles, AddKeepsEveryArrayInStepAndCountsKinds) {
 TEST(Particles, AnArrayOfAnotherLengthIsInconsistent) {
     Particles p;
     p.add(0.1, 0.2, ParticleKind::Water);
-    for (auto member : {&Particles::y, &Particles::vx, &Particles::vy, &Particles::p, &Particles::n}) {
+    for (auto member :
+         {&Particles::y, &Particles::vx, &Particles::vy, &Particles::p, &Particles::n}) {
         Particles q = p;
         (q.*member).pop_back();
         EXPECT_FALSE(q.consistent());

@@ -20,7 +20,8 @@ TEST(Probes, FrontIsTheLargestNonSplashXAndGaugesReadTheTopParticle) {
     Particles P;
     // A column at x = 0.10 up to y = 0.25, one at x = 0.30 up to 0.05, a splash drop far
     // ahead and high (n below d1 n0 = 4.9), and a wall particle further still.
-    for (int j = 0; j < 5; ++j) addWater(P, 0.10, 0.05 * j + 0.05, 9.0);
+    for (int j = 0; j < 5; ++j)
+        addWater(P, 0.10, 0.05 * j + 0.05, 9.0);
     addWater(P, 0.30, 0.05, 8.0);
     addWater(P, 0.90, 0.80, 1.0);
     P.add(1.0, 0.0, ParticleKind::Wall);

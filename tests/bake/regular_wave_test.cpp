@@ -7,13 +7,12 @@
 #include <string>
 #include <vector>
 
-
 #include <gtest/gtest.h>
 
-#include "temp_dir.h"
 #include "swell/bake/error.h"
 #include "swell/bake/regular_wave.h"
 #include "swell/bake/scene.h"
+#include "temp_dir.h"
 
 using namespace swell::bake;
 
@@ -22,7 +21,8 @@ namespace {
 const std::filesystem::path kScenes = SWELL_SCENES_DIR;
 
 /// Gauge records of a linear progressive wave of height H and wavelength L, sampled every dt.
-std::vector<ProbeSample> linearRecord(const Scene& scene, double H, double L, double tEnd, double dt) {
+std::vector<ProbeSample> linearRecord(const Scene& scene, double H, double L, double tEnd,
+                                      double dt) {
     const double omega = 2.0 * std::numbers::pi / scene.piston->period;
     const double k = 2.0 * std::numbers::pi / L;
     std::vector<ProbeSample> out;
@@ -30,12 +30,12 @@ std::vector<ProbeSample> linearRecord(const Scene& scene, double H, double L, do
         ProbeSample s;
         s.time = t;
         s.frontX = 1.0;
-        for (double x : scene.output.gauges) s.elevations.push_back(0.5 * H * std::cos(k * x - omega * t) + 0.003);
+        for (double x : scene.output.gauges)
+            s.elevations.push_back(0.5 * H * std::cos(k * x - omega * t) + 0.003);
         out.push_back(s);
     }
     return out;
 }
-
 
 } // namespace
 
@@ -52,14 +52,15 @@ TEST(RegularWave, WindowOpensAfterTheRampAndArrivalAndClosesBeforeReflections) {
 TEST(RegularWave, RecoversHeightAndLengthOfALinearWave) {
     const Scene scene = loadScene(kScenes / "regular_wave_small.json");
     const WaveWindow w = regularWaveWindow(scene);
-    const RegularWaveCheck exact = checkRegularWave(
-        scene, linearRecord(scene, 0.9 * 0.029, 1.26, scene.run.endTime, 0.02), w);
+    const RegularWaveCheck exact =
+        checkRegularWave(scene, linearRecord(scene, 0.9 * 0.029, 1.26, scene.run.endTime, 0.02), w);
     // A record of 90 % of Biesel's height at the dispersion wavelength reads as such.
     const double L = exact.theory.wavelength;
-    const RegularWaveCheck c =
-        checkRegularWave(scene, linearRecord(scene, 0.9 * exact.theory.height, L, scene.run.endTime, 0.02), w);
+    const RegularWaveCheck c = checkRegularWave(
+        scene, linearRecord(scene, 0.9 * exact.theory.height, L, scene.run.endTime, 0.02), w);
     ASSERT_EQ(c.heights.size(), scene.output.gauges.size());
-    for (std::size_t g = 0; g < c.heights.size(); ++g) EXPECT_NEAR(c.heightError(g), -0.10, 1e-6) << g;
+    for (std::size_t g = 0; g < c.heights.size(); ++g)
+        EXPECT_NEAR(c.heightError(g), -0.10, 1e-6) << g;
     EXPECT_NEAR(c.wavelengthError(), 0.0, 1e-6);
     EXPECT_GT(c.samples, 50U);
     EXPECT_NEAR(c.theory.kh, 1.0, 0.005); // dispersion relation at h = 0.2 m, T = 1.03 s
@@ -70,7 +71,8 @@ TEST(RegularWave, DryGaugeOrRandomPistonIsAClearError) {
     const WaveWindow w = regularWaveWindow(scene);
     auto record = linearRecord(scene, 0.02, 0.9, scene.run.endTime, 0.02);
     for (auto& s : record) {
-        if (s.time > w.start + 0.5 && s.time < w.start + 0.6) s.elevations[1] = std::nan("");
+        if (s.time > w.start + 0.5 && s.time < w.start + 0.6)
+            s.elevations[1] = std::nan("");
     }
     EXPECT_THROW(checkRegularWave(scene, record, w), std::invalid_argument);
     const Scene surging = loadScene(kScenes / "surging_small.json");

@@ -4,9 +4,9 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "temp_dir.h"
 #include "swell/bake/error.h"
 #include "swell/bake/scene.h"
+#include "temp_dir.h"
 
 using namespace swell::bake;
 using nlohmann::json;
@@ -31,7 +31,8 @@ std::string errorKey(const json& j) {
     try {
         parseScene(j);
     } catch (const SceneError& e) {
-        EXPECT_NE(std::string(e.what()).find(e.key()), std::string::npos) << "message must name the key";
+        EXPECT_NE(std::string(e.what()).find(e.key()), std::string::npos)
+            << "message must name the key";
         return e.key();
     }
     return "<accepted>";
@@ -40,7 +41,8 @@ std::string errorKey(const json& j) {
 } // namespace
 
 TEST(Scene, ShippedScenesLoad) {
-    for (const char* name : {"still_tank.json", "still_tank_small.json", "dam_break.json", "dam_break_small.json"}) {
+    for (const char* name :
+         {"still_tank.json", "still_tank_small.json", "dam_break.json", "dam_break_small.json"}) {
         SCOPED_TRACE(name);
         const Scene s = loadScene(kScenes / name);
         EXPECT_FALSE(s.name.empty());
@@ -54,8 +56,8 @@ TEST(Scene, DamBreakSceneIsTheMartinMoyceSetUp) {
         const Scene s = loadScene(kScenes / name);
         const Box col = s.geometry.water.at(0);
         const Box tank = *s.geometry.tank;
-        EXPECT_DOUBLE_EQ(col.x0, 0.0);                        // back wall inner face at x = 0
-        EXPECT_DOUBLE_EQ(col.y0, 0.0);                        // bed at y = 0
+        EXPECT_DOUBLE_EQ(col.x0, 0.0); // back wall inner face at x = 0
+        EXPECT_DOUBLE_EQ(col.y0, 0.0); // bed at y = 0
         EXPECT_DOUBLE_EQ(tank.x0, 0.0);
         EXPECT_DOUBLE_EQ(tank.y0, 0.0);
         EXPECT_NEAR(col.height(), 2.0 * col.width(), 1e-12); // height 2a

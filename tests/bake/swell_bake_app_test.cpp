@@ -29,7 +29,8 @@ using swell::test::slurp;
 
 int lines(const std::string& s) {
     int n = 0;
-    for (char c : s) n += c == '\n';
+    for (char c : s)
+        n += c == '\n';
     return n;
 }
 
@@ -37,15 +38,14 @@ int lines(const std::string& s) {
 int errorLines(const std::string& s) {
     std::istringstream in(s);
     int n = 0;
-    for (std::string line; std::getline(in, line);) n += line.rfind("swell-bake: warning:", 0) != 0;
+    for (std::string line; std::getline(in, line);)
+        n += line.rfind("swell-bake: warning:", 0) != 0;
     return n;
 }
 
 class SwellBakeApp : public ::testing::Test {
 protected:
-    void SetUp() override {
-        m_dir = m_tmp.path();
-    }
+    void SetUp() override { m_dir = m_tmp.path(); }
 
     /// Runs a program; its stdout and stderr pass through a folder of their own, so m_dir
     /// holds only what the program writes.
@@ -68,7 +68,8 @@ protected:
         const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
         while (std::chrono::steady_clock::now() < deadline) {
             for (const auto& e : fs::directory_iterator(m_dir)) {
-                if (e.path().filename().string().rfind(output.filename().string() + ".tmp", 0) == 0) return pid;
+                if (e.path().filename().string().rfind(output.filename().string() + ".tmp", 0) == 0)
+                    return pid;
             }
             std::this_thread::sleep_for(std::chrono::milliseconds(20));
         }
@@ -77,7 +78,8 @@ protected:
     }
     std::size_t cacheFiles() const {
         std::size_t n = 0;
-        for (const auto& e : fs::directory_iterator(m_dir)) n += e.path().filename().string().rfind("k.swell", 0) == 0;
+        for (const auto& e : fs::directory_iterator(m_dir))
+            n += e.path().filename().string().rfind("k.swell", 0) == 0;
         return n;
     }
     swell::test::TempDir m_tmp{"swell_bake_app_"};
@@ -90,7 +92,8 @@ protected:
 TEST_F(SwellBakeApp, HelpListsTheOptions) {
     const Result r = bake("--help");
     EXPECT_EQ(r.code, 0);
-    for (const char* o : {"--output", "--set", "--threads", "--probes", "--json", "--checkpoint-every", "--resume"}) {
+    for (const char* o : {"--output", "--set", "--threads", "--probes", "--json",
+                          "--checkpoint-every", "--resume"}) {
         EXPECT_NE(r.out.find(o), std::string::npos) << o;
     }
 }
@@ -103,8 +106,8 @@ TEST_F(SwellBakeApp, BadInputGivesOneLineAndNonZeroExit) {
     };
     const Case cases[] = {
         {"/no/such/scene.json -o " + out, "cannot open scene file"},
-        {small, "--output"},                                              // missing -o
-        {small + " -o " + out + " --set solver.dtt=1", "solver.dtt"},    // unknown key
+        {small, "--output"},                                          // missing -o
+        {small + " -o " + out + " --set solver.dtt=1", "solver.dtt"}, // unknown key
         {small + " -o " + out + " --set piston.kind=wobbly", "piston.kind"},
         {small + " -o " + out + " --set output.frame_interval=0.003", "output.frame_interval"},
         {small + " -o " + out + " --set nonsense", "section.key=value"},
@@ -126,12 +129,13 @@ TEST_F(SwellBakeApp, BadInputGivesOneLineAndNonZeroExit) {
 TEST_F(SwellBakeApp, SmallSurgingBakeVerifiesAndPrintsTheJsonSummary) {
     const fs::path out = m_dir / "s.swell";
     const fs::path csv = m_dir / "s.csv";
-    const Result r = bake((kScenes / "surging_small.json").string() + " -o " + out.string() + " --probes " +
-                          csv.string() + " --set solver.end_time=0.5 --threads 1 --json");
+    const Result r =
+        bake((kScenes / "surging_small.json").string() + " -o " + out.string() + " --probes " +
+             csv.string() + " --set solver.end_time=0.5 --threads 1 --json");
     ASSERT_EQ(r.code, 0) << r.err;
     const nlohmann::json j = nlohmann::json::parse(r.out);
-    for (const char* k : {"particles_water", "particles_wall", "steps", "frames", "surface_mean", "splash_mean",
-                          "reduction", "wall_seconds", "ms_per_step"}) {
+    for (const char* k : {"particles_water", "particles_wall", "steps", "frames", "surface_mean",
+                          "splash_mean", "reduction", "wall_seconds", "ms_per_step"}) {
         EXPECT_TRUE(j.contains(k)) << k;
     }
     EXPECT_EQ(j["steps"], 250);
@@ -150,7 +154,8 @@ TEST_F(SwellBakeApp, KilledBakeLeavesNoCacheAtTheOutputPath) {
     int status = 0;
     ::waitpid(pid, &status, 0);
     EXPECT_TRUE(WIFSIGNALED(status));
-    EXPECT_FALSE(fs::exists(out)); // (an orphaned temporary may stay; it never looks like the cache)
+    EXPECT_FALSE(
+        fs::exists(out)); // (an orphaned temporary may stay; it never looks like the cache)
 }
 
 TEST_F(SwellBakeApp, InterruptedBakeStopsCleanlyAndLeavesNothing) {
@@ -181,8 +186,9 @@ TEST_F(SwellBakeApp, BakeKilledAfterACheckpointResumesToTheSameCache) {
     if (pid == 0) {
         const std::string err = (m_dir / "bake.err").string();
         std::freopen(err.c_str(), "w", stderr);
-        ::execl(SWELL_BAKE_EXE, SWELL_BAKE_EXE, scene.c_str(), "-o", out.c_str(), "--set", "solver.end_time=1.5",
-                "--threads", "1", "--checkpoint-every", "40", static_cast<char*>(nullptr));
+        ::execl(SWELL_BAKE_EXE, SWELL_BAKE_EXE, scene.c_str(), "-o", out.c_str(), "--set",
+                "solver.end_time=1.5", "--threads", "1", "--checkpoint-every", "40",
+                static_cast<char*>(nullptr));
         ::_exit(127);
     }
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
@@ -192,7 +198,8 @@ TEST_F(SwellBakeApp, BakeKilledAfterACheckpointResumesToTheSameCache) {
     ::kill(pid, SIGKILL);
     int status = 0;
     ::waitpid(pid, &status, 0);
-    ASSERT_TRUE(WIFSIGNALED(status)) << "the bake finished before it was killed; " << slurp(m_dir / "bake.err");
+    ASSERT_TRUE(WIFSIGNALED(status))
+        << "the bake finished before it was killed; " << slurp(m_dir / "bake.err");
     EXPECT_FALSE(fs::exists(out));
     ASSERT_TRUE(fs::exists(ckpt));
 
@@ -202,7 +209,8 @@ TEST_F(SwellBakeApp, BakeKilledAfterACheckpointResumesToTheSameCache) {
     EXPECT_EQ(slurp(out), slurp(ref));
     EXPECT_FALSE(fs::exists(ckpt));
     for (const auto& e : fs::directory_iterator(m_dir)) {
-        EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos) << e.path(); // stale ones removed
+        EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos)
+            << e.path(); // stale ones removed
     }
 }
 
@@ -213,8 +221,9 @@ TEST_F(SwellBakeApp, SigtermWithCheckpointsSavesOneToResumeFrom) {
         const std::string scene = (kScenes / "surging_small.json").string();
         const std::string err = (m_dir / "bake.err").string();
         std::freopen(err.c_str(), "w", stderr);
-        ::execl(SWELL_BAKE_EXE, SWELL_BAKE_EXE, scene.c_str(), "-o", out.c_str(), "--set", "solver.end_time=100",
-                "--threads", "1", "--checkpoint-every", "100000", static_cast<char*>(nullptr));
+        ::execl(SWELL_BAKE_EXE, SWELL_BAKE_EXE, scene.c_str(), "-o", out.c_str(), "--set",
+                "solver.end_time=100", "--threads", "1", "--checkpoint-every", "100000",
+                static_cast<char*>(nullptr));
         ::_exit(127);
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(1500));
@@ -225,7 +234,8 @@ TEST_F(SwellBakeApp, SigtermWithCheckpointsSavesOneToResumeFrom) {
     EXPECT_EQ(WEXITSTATUS(status), 130);
     EXPECT_FALSE(fs::exists(out));
     EXPECT_TRUE(fs::exists(m_dir / "k.swell.ckpt"));
-    EXPECT_NE(slurp(m_dir / "bake.err").find("continue with --resume"), std::string::npos) << slurp(m_dir / "bake.err");
+    EXPECT_NE(slurp(m_dir / "bake.err").find("continue with --resume"), std::string::npos)
+        << slurp(m_dir / "bake.err");
 
     // Resuming it as another bake is refused, naming what differs; the checkpoint stays.
     const std::string scene = (kScenes / "surging_small.json").string();
@@ -233,8 +243,10 @@ TEST_F(SwellBakeApp, SigtermWithCheckpointsSavesOneToResumeFrom) {
     Result r = bake(base + " --threads 2");
     EXPECT_EQ(r.code, 5);
     EXPECT_EQ(errorLines(r.err), 1) << r.err;
-    EXPECT_NE(r.err.find("k.swell.ckpt: checkpoint of a different bake (/cache_metadata/threads is 1 there, 2 now)"),
-              std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("k.swell.ckpt: checkpoint of a different bake (/cache_metadata/threads is "
+                         "1 there, 2 now)"),
+              std::string::npos)
+        << r.err;
     r = bake(base + " --threads 1 --set physics.kinematic_viscosity=1e-6");
     EXPECT_EQ(r.code, 5);
     EXPECT_NE(r.err.find("/cache_metadata/overrides"), std::string::npos) << r.err;
@@ -245,7 +257,8 @@ TEST_F(SwellBakeApp, SigtermWithCheckpointsSavesOneToResumeFrom) {
 TEST_F(SwellBakeApp, ResumeErrorsGiveOneLineAndExitCode5) {
     const std::string scene = (kScenes / "surging_small.json").string();
     const fs::path out = m_dir / "s.swell", ckpt = m_dir / "s.swell.ckpt";
-    const std::string base = scene + " -o " + out.string() + " --set solver.end_time=0.3 --threads 1";
+    const std::string base =
+        scene + " -o " + out.string() + " --set solver.end_time=0.3 --threads 1";
     Result r = bake(base + " --resume");
     EXPECT_EQ(r.code, 5);
     EXPECT_EQ(errorLines(r.err), 1) << r.err;

@@ -6,17 +6,16 @@
 #include <string>
 #include <vector>
 
-
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
-#include "temp_dir.h"
 #include "swell/bake/bake_driver.h"
 #include "swell/bake/error.h"
 #include "swell/bake/regular_wave.h"
 #include "swell/bake/scene.h"
 #include "swell/bake/validation.h"
 #include "swell/bake/wave_theory.h"
+#include "temp_dir.h"
 
 using namespace swell::bake;
 
@@ -36,12 +35,14 @@ DamBreakRun runDamBreak(const Scene& scene, double tEnd) {
     MpsSolver solver = makeSolver(scene);
     const double n0 = solver.densityConstants().n0;
     DamBreakRun run;
-    run.series.push_back({0.0, surgeFront(solver.particles(), n0, scene.output.splashRatio, col.x0) / a});
+    run.series.push_back(
+        {0.0, surgeFront(solver.particles(), n0, scene.output.splashRatio, col.x0) / a});
     try {
         while (solver.time() * scale < tEnd) {
             solver.step();
-            run.series.push_back({solver.time() * scale,
-                                  surgeFront(solver.particles(), n0, scene.output.splashRatio, col.x0) / a});
+            run.series.push_back(
+                {solver.time() * scale,
+                 surgeFront(solver.particles(), n0, scene.output.splashRatio, col.x0) / a});
         }
     } catch (const DivergenceError& e) {
         run.failure = e.what();
@@ -56,7 +57,7 @@ TEST(Validation, FrontComparisonInterpolatesAndAverages) {
     const std::vector<FrontPoint> exp{{0.5, 1.0}, {1.5, 3.0}, {2.5, 9.0}};
     const FrontError e = compareFront(sim, exp, 0.0, 2.0);
     EXPECT_EQ(e.points, 2);
-    EXPECT_NEAR(e.mean, 0.5, 1e-12);        // |1.5 - 1| and |2.5 - 3|
+    EXPECT_NEAR(e.mean, 0.5, 1e-12); // |1.5 - 1| and |2.5 - 3|
     EXPECT_NEAR(e.meanSigned, 0.0, 1e-12);
     EXPECT_NEAR(e.max, 0.5, 1e-12);
     EXPECT_THROW(compareFront(sim, exp, 0.0, 3.0), std::invalid_argument); // 2.5 not covered
@@ -83,7 +84,8 @@ TEST(Validation, DamBreakFrontFollowsMartinMoyceAtCiResolution) {
     const FrontError e225 = compareFront(run.series, martinMoyceA225(), 0.8, 3.0);
     const FrontError e1125 = compareFront(run.series, martinMoyceA1125(), 0.8, 3.0);
     ASSERT_EQ(e225.points + e1125.points, 9);
-    const double mean = (e225.mean * e225.points + e1125.mean * e1125.points) / (e225.points + e1125.points);
+    const double mean =
+        (e225.mean * e225.points + e1125.mean * e1125.points) / (e225.points + e1125.points);
     RecordProperty("front_error_mean", fmt::format("{:.4f}", mean));
     EXPECT_LT(mean, 0.35) << "mean |dZ| over T in [0.8, 3.0] (bound: 0.35 a, docs/validation.md)";
     // The front must actually travel: Z(3) well past the column (Martin & Moyce: ~3.7-4.0).
@@ -93,8 +95,8 @@ TEST(Validation, DamBreakFrontFollowsMartinMoyceAtCiResolution) {
 namespace {
 
 struct StillTankResult {
-    double pressureRatio = 0.0;  // time-averaged bed pressure / (rho g H)
-    double maxSpeedRatio = 0.0;  // max |u| after settling / sqrt(g H)
+    double pressureRatio = 0.0; // time-averaged bed pressure / (rho g H)
+    double maxSpeedRatio = 0.0; // max |u| after settling / sqrt(g H)
     std::size_t escaped = 0;
     long steps = 0;
 };
@@ -120,15 +122,18 @@ StillTankResult runStillTank(Scene scene, long steps, double settle) {
     for (long k = 0; k < steps; ++k) {
         const StepStats& s = solver.step(); // a DivergenceError fails the test
         ++r.steps;
-        if (solver.time() < settle) continue;
+        if (solver.time() < settle)
+            continue;
         double p = 0.0;
-        for (std::size_t i : gauge) p += P.p[i];
+        for (std::size_t i : gauge)
+            p += P.p[i];
         sum += p / static_cast<double>(gauge.size());
         ++count;
         maxSpeed = std::max(maxSpeed, s.maxSpeed);
     }
     for (std::size_t i = 0; i < P.size(); ++i) {
-        if (P.kind[i] == ParticleKind::Water && !tank.contains(P.x[i], P.y[i])) ++r.escaped;
+        if (P.kind[i] == ParticleKind::Water && !tank.contains(P.x[i], P.y[i]))
+            ++r.escaped;
     }
     const double g = scene.physics.gravity;
     r.pressureRatio = sum / static_cast<double>(count) / (scene.physics.density * g * H);
@@ -195,7 +200,11 @@ TEST(Validation, StillTankAtThePapersViscositySettlesBelowOnePercentOfWaveSpeed)
 // domain or be stopped by the detector with a message naming step and particle.
 TEST(Validation, StressSweepEitherStaysStableOrStopsWithAClearMessage) {
     const Scene base = loadScene(kScenes / "dam_break_small.json");
-    struct Case { double dtFactor; double spacing; double aspect; };
+    struct Case {
+        double dtFactor;
+        double spacing;
+        double aspect;
+    };
     const std::vector<Case> cases{{0.5, 0.01, 2.0}, {2.0, 0.01, 2.0}, {1.0, 0.01, 1.0},
                                   {1.0, 0.01, 4.0}, {8.0, 0.01, 2.0}, {1.0, 0.02, 2.0}};
     int stopped = 0;
@@ -210,7 +219,8 @@ TEST(Validation, StressSweepEitherStaysStableOrStopsWithAClearMessage) {
         RecordProperty(fmt::format("dt_x{}_l0_{}_aspect{}", c.dtFactor, c.spacing, c.aspect),
                        run.failure.empty() ? "stable" : run.failure);
         if (run.failure.empty()) {
-            for (const FrontPoint& p : run.series) ASSERT_TRUE(std::isfinite(p.Z));
+            for (const FrontPoint& p : run.series)
+                ASSERT_TRUE(std::isfinite(p.Z));
             EXPECT_GT(run.series.back().Z, 2.0);
         } else {
             ++stopped;
@@ -254,8 +264,10 @@ TEST(Validation, RegularWaveMatchesLinearWavemakerTheoryAtCiResolution) {
     runBake(scene, opt);
     const std::vector<ProbeSample> samples = readProbeCsv(opt.probes);
     const RegularWaveCheck c = checkRegularWave(scene, samples, regularWaveWindow(scene));
-    // Bounds (docs/validation.md): height within 15 % of Biesel at the gauge 2.5 h from the paddle, wavelength
-    // within 10 % of the dispersion relation.
-    EXPECT_NEAR(c.heightError(0), 0.0, 0.15) << "H = " << c.heights[0] << " m, Biesel " << c.theory.height;
-    EXPECT_NEAR(c.wavelengthError(), 0.0, 0.10) << "L = " << c.wavelength << " m, theory " << c.theory.wavelength;
+    // Bounds (docs/validation.md): height within 15 % of Biesel at the gauge 2.5 h from the paddle,
+    // wavelength within 10 % of the dispersion relation.
+    EXPECT_NEAR(c.heightError(0), 0.0, 0.15)
+        << "H = " << c.heights[0] << " m, Biesel " << c.theory.height;
+    EXPECT_NEAR(c.wavelengthError(), 0.0, 0.10)
+        << "L = " << c.wavelength << " m, theory " << c.theory.wavelength;
 }

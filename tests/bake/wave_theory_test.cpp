@@ -46,7 +46,7 @@ TEST(WaveTheory, BieselTransferFunction) {
     // Values of 2 (cosh 2kh - 1) / (sinh 2kh + 2kh), computed independently (Python).
     EXPECT_NEAR(bieselHeightOverStroke(1.0), 0.981789, 1e-6);
     EXPECT_NEAR(bieselHeightOverStroke(1.5), 1.393109, 1e-6);
-    EXPECT_NEAR(bieselHeightOverStroke(20.0), 2.0, 1e-12); // deep water: H = 2 S
+    EXPECT_NEAR(bieselHeightOverStroke(20.0), 2.0, 1e-12);       // deep water: H = 2 S
     EXPECT_NEAR(bieselHeightOverStroke(1e-3) / 1e-3, 1.0, 1e-3); // shallow water: H/S = kh
 }
 

@@ -91,8 +91,8 @@ inline Header headerFor(const SyntheticWave& w, Encoding enc = Encoding::Float32
 }
 
 /// Writes `frames` synthetic frames and returns them.
-inline std::vector<Frame> writeSynthetic(const fs::path& p, const Header& h,
-                                         const SyntheticWave& w, std::size_t frames) {
+inline std::vector<Frame> writeSynthetic(const fs::path& p, const Header& h, const SyntheticWave& w,
+                                         std::size_t frames) {
     std::vector<Frame> out;
     Writer writer(p, h);
     for (std::size_t i = 0; i < frames; ++i) {

@@ -27,7 +27,8 @@ std::string tryRead(const fs::path& p, const std::vector<Frame>* expected = null
         return "";
     } catch (const CacheError& e) {
         const std::string msg = e.what();
-        EXPECT_NE(msg.find(p.string()), std::string::npos) << "message does not name the file: " << msg;
+        EXPECT_NE(msg.find(p.string()), std::string::npos)
+            << "message does not name the file: " << msg;
         return msg;
     }
 }
@@ -58,7 +59,9 @@ protected:
 
 } // namespace
 
-TEST_F(Damage, GoodFileReads) { EXPECT_EQ(tryRead(m_dir / "good.swell", &m_frames), ""); }
+TEST_F(Damage, GoodFileReads) {
+    EXPECT_EQ(tryRead(m_dir / "good.swell", &m_frames), "");
+}
 
 TEST_F(Damage, WrongMagic) {
     auto b = m_good;
@@ -147,7 +150,8 @@ TEST_F(Damage, OverlappingFrames) {
 
 TEST_F(Damage, FrameChecksumMismatch) {
     auto b = m_good;
-    poke<std::uint64_t>(b, entryOffset(b, 2) + 32, peek<std::uint64_t>(b, entryOffset(b, 2) + 32) ^ 1);
+    poke<std::uint64_t>(b, entryOffset(b, 2) + 32,
+                        peek<std::uint64_t>(b, entryOffset(b, 2) + 32) ^ 1);
     resealIndex(b);
     // The index is valid, so this is found only when the frame is decoded.
     writeBytes(m_bad, b);
@@ -166,8 +170,8 @@ TEST_F(Damage, DecompressionBomb) {
     // Consistent counts and raw size, but 4 GiB per frame: refused before allocating.
     auto b = m_good;
     const auto e = entryOffset(b, 0);
-    poke<std::uint32_t>(b, e + 24, 0x20000000u);    // surface count
-    poke<std::uint32_t>(b, e + 28, 0u);             // splash count
+    poke<std::uint32_t>(b, e + 24, 0x20000000u);       // surface count
+    poke<std::uint32_t>(b, e + 28, 0u);                // splash count
     poke<std::uint64_t>(b, e + 16, 0x20000000ull * 8); // raw size
     resealIndex(b);
     expectError(b, {"frame 0", "256 MiB"});
@@ -195,15 +199,27 @@ TEST_F(Damage, DeterministicMutationLoop) {
         const int kind = static_cast<int>(next() % 6);
         const std::size_t at = next() % b.size();
         switch (kind) {
-        case 0: b[at] = static_cast<std::uint8_t>(next()); break;
-        case 1: b[at] ^= static_cast<std::uint8_t>(1u << (next() % 8)); break;
-        case 2: b.resize(at); break;
-        case 3: b.insert(b.begin() + static_cast<long>(at), static_cast<std::uint8_t>(next())); break;
-        case 4: b.erase(b.begin() + static_cast<long>(at)); break;
+        case 0:
+            b[at] = static_cast<std::uint8_t>(next());
+            break;
+        case 1:
+            b[at] ^= static_cast<std::uint8_t>(1u << (next() % 8));
+            break;
+        case 2:
+            b.resize(at);
+            break;
+        case 3:
+            b.insert(b.begin() + static_cast<long>(at), static_cast<std::uint8_t>(next()));
+            break;
+        case 4:
+            b.erase(b.begin() + static_cast<long>(at));
+            break;
         case 5: {
             const std::size_t from = next() % b.size();
-            const std::size_t n = std::min({std::size_t{1} + next() % 16, b.size() - at, b.size() - from});
-            std::copy_n(m_good.begin() + static_cast<long>(from), n, b.begin() + static_cast<long>(at));
+            const std::size_t n =
+                std::min({std::size_t{1} + next() % 16, b.size() - at, b.size() - from});
+            std::copy_n(m_good.begin() + static_cast<long>(from), n,
+                        b.begin() + static_cast<long>(at));
             break;
         }
         }

@@ -60,8 +60,8 @@ TEST_P(RoundTrip, QuantizedWithinStatedError) {
             worst = std::max(worst, std::fabs(double(f.surface[k]) - frames[i].surface[k]));
         for (std::size_t p = 0; p < f.splashCount(); ++p) {
             for (int c = 0; c < 2; ++c)
-                worst = std::max(worst, std::fabs(double(f.splash[4 * p + c]) -
-                                                  frames[i].splash[4 * p + c]));
+                worst = std::max(
+                    worst, std::fabs(double(f.splash[4 * p + c]) - frames[i].splash[4 * p + c]));
             EXPECT_EQ(f.splash[4 * p + 2], frames[i].splash[4 * p + 2]); // velocities lossless
             EXPECT_EQ(f.splash[4 * p + 3], frames[i].splash[4 * p + 3]);
         }

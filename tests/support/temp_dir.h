@@ -4,6 +4,8 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <map>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <system_error>
@@ -14,7 +16,8 @@ class TempDir {
 public:
     /// Creates `<tmp>/<prefix>XXXXXX`. Throws std::runtime_error when it cannot.
     explicit TempDir(const std::string& prefix = "swell_test_") {
-        std::string pattern = (std::filesystem::temp_directory_path() / (prefix + "XXXXXX")).string();
+        std::string pattern =
+            (std::filesystem::temp_directory_path() / (prefix + "XXXXXX")).string();
         if (::mkdtemp(pattern.data()) == nullptr)
             throw std::runtime_error("cannot create a temporary folder " + pattern);
         m_path = pattern;
@@ -32,5 +35,14 @@ public:
 private:
     std::filesystem::path m_path;
 };
+
+/// `name` in a temporary folder (one per prefix) that lives as long as the test program.
+inline std::filesystem::path programTempFile(const std::string& prefix, const std::string& name) {
+    static std::map<std::string, std::unique_ptr<TempDir>> byPrefix;
+    auto& dir = byPrefix[prefix];
+    if (!dir)
+        dir = std::make_unique<TempDir>(prefix);
+    return dir->path() / name;
+}
 
 } // namespace swell::test

@@ -1,5 +1,7 @@
 #include "swell/runtime/gl/gl_objects.h"
 
+#include "swell/runtime/gl/graphics_program.h"
+
 #include "swell/runtime/error.h"
 #include "swell/shaders/shaders.h"
 
@@ -37,36 +39,8 @@ GlBuffer makeStorageBuffer(std::size_t bytes, const void* data) {
 }
 
 GlProgram makeComputeProgram(std::string_view name, std::string_view source) {
-    const GLuint shader = glCreateShader(GL_COMPUTE_SHADER);
-    const char* text = source.data();
-    const GLint length = static_cast<GLint>(source.size());
-    glShaderSource(shader, 1, &text, &length);
-    glCompileShader(shader);
-    GLint ok = 0;
-    glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-    if (ok != GL_TRUE) {
-        std::string log(4096, '\0');
-        GLsizei n = 0;
-        glGetShaderInfoLog(shader, static_cast<GLsizei>(log.size()), &n, log.data());
-        glDeleteShader(shader);
-        log.resize(static_cast<std::size_t>(n));
-        while (!log.empty() && (log.back() == '\n' || log.back() == '\0'))
-            log.pop_back();
-        throw RuntimeError(fmt::format("shader {} does not compile: {}", name, log));
-    }
-    GlProgram program(glCreateProgram());
-    glAttachShader(program.get(), shader);
-    glLinkProgram(program.get());
-    glDeleteShader(shader);
-    glGetProgramiv(program.get(), GL_LINK_STATUS, &ok);
-    if (ok != GL_TRUE) {
-        std::string log(4096, '\0');
-        GLsizei n = 0;
-        glGetProgramInfoLog(program.get(), static_cast<GLsizei>(log.size()), &n, log.data());
-        log.resize(static_cast<std::size_t>(n));
-        throw RuntimeError(fmt::format("shader {} does not link: {}", name, log));
-    }
-    return program;
+    // A .comp name: the compute stage.
+    return linkProgram({compileShader(name, source)}, fmt::format("shader {} does not link", name));
 }
 
 GlProgram makeEmbeddedProgram(std::string_view name) {

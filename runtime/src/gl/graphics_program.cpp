@@ -23,7 +23,9 @@ std::string shaderLog(GLuint shader) {
     return log;
 }
 
-GLuint compile(std::string_view name, std::string_view source) {
+} // namespace
+
+GlName compileShader(std::string_view name, std::string_view source) {
     const GLuint shader = glCreateShader(shaderStageOf(name));
     const char* text = source.data();
     const GLint length = static_cast<GLint>(source.size());
@@ -39,8 +41,6 @@ GLuint compile(std::string_view name, std::string_view source) {
     return shader;
 }
 
-} // namespace
-
 std::uint32_t shaderStageOf(std::string_view name) {
     if (name.ends_with(".vert"))
         return GL_VERTEX_SHADER;
@@ -52,24 +52,29 @@ std::uint32_t shaderStageOf(std::string_view name) {
 }
 
 void checkShaderCompiles(std::string_view name, std::string_view source) {
-    glDeleteShader(compile(name, source));
+    glDeleteShader(compileShader(name, source));
 }
 
 GlProgram makeGraphicsProgram(std::string_view vertexName, std::string_view fragmentName) {
-    const GLuint vs = compile(vertexName, shaders::get(vertexName));
+    const GLuint vs = compileShader(vertexName, shaders::get(vertexName));
     GLuint fs = 0;
     try {
-        fs = compile(fragmentName, shaders::get(fragmentName));
+        fs = compileShader(fragmentName, shaders::get(fragmentName));
     } catch (...) {
         glDeleteShader(vs);
         throw;
     }
+    return linkProgram({vs, fs},
+                       fmt::format("shaders {} + {} do not link", vertexName, fragmentName));
+}
+
+GlProgram linkProgram(std::initializer_list<GlName> shaders, std::string_view what) {
     GlProgram program(glCreateProgram());
-    glAttachShader(program.get(), vs);
-    glAttachShader(program.get(), fs);
+    for (const GlName s : shaders)
+        glAttachShader(program.get(), s);
     glLinkProgram(program.get());
-    glDeleteShader(vs);
-    glDeleteShader(fs);
+    for (const GlName s : shaders)
+        glDeleteShader(s);
     GLint ok = 0;
     glGetProgramiv(program.get(), GL_LINK_STATUS, &ok);
     if (ok != GL_TRUE) {
@@ -77,8 +82,7 @@ GlProgram makeGraphicsProgram(std::string_view vertexName, std::string_view frag
         GLsizei n = 0;
         glGetProgramInfoLog(program.get(), static_cast<GLsizei>(log.size()), &n, log.data());
         log.resize(static_cast<std::size_t>(n));
-        throw RuntimeError(
-            fmt::format("shaders {} + {} do not link: {}", vertexName, fragmentName, log));
+        throw RuntimeError(fmt::format("{}: {}", what, log));
     }
     return program;
 }

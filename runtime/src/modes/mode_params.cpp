@@ -1,5 +1,7 @@
 #include "swell/runtime/modes/mode_params.h"
 
+#include "../json_read.h"
+
 #include "swell/runtime/split_mix64.h"
 
 #include <algorithm>
@@ -11,27 +13,7 @@
 namespace swell::runtime {
 namespace {
 
-template <class T> void read(const nlohmann::json& j, const char* key, const char* prefix, T& out) {
-    if (!j.contains(key))
-        return;
-    try {
-        out = j.at(key).get<T>();
-    } catch (const nlohmann::json::exception& e) {
-        throw std::invalid_argument(fmt::format("{}{}: {}", prefix, key, e.what()));
-    }
-}
-
-void rejectUnknown(const nlohmann::json& j, std::initializer_list<const char*> known,
-                   const char* prefix) {
-    if (!j.is_object())
-        throw std::invalid_argument(fmt::format("{}: expected a JSON object", prefix));
-    for (const auto& item : j.items()) {
-        if (std::none_of(known.begin(), known.end(),
-                         [&](const char* k) { return item.key() == k; })) {
-            throw std::invalid_argument(fmt::format("unknown key {}{}", prefix, item.key()));
-        }
-    }
-}
+using json_read::read;
 
 } // namespace
 
@@ -132,20 +114,21 @@ nlohmann::json toJson(const ModeParams& p) {
 }
 
 ModeParams modeParamsFromJson(const nlohmann::json& j) {
-    rejectUnknown(j, {"mode", "ripple", "whirlpool"}, "mode parameters");
+    json_read::rejectUnknown(j, {"mode", "ripple", "whirlpool"}, "", "mode parameters");
     ModeParams p;
     std::string mode = toString(p.mode);
     read(j, "mode", "", mode);
     p.mode = replayModeFromString(mode);
     if (j.contains("ripple")) {
         const nlohmann::json& r = j.at("ripple");
-        rejectUnknown(r, {"angles_degrees", "weights"}, "ripple.");
+        json_read::rejectUnknown(r, {"angles_degrees", "weights"}, "ripple.", "ripple");
         read(r, "angles_degrees", "ripple.", p.ripple.anglesDegrees);
         read(r, "weights", "ripple.", p.ripple.weights);
     }
     if (j.contains("whirlpool")) {
         const nlohmann::json& w = j.at("whirlpool");
-        rejectUnknown(w, {"inner_radius_cells", "growth", "turns_per_time_unit"}, "whirlpool.");
+        json_read::rejectUnknown(w, {"inner_radius_cells", "growth", "turns_per_time_unit"},
+                                 "whirlpool.", "whirlpool");
         read(w, "inner_radius_cells", "whirlpool.", p.whirlpool.innerRadiusCells);
         read(w, "growth", "whirlpool.", p.whirlpool.growth);
         read(w, "turns_per_time_unit", "whirlpool.", p.whirlpool.turnsPerTimeUnit);

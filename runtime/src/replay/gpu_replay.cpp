@@ -1,7 +1,7 @@
 #include "swell/runtime/replay/gpu_replay.h"
 
-#include "swell/runtime/replay/cpu_reconstruction.h"
 #include "swell/runtime/error.h"
+#include "swell/runtime/replay/cpu_reconstruction.h"
 #include "swell/runtime/replay/surface_envelope.h"
 #include "swell/shaders/shaders.h"
 

@@ -1,5 +1,7 @@
 #include "swell/runtime/replay/replay_params.h"
 
+#include "../json_read.h"
+
 #include "swell/runtime/replay/bake_record.h"
 
 #include <cmath>
@@ -109,31 +111,11 @@ NoiseFilter filterFromName(const std::string& name) {
         fmt::format("noise.filter must be low, high or none, got '{}'", name));
 }
 
-/// Reads j[key] into `out` if present; names `prefix + key` in every error.
-template <class T>
-void read(const nlohmann::json& j, const char* key, const std::string& prefix, T& out) {
-    if (!j.contains(key))
-        return;
-    try {
-        out = j.at(key).get<T>();
-    } catch (const nlohmann::json::exception& e) {
-        throw std::invalid_argument(fmt::format("{}{}: {}", prefix, key, e.what()));
-    }
-}
+using json_read::read;
 
 void rejectUnknown(const nlohmann::json& j, std::initializer_list<const char*> known,
                    const std::string& prefix) {
-    if (!j.is_object()) {
-        throw std::invalid_argument(fmt::format("{}: expected a JSON object",
-                                                prefix.empty() ? "replay parameters" : prefix));
-    }
-    for (const auto& item : j.items()) {
-        bool ok = false;
-        for (const char* k : known)
-            ok = ok || item.key() == k;
-        if (!ok)
-            throw std::invalid_argument(fmt::format("unknown key {}{}", prefix, item.key()));
-    }
+    json_read::rejectUnknown(j, known, prefix, prefix.empty() ? "replay parameters" : prefix);
 }
 
 } // namespace

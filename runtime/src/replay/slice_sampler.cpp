@@ -7,7 +7,6 @@
 
 namespace swell::runtime {
 
-
 SliceSampler::SliceSampler(const ReplayParams& params, std::size_t frameCount, double A)
     : SliceSampler(params, Timeline::whole(frameCount, params.policy), A) {}
 

@@ -1,7 +1,7 @@
-// Replay stress (docs/validation.md, section 6): swell-play bench at the extremes of its parameters and on degenerate
-// caches. Every case must either give a finite result that matches the double-precision CPU
-// reference (exit 0) or stop with one clear stderr line (exit 1); never NaN, never a crash.
-// tools/stress runs the slower extremes (4096 x 4096 cells) besides these.
+// Replay stress (docs/validation.md, section 6): swell-play bench at the extremes of its parameters
+// and on degenerate caches. Every case must either give a finite result that matches the
+// double-precision CPU reference (exit 0) or stop with one clear stderr line (exit 1); never NaN,
+// never a crash. tools/stress runs the slower extremes (4096 x 4096 cells) besides these.
 #include "swell/cache/writer.h"
 
 #include "app_runner.h"
@@ -30,9 +30,9 @@ protected:
         s_temp = std::make_unique<swell::test::TempDir>("swell_play_stress_");
         s_dir = s_temp->path();
         write("wave.swell", test::syntheticFrames(120, 200, 3));
-        write("one.swell", test::syntheticFrames(1, 200, 3));       // a cache of one frame
-        write("empty.swell", std::vector<cache::Frame>(40));         // no surface particle at all
-        write("oneempty.swell", std::vector<cache::Frame>(1));       // both
+        write("one.swell", test::syntheticFrames(1, 200, 3));  // a cache of one frame
+        write("empty.swell", std::vector<cache::Frame>(40));   // no surface particle at all
+        write("oneempty.swell", std::vector<cache::Frame>(1)); // both
         cache::Header q = test::syntheticHeader();
         q.encoding = cache::Encoding::Quantized16;
         write("wave_q16.swell", test::syntheticFrames(120, 200, 3), q);
@@ -48,11 +48,11 @@ protected:
     }
     static std::string cache(const std::string& name) { return (s_dir / name).string(); }
     static Result bench(const std::string& cacheName, const std::string& args) {
-        return swell::test::runApp(SWELL_PLAY_EXE,
-                            "bench " + cache(cacheName) +
-                                " --frames 6 --warmup 1 --error-frames 2 --cpu-frames 1 --json " +
-                                args,
-                            "", s_dir);
+        return swell::test::runApp(
+            SWELL_PLAY_EXE,
+            "bench " + cache(cacheName) +
+                " --frames 6 --warmup 1 --error-frames 2 --cpu-frames 1 --json " + args,
+            "", s_dir);
     }
     /// Exit 0, finite, within 1e-4 of the depth of the CPU reference, same frames.
     static void expectGood(const std::string& cacheName, const std::string& args) {
@@ -135,18 +135,18 @@ TEST_F(PlayStress, FramesWithoutSurfaceParticlesGiveTheDomainBottom) {
     }
     // The height field itself: every cell at the domain's yMin (0 here), none NaN.
     const Result r = swell::test::runApp(SWELL_PLAY_EXE,
-                                  "heights " + cache("empty.swell") + " --out " +
-                                      (s_dir / "empty_heights").string() +
-                                      " --res 8x8 --slices 4 --seconds 0.1 --json",
-                                  "", s_dir);
+                                         "heights " + cache("empty.swell") + " --out " +
+                                             (s_dir / "empty_heights").string() +
+                                             " --res 8x8 --slices 4 --seconds 0.1 --json",
+                                         "", s_dir);
     ASSERT_EQ(r.code, 0) << r.err;
     EXPECT_TRUE(fs::exists(s_dir / "empty_heights" / "height_00000.png"));
 }
 
 // Compression against error (tools/bench): the CPU reference reads the float32 original.
 TEST_F(PlayStress, ReferenceCacheMeasuresTheQuantizationError) {
-    const Result r = bench("wave_q16.swell", "--res 64x32 --slices 16 --reference-cache " +
-                                                 cache("wave.swell"));
+    const Result r =
+        bench("wave_q16.swell", "--res 64x32 --slices 16 --reference-cache " + cache("wave.swell"));
     ASSERT_EQ(r.code, 0) << r.err;
     const nlohmann::json j = nlohmann::json::parse(r.out);
     const double err = j["max_abs_error"].get<double>();

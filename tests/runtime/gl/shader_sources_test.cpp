@@ -1,5 +1,5 @@
-#include "swell/runtime/gl/egl_context.h"
 #include "swell/runtime/error.h"
+#include "swell/runtime/gl/egl_context.h"
 #include "swell/runtime/gl/gl_objects.h"
 #include "swell/runtime/gl/graphics_program.h"
 #include "swell/shaders/shaders.h"

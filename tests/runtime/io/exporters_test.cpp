@@ -15,13 +15,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const swell::test::TempDir& tempDir() {
-    static const swell::test::TempDir dir("swell_export_");
-    return dir;
-}
-
 fs::path tempFile(const std::string& name) {
-    return tempDir() / name;
+    return swell::test::programTempFile("swell_export_", name);
 }
 
 Grid smallGrid(int n, int m) {

@@ -16,13 +16,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const swell::test::TempDir& tempDir() {
-    static const swell::test::TempDir dir("swell_image_io_");
-    return dir;
-}
-
 fs::path tempFile(const std::string& name) {
-    return tempDir() / name;
+    return swell::test::programTempFile("swell_image_io_", name);
 }
 
 Image gradient(int w, int h) {

@@ -8,11 +8,11 @@
 //   SWELL_UPDATE_GOLDEN=1 build/bin/water_renderer_test --gtest_filter='*Golden*'
 // look at the picture, and commit it.
 
-#include "swell/runtime/render/camera.h"
-#include "swell/runtime/gl/egl_context.h"
 #include "swell/runtime/error.h"
+#include "swell/runtime/gl/egl_context.h"
 #include "swell/runtime/gl/gl_objects.h"
 #include "swell/runtime/io/image_io.h"
+#include "swell/runtime/render/camera.h"
 #include "swell/runtime/render/sky_cubemap.h"
 #include "swell/runtime/render/water_renderer.h"
 

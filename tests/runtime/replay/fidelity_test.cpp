@@ -2,8 +2,8 @@
 // cross-fades on the GPU against the double-precision CPU reference.
 
 #include "swell/cache/synthetic.h"
-#include "swell/runtime/replay/cpu_reconstruction.h"
 #include "swell/runtime/gl/egl_context.h"
+#include "swell/runtime/replay/cpu_reconstruction.h"
 #include "swell/runtime/replay/fidelity.h"
 #include "swell/runtime/replay/gpu_replay.h"
 

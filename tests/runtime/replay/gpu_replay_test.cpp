@@ -1,6 +1,8 @@
-#include "swell/runtime/replay/cpu_reconstruction.h"
 #include "swell/runtime/gl/egl_context.h"
+#include "swell/runtime/replay/cpu_reconstruction.h"
 #include "swell/runtime/replay/gpu_replay.h"
+
+#include "swell/runtime/replay/fidelity.h"
 
 #include "gl_fixture.h"
 #include "hashing.h"
@@ -168,14 +170,9 @@ TEST_F(GpuReconstruction, SameInputsGiveByteIdenticalHeights) {
         a.update(tau);
         b.update(tau);
         const auto fa = a.readSliceFrames();
-        hashFrames = hashFrames * 31 + swell::test::fnv1a(fa.data(), fa.size() * sizeof(std::uint32_t));
-        std::vector<float> ha, hb;
-        for (double v : a.readHeights().heights)
-            ha.push_back(static_cast<float>(v));
-        for (double v : b.readHeights().heights)
-            hb.push_back(static_cast<float>(v));
-        hashA = hashA * 31 + swell::test::fnv1a(ha.data(), ha.size() * sizeof(float));
-        hashB = hashB * 31 + swell::test::fnv1a(hb.data(), hb.size() * sizeof(float));
+        hashFrames = swell::test::chainFrames(hashFrames, fa);
+        hashA = swell::test::chainHeights(hashA, a.readHeights().heights);
+        hashB = swell::test::chainHeights(hashB, b.readHeights().heights);
     }
     EXPECT_EQ(hashA, hashB);
     // Golden: the frames chosen by eq. (5) are integers fixed by SplitMix64, FFTW and IEEE
@@ -197,16 +194,10 @@ TEST_F(GpuReconstruction, DifferentSeedsGiveVisiblyDifferentSurfaces) {
     a.update(0.25);
     b.update(0.25);
     const HeightField ha = a.readHeights(), hb = b.readHeights();
-    double rms = 0.0, spread = 0.0, mean = 0.0;
-    for (double v : ha.heights)
-        mean += v;
-    mean /= static_cast<double>(ha.heights.size());
-    for (std::size_t i = 0; i < ha.heights.size(); ++i) {
-        rms += (ha.heights[i] - hb.heights[i]) * (ha.heights[i] - hb.heights[i]);
-        spread += (ha.heights[i] - mean) * (ha.heights[i] - mean);
-    }
+    HeightDifference difference;
+    difference.add(ha, hb);
     // The surfaces differ by a sizeable fraction of the wave's own variation.
-    EXPECT_GT(std::sqrt(rms), 0.3 * std::sqrt(spread));
+    EXPECT_GT(difference.rms(), 0.3 * fieldSpread(ha));
 }
 
 TEST_F(GpuReconstruction, HeightTextureHoldsTheLatestHeights) {

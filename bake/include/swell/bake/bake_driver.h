@@ -24,22 +24,22 @@ public:
 
 /// Where a running bake is; passed to BakeOptions::onProgress after every step.
 struct BakeProgress {
-    long step = 0;           ///< steps done
-    long firstStep = 0;      ///< step the run started from (> 0 when resumed from a checkpoint)
-    long totalSteps = 0;     ///< steps the bake will take
-    double time = 0.0;       ///< simulated time (s)
+    long step = 0;            ///< steps done
+    long firstStep = 0;       ///< step the run started from (> 0 when resumed from a checkpoint)
+    long totalSteps = 0;      ///< steps the bake will take
+    double time = 0.0;        ///< simulated time (s)
     double wallSeconds = 0.0; ///< wall time since this run's first step (s)
-    std::size_t frames = 0;  ///< frames stored so far
+    std::size_t frames = 0;   ///< frames stored so far
 };
 
 /// What to do besides the scene.
 struct BakeOptions {
-    std::filesystem::path output;  ///< cache path; the file appears there only when complete
-    std::filesystem::path probes;  ///< probes CSV path, empty: no probes
-    std::string sceneFile;         ///< scene file name, recorded in the cache metadata
+    std::filesystem::path output;       ///< cache path; the file appears there only when complete
+    std::filesystem::path probes;       ///< probes CSV path, empty: no probes
+    std::string sceneFile;              ///< scene file name, recorded in the cache metadata
     std::vector<std::string> overrides; ///< "--set" assignments, recorded in the metadata
-    int threads = 1;               ///< OpenMP threads (recorded; the caller sets them)
-    std::string programVersion;    ///< recorded in the metadata
+    int threads = 1;                    ///< OpenMP threads (recorded; the caller sets them)
+    std::string programVersion;         ///< recorded in the metadata
     /// Called after every step (cheap callers only: the app throttles its own output).
     std::function<void(const BakeProgress&)> onProgress;
     /// Polled after every step; true stops the bake with BakeCancelled (after writing a
@@ -59,8 +59,8 @@ struct BakeOptions {
 
 /// Conservation figures of the water particles at one instant (per metre of the 2D section).
 struct Conservation {
-    std::size_t water = 0;        ///< water particles
-    std::size_t inTank = 0;       ///< of them inside the tank's inner box (all when there is no tank)
+    std::size_t water = 0;  ///< water particles
+    std::size_t inTank = 0; ///< of them inside the tank's inner box (all when there is no tank)
     /// Water volume (area, m^2) from the mean number density of the interior water
     /// (n >= surface_ratio n0): water l0^2 n0 / mean n. Equal to water l0^2 at rest on the lattice.
     double volume = 0.0;
@@ -74,27 +74,28 @@ Conservation measureConservation(const MpsSolver& solver, const Scene& scene, do
 /// Per-run figures (the --json summary of swell-bake).
 struct BakeSummary {
     std::size_t particlesWater = 0;
-    std::size_t particlesWall = 0;  ///< fixed particles: wall and dummy layers (piston included)
+    std::size_t particlesWall = 0; ///< fixed particles: wall and dummy layers (piston included)
     long steps = 0;
-    long frameIntervalSteps = 0;    ///< steps between stored frames
-    std::size_t frames = 0;         ///< stored frames (the initial state is frame 0)
-    double surfaceMean = 0.0;       ///< surface particles per stored frame
-    double splashMean = 0.0;        ///< splash particles per stored frame
-    std::size_t keptMax = 0;        ///< most surface + splash particles in one frame
-    double reduction = 0.0;         ///< water particles / mean kept per frame (paper Table 3)
-    double wallSeconds = 0.0;       ///< whole bake, cache writing included (s)
-    double msPerStep = 0.0;         ///< solver wall time per step (ms)
+    long frameIntervalSteps = 0; ///< steps between stored frames
+    std::size_t frames = 0;      ///< stored frames (the initial state is frame 0)
+    double surfaceMean = 0.0;    ///< surface particles per stored frame
+    double splashMean = 0.0;     ///< splash particles per stored frame
+    std::size_t keptMax = 0;     ///< most surface + splash particles in one frame
+    double reduction = 0.0;      ///< water particles / mean kept per frame (paper Table 3)
+    double wallSeconds = 0.0;    ///< whole bake, cache writing included (s)
+    double msPerStep = 0.0;      ///< solver wall time per step (ms)
     double ppeIterationsMean = 0.0;
     double maxCourant = 0.0;
-    std::uint64_t recycled = 0;     ///< water particles moved from the outflow to the inflow (Sec. 3.3.2)
-    std::uint64_t cacheBytes = 0;   ///< size of the cache file
-    std::uint64_t rawBytes = 0;     ///< float32 bytes of the stored particles before compression
+    std::uint64_t recycled =
+        0; ///< water particles moved from the outflow to the inflow (Sec. 3.3.2)
+    std::uint64_t cacheBytes = 0;      ///< size of the cache file
+    std::uint64_t rawBytes = 0;        ///< float32 bytes of the stored particles before compression
     std::vector<std::string> warnings; ///< e.g. a piston wave steeper than the breaking limit
-    ReplayWindow replay;            ///< water extent and steady start, as in the cache metadata
-    long resumedFromStep = 0;       ///< step of the checkpoint this run resumed from (0: none)
-    std::size_t checkpoints = 0;    ///< checkpoints written by this run
+    ReplayWindow replay;               ///< water extent and steady start, as in the cache metadata
+    long resumedFromStep = 0;          ///< step of the checkpoint this run resumed from (0: none)
+    std::size_t checkpoints = 0;       ///< checkpoints written by this run
     std::uint64_t checkpointBytes = 0; ///< size of the last one
-    double checkpointSeconds = 0.0; ///< wall time spent writing them (s)
+    double checkpointSeconds = 0.0;    ///< wall time spent writing them (s)
     /// Conservation figures of the water, at the start (before the first step) and the end.
     Conservation start, end;
 };

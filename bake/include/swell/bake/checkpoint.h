@@ -26,14 +26,14 @@ public:
 
 /// Bake counters a resumed bake continues from (they feed the summary, not the cache).
 struct BakeTotals {
-    double surface = 0.0;         ///< surface particles summed over the stored frames
-    double splash = 0.0;          ///< splash particles summed over the stored frames
-    std::uint64_t keptMax = 0;    ///< most surface + splash particles in one frame
-    std::uint64_t rawBytes = 0;   ///< float32 bytes of the stored particles
-    double solverSeconds = 0.0;   ///< solver wall time of the steps done (s)
-    double ppeIterations = 0.0;   ///< PCG iterations summed over the steps done
+    double surface = 0.0;       ///< surface particles summed over the stored frames
+    double splash = 0.0;        ///< splash particles summed over the stored frames
+    std::uint64_t keptMax = 0;  ///< most surface + splash particles in one frame
+    std::uint64_t rawBytes = 0; ///< float32 bytes of the stored particles
+    double solverSeconds = 0.0; ///< solver wall time of the steps done (s)
+    double ppeIterations = 0.0; ///< PCG iterations summed over the steps done
     double maxCourant = 0.0;
-    std::uint64_t recycled = 0;   ///< water particles recycled outflow -> inflow
+    std::uint64_t recycled = 0; ///< water particles recycled outflow -> inflow
 };
 
 /// What a checkpoint holds.
@@ -42,12 +42,12 @@ struct Checkpoint {
     /// version, scene file, overrides, every resolved scene value, seed, threads) and the
     /// build of the program.
     std::string fingerprint;
-    long checkpointEvery = 0;      ///< steps between checkpoints of the bake that wrote it
-    MpsState solver;               ///< solver state after step solver.step
+    long checkpointEvery = 0;           ///< steps between checkpoints of the bake that wrote it
+    MpsState solver;                    ///< solver state after step solver.step
     std::vector<cache::Frame> frames;   ///< frames stored so far (frame 0 = initial state)
     std::vector<std::string> probeRows; ///< the probes CSV row of each stored frame
     BakeTotals totals;
-    std::int64_t writerPid = 0;    ///< process that wrote it (for diagnostics)
+    std::int64_t writerPid = 0; ///< process that wrote it (for diagnostics)
 };
 
 /// Where the checkpoint of a bake to `cache` lives: `cache` + ".ckpt".
@@ -64,7 +64,8 @@ Checkpoint readCheckpoint(const std::filesystem::path& path);
 
 /// Throws CheckpointError naming `path` and the first value that differs when the
 /// fingerprint stored in a checkpoint is not `current`.
-void checkFingerprint(const std::filesystem::path& path, const std::string& stored, const std::string& current);
+void checkFingerprint(const std::filesystem::path& path, const std::string& stored,
+                      const std::string& current);
 
 /// XXH3-64 of a file's bytes as 16 hex digits (a build id: the digest of the executable).
 /// Throws CheckpointError when it cannot be read.

@@ -12,15 +12,17 @@ enum class WaterClass : std::uint8_t { Splash, Surface, Deep };
 
 /// Paper eq. (4): splash if n < d1 n0, surface if d1 n0 <= n <= d2 n0, deep if n > d2 n0.
 inline WaterClass classifyWater(double n, double n0, double d1, double d2) {
-    if (n < d1 * n0) return WaterClass::Splash;
-    if (n <= d2 * n0) return WaterClass::Surface;
+    if (n < d1 * n0)
+        return WaterClass::Splash;
+    if (n <= d2 * n0)
+        return WaterClass::Surface;
     return WaterClass::Deep;
 }
 
 /// The stored part of one simulation frame and the class counts behind it.
 struct ClassifiedFrame {
-    cache::Frame frame;      ///< surface (x, y) sorted by x, splash (x, y, vx, vy) in particle order
-    std::size_t deep = 0;    ///< water particles classified deep (never stored)
+    cache::Frame frame;   ///< surface (x, y) sorted by x, splash (x, y, vx, vy) in particle order
+    std::size_t deep = 0; ///< water particles classified deep (never stored)
     std::size_t surface() const { return frame.surfaceCount(); }
     std::size_t splash() const { return frame.splashCount(); }
 };

@@ -17,8 +17,8 @@ struct GeometryParams {
     std::optional<Box> tank;
     std::vector<Box> water;  ///< water rectangles (m); each holds at least one particle
     std::vector<Box> solids; ///< extra solid blocks (m), filled with wall + dummy particles
-    int wallLayers = 2;  ///< layers of pressure-solved wall particles (textbook code: 2)
-    int dummyLayers = 2; ///< dummy layers behind them, completing wall density (textbook: 2)
+    int wallLayers = 2;      ///< layers of pressure-solved wall particles (textbook code: 2)
+    int dummyLayers = 2;     ///< dummy layers behind them, completing wall density (textbook: 2)
     /// Simulation domain (m); a particle leaving it stops the run. Default: the bounding box B
     /// of all particles (plus one spacing) grown by B's width/2 left and right, B's height/4
     /// down and B's height up.

@@ -11,8 +11,9 @@ inline double mpsWeight(double r, double re) {
 
 /// The standard constants of a kernel radius on a perfect square lattice.
 struct LatticeConstants {
-    double n0 = 0.0;     ///< particle number density n0 = sum_j w(|r_j - r_i|) (dimensionless)
-    double lambda = 0.0; ///< Laplacian-model lambda = sum r^2 w / sum w (m^2), K&O 1996 Laplacian model
+    double n0 = 0.0; ///< particle number density n0 = sum_j w(|r_j - r_i|) (dimensionless)
+    double lambda =
+        0.0; ///< Laplacian-model lambda = sum r^2 w / sum w (m^2), K&O 1996 Laplacian model
 };
 
 /// n0 and lambda for a particle of a full 2D square lattice of spacing `spacing` (m)

@@ -1,8 +1,8 @@
 #pragma once
-// The complete state of an MpsSolver between two steps (checkpoint / resume, docs/scenes.md "Checkpoints"):
-// everything a later step reads that is not rebuilt from the scene. A solver built from the
-// same scene that imports it continues bit for bit as the solver that exported it.
-// Plain data; the checkpoint file format (checkpoint.h) serialises it.
+// The complete state of an MpsSolver between two steps (checkpoint / resume, docs/scenes.md
+// "Checkpoints"): everything a later step reads that is not rebuilt from the scene. A solver built
+// from the same scene that imports it continues bit for bit as the solver that exported it. Plain
+// data; the checkpoint file format (checkpoint.h) serialises it.
 
 #include <vector>
 
@@ -11,8 +11,8 @@
 namespace swell::bake {
 
 struct MpsState {
-    long step = 0;            ///< steps taken
-    double time = 0.0;        ///< simulated time (s)
+    long step = 0;             ///< steps taken
+    double time = 0.0;         ///< simulated time (s)
     double lastMaxSpeed = 0.0; ///< max |u| of the last step (m/s): the adaptive dt of the next
     /// Positions, velocities, pressures (the PPE warm start), number densities and kinds.
     Particles particles;

@@ -23,7 +23,8 @@ public:
     /// Returns false (lists incomplete) if some particle has more than maxNeighbors
     /// neighbours; overflowParticle() names it. Throws std::out_of_range for a particle
     /// outside the domain (the solver checks the domain first, so that is a bug).
-    bool build(std::span<const double> x, std::span<const double> y, double radius, double shortRadius = 0.0);
+    bool build(std::span<const double> x, std::span<const double> y, double radius,
+               double shortRadius = 0.0);
 
     std::size_t count() const { return m_count; }
     /// Particle indices in cell order (a space-filling order, good for locality).
@@ -58,7 +59,7 @@ private:
     std::vector<std::uint32_t> m_cellOf;    // per particle
     std::vector<std::uint32_t> m_sorted;
     std::vector<std::uint32_t> m_rank;
-    std::vector<std::uint32_t> m_list;      // count x stride
+    std::vector<std::uint32_t> m_list; // count x stride
     std::vector<std::uint32_t> m_listCount;
     std::vector<std::uint32_t> m_shortList; // count x stride: the sub-lists within shortRadius
     std::vector<std::uint32_t> m_shortCount;

@@ -20,14 +20,14 @@ std::string_view toString(PistonKind kind);
 
 struct PistonParams {
     PistonKind kind = PistonKind::Random;
-    double period = 1.0;      ///< T (s), Sinusoidal
-    double stroke = 0.1;      ///< S, full stroke (m), Sinusoidal
-    double periodMin = 0.8;   ///< shortest cycle (s), Random
-    double periodMax = 1.6;   ///< longest cycle (s), Random
-    double strokeMin = 0.05;  ///< smallest full stroke (m), Random
-    double strokeMax = 0.15;  ///< largest full stroke (m), Random
-    double rampTime = 1.0;    ///< the motion is faded in over this time (s), 0 = none
-    std::uint64_t seed = 1;   ///< seed of the random cycles
+    double period = 1.0;     ///< T (s), Sinusoidal
+    double stroke = 0.1;     ///< S, full stroke (m), Sinusoidal
+    double periodMin = 0.8;  ///< shortest cycle (s), Random
+    double periodMax = 1.6;  ///< longest cycle (s), Random
+    double strokeMin = 0.05; ///< smallest full stroke (m), Random
+    double strokeMax = 0.15; ///< largest full stroke (m), Random
+    double rampTime = 1.0;   ///< the motion is faded in over this time (s), 0 = none
+    std::uint64_t seed = 1;  ///< seed of the random cycles
 };
 
 /// Displacement (m, along +x from the rest position) and velocity (m/s) at time t.

@@ -23,9 +23,9 @@ struct ProbeSample {
 
 /// Settings of the probes.
 struct ProbeParams {
-    double n0 = 0.0;              ///< standard number density (eq. (4))
-    double splashRatio = 0.49;    ///< d1 of eq. (4): water with n < d1 n0 is splash, ignored by probes
-    double spacing = 0.01;        ///< l0 (m): gauge half-width and particle size
+    double n0 = 0.0;           ///< standard number density (eq. (4))
+    double splashRatio = 0.49; ///< d1 of eq. (4): water with n < d1 n0 is splash, ignored by probes
+    double spacing = 0.01;     ///< l0 (m): gauge half-width and particle size
     double stillWaterLevel = 0.0; ///< elevations are measured from this y (m)
     std::vector<double> gauges;   ///< gauge x positions (m)
 };

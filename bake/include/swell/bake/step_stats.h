@@ -25,17 +25,18 @@ struct StepStats {
     int ppeIterations = 0;    ///< PCG iterations
     double ppeResidual = 0.0; ///< final relative residual |b - Ax| / |b|
     std::size_t ppeUnknowns = 0;
-    double maxSpeed = 0.0;    ///< max |u| of water after the step (m/s)
-    double courant = 0.0;     ///< max |u| dt / l0 (-)
-    std::size_t outOfBounds = 0;  ///< particles outside the domain (a non-zero count throws)
+    double maxSpeed = 0.0;            ///< max |u| of water after the step (m/s)
+    double courant = 0.0;             ///< max |u| dt / l0 (-)
+    std::size_t outOfBounds = 0;      ///< particles outside the domain (a non-zero count throws)
     std::size_t surfaceParticles = 0; ///< water + wall flagged free surface (p = 0)
-    std::size_t collisions = 0;   ///< colliding pairs handled
-    int neighborRebuilds = 0;     ///< times the neighbour lists were rebuilt this step (0-2)
+    std::size_t collisions = 0;       ///< colliding pairs handled
+    int neighborRebuilds = 0;         ///< times the neighbour lists were rebuilt this step (0-2)
     std::array<double, kPhaseCount> phaseSeconds{}; ///< wall time per Phase (s)
 
     double seconds() const {
         double s = 0.0;
-        for (double t : phaseSeconds) s += t;
+        for (double t : phaseSeconds)
+            s += t;
         return s;
     }
 };

@@ -32,8 +32,8 @@ struct FrontError {
     double meanSigned = 0.0; ///< mean of Z_sim - Z_exp (positive: simulation ahead)
     int points = 0;
 };
-FrontError compareFront(std::span<const FrontPoint> simulated, std::span<const FrontPoint> experiment,
-                        double tLo, double tHi);
+FrontError compareFront(std::span<const FrontPoint> simulated,
+                        std::span<const FrontPoint> experiment, double tLo, double tHi);
 
 /// Least-squares fit v(t) ~ a cos(omega t) + b sin(omega t) + c of a gauge record at a
 /// known angular frequency (regular-wave validation): amplitude sqrt(a^2 + b^2) and phase

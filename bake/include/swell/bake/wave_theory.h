@@ -24,11 +24,11 @@ double micheLimitSteepness(double kh);
 
 /// A regular wave made by a sinusoidal piston, predicted by linear theory.
 struct LinearPistonWave {
-    double wavenumber = 0.0; ///< k (1/m)
-    double wavelength = 0.0; ///< L = 2 pi / k (m)
-    double kh = 0.0;         ///< relative depth (-)
-    double height = 0.0;     ///< H = S * Biesel(kh) (m)
-    double steepness = 0.0;  ///< H / L (-)
+    double wavenumber = 0.0;        ///< k (1/m)
+    double wavelength = 0.0;        ///< L = 2 pi / k (m)
+    double kh = 0.0;                ///< relative depth (-)
+    double height = 0.0;            ///< H = S * Biesel(kh) (m)
+    double steepness = 0.0;         ///< H / L (-)
     double breakingSteepness = 0.0; ///< Miche limit at this kh (-)
     bool breaks() const { return steepness > breakingSteepness; }
 };

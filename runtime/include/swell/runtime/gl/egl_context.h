@@ -40,8 +40,8 @@ private:
 /// Mesa's llvmpipe (the software rasteriser used where there is no GPU) sets up each draw on
 /// the calling thread and rasterises it in 64 x 64 pixel tiles on LP_NUM_THREADS threads, by
 /// default one per core. With one thread more than cores, a core whose thread has run out of
-/// tiles picks up the extra thread's, and a frame at 1280 x 720 measured 7-18 % faster on 2
-/// cores (docs/BENCHMARKS.md). Sets LP_NUM_THREADS to cores + 1 unless it is already set; call
+/// tiles picks up the extra thread's, which renders faster on few cores (figures:
+/// docs/BENCHMARKS.md, "Render"). Sets LP_NUM_THREADS to cores + 1 unless it is already set; call
 /// it before the first EglContext (Mesa reads it once). Returns the value in effect.
 int preferLlvmpipeThreads();
 

@@ -3,6 +3,7 @@
 
 #include "swell/runtime/gl/gl_objects.h"
 
+#include <initializer_list>
 #include <string_view>
 
 namespace swell::runtime {
@@ -12,6 +13,12 @@ namespace swell::runtime {
 std::uint32_t shaderStageOf(std::string_view name);
 /// Compiles one shader of the stage its name implies and deletes it again; throws RuntimeError
 /// with the driver's log, naming the shader (used to check every embedded shader).
+/// Compiles one shader of the stage its file name says (.vert, .frag, .comp); returns the GL
+/// shader name (the caller deletes it). Throws RuntimeError with the compiler's log.
+GlName compileShader(std::string_view name, std::string_view source);
+/// Links `shaders` into a program and deletes them; throws RuntimeError "what: <log>".
+GlProgram linkProgram(std::initializer_list<GlName> shaders, std::string_view what);
+
 void checkShaderCompiles(std::string_view name, std::string_view source);
 /// Compiles and links the embedded shaders `vertexName` and `fragmentName`. Throws
 /// RuntimeError naming the shader with the driver's log.

@@ -4,9 +4,9 @@
 // it), with a reader for the same subset so every format is tested by a round trip. Height
 // maps are written by height_png.h (16-bit PNG with a JSON scale).
 
+#include "swell/runtime/render/splash_system.h"
 #include "swell/runtime/replay/height_field.h"
 #include "swell/runtime/replay/replay_params.h"
-#include "swell/runtime/render/splash_system.h"
 
 #include <cstdint>
 #include <filesystem>

@@ -4,11 +4,11 @@
 // the same output: an SSBO of N x M floats, [m * N + n] = height in metres at the centre of
 // cell (n, m), x = x0 + (n + 1/2) dx, z = (m + 1/2) dz, or the same as an R32F texture.
 
-#include "swell/runtime/replay/cpu_reconstruction.h"
-#include "swell/runtime/replay/gpu_replay.h"
 #include "swell/runtime/modes/mode_params.h"
 #include "swell/runtime/modes/ripple.h"
 #include "swell/runtime/modes/whirlpool.h"
+#include "swell/runtime/replay/cpu_reconstruction.h"
+#include "swell/runtime/replay/gpu_replay.h"
 
 #include <memory>
 #include <span>

@@ -12,8 +12,8 @@
 // there. Surging: nothing changes.
 
 #include "swell/runtime/modes/mode_params.h"
-#include "swell/runtime/replay/replay_params.h"
 #include "swell/runtime/render/splash_system.h"
+#include "swell/runtime/replay/replay_params.h"
 
 #include <vector>
 

@@ -24,12 +24,12 @@
 //  * Weights: eq. (8)'s omega_d normalised to sum 1 (default equal: the mean).
 //  * One direction at angle 0: the base cell is the direction's own cell; no synthesis pass.
 
+#include "swell/runtime/modes/mode_params.h"
 #include "swell/runtime/replay/cpu_reconstruction.h"
 #include "swell/runtime/replay/frame_set.h"
 #include "swell/runtime/replay/gpu_replay.h"
 #include "swell/runtime/replay/height_field.h"
 #include "swell/runtime/replay/height_output.h"
-#include "swell/runtime/modes/mode_params.h"
 #include "swell/runtime/replay/slice_sampler.h"
 
 #include <memory>

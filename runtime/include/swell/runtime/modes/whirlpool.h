@@ -27,12 +27,12 @@
 //    end's profile (u = N). The field is continuous at r = a and r = R, with no hole and no
 //    NaN. The slice axis wraps around (j = J - 1 neighbours j = 0; the noise is periodic in k).
 
+#include "swell/runtime/modes/mode_params.h"
 #include "swell/runtime/replay/cpu_reconstruction.h"
 #include "swell/runtime/replay/frame_set.h"
 #include "swell/runtime/replay/gpu_replay.h"
 #include "swell/runtime/replay/height_field.h"
 #include "swell/runtime/replay/height_output.h"
-#include "swell/runtime/modes/mode_params.h"
 #include "swell/runtime/replay/slice_sampler.h"
 
 #include <memory>

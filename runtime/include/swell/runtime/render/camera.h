@@ -1,7 +1,7 @@
 #pragma once
-// The render camera (Sec. 5 rendering; docs/render.md): a pinhole at `position` looking at `target`,
-// y up, in the replay's world frame: x = propagation (cache x, metres), y = height (cache y),
-// z = transverse (0 .. extentZ, the slices' axis).
+// The render camera (Sec. 5 rendering; docs/render.md): a pinhole at `position` looking at
+// `target`, y up, in the replay's world frame: x = propagation (cache x, metres), y = height (cache
+// y), z = transverse (0 .. extentZ, the slices' axis).
 
 #include "swell/cache/header.h"
 #include "swell/runtime/replay/replay_params.h"

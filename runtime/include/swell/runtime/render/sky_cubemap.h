@@ -3,9 +3,9 @@
 // surrounding illumination"): six cube-map faces, by default a procedural sky (gradient,
 // sun glow, soft clouds), or six user images.
 
-#include "swell/runtime/render/camera.h"
 #include "swell/runtime/gl/gl_objects.h"
 #include "swell/runtime/io/image_io.h"
+#include "swell/runtime/render/camera.h"
 
 #include <array>
 #include <cstdint>

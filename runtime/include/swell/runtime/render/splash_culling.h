@@ -6,8 +6,8 @@
 // pixel. Order is kept (blending is order-dependent): the same sprites give the same picture.
 
 #include "swell/runtime/render/camera.h"
-#include "swell/runtime/replay/replay_params.h"
 #include "swell/runtime/render/splash_system.h"
+#include "swell/runtime/replay/replay_params.h"
 
 #include <span>
 #include <vector>

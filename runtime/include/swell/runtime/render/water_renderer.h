@@ -6,13 +6,13 @@
 // know where the heights come from: a replay mode only changes who writes the buffer.
 
 #include "swell/cache/header.h"
-#include "swell/runtime/render/camera.h"
 #include "swell/runtime/gl/gl_objects.h"
 #include "swell/runtime/io/image_io.h"
+#include "swell/runtime/render/camera.h"
 #include "swell/runtime/render/mesh_order.h"
-#include "swell/runtime/replay/replay_params.h"
 #include "swell/runtime/render/sky_cubemap.h"
 #include "swell/runtime/render/splash_system.h"
+#include "swell/runtime/replay/replay_params.h"
 #include "swell/runtime/stage_times.h"
 
 #include <span>
@@ -23,7 +23,7 @@ namespace swell::runtime {
 struct ShadingParams {
     int width = 1280; ///< image width, pixels
     int height = 720; ///< image height, pixels
-    int samples = 1;  ///< multisampling (1: off; 4 costs 2-3x on llvmpipe); capped by the driver
+    int samples = 1; ///< multisampling (1: off; its cost: docs/BENCHMARKS.md); capped by the driver
     double refractiveIndex = 1.333; ///< water; Schlick's F0 = ((n - 1) / (n + 1))^2
     /// Beer-Lambert coefficients along the refracted ray, per metre (R, G, B).
     Vec3 absorption{2.2, 0.75, 0.55};
@@ -40,7 +40,6 @@ struct ShadingParams {
     /// Throws std::invalid_argument naming the field.
     void validate() const;
 };
-
 
 class WaterRenderer {
 public:

@@ -11,8 +11,8 @@
 //      into a float buffer (heightBuffer(); a texture copy on request, heightTexture()).
 // Definitions of the window and the fallback: cpu_reconstruction.h.
 
-#include "swell/runtime/replay/frame_set.h"
 #include "swell/runtime/gl/gl_objects.h"
+#include "swell/runtime/replay/frame_set.h"
 #include "swell/runtime/replay/height_field.h"
 #include "swell/runtime/replay/height_output.h"
 #include "swell/runtime/replay/replay_params.h"

@@ -36,7 +36,9 @@ struct HeightDifference {
         }
         cells += a.heights.size();
     }
-    double rms() const { return cells > 0 ? std::sqrt(sumSquares / static_cast<double>(cells)) : 0.0; }
+    double rms() const {
+        return cells > 0 ? std::sqrt(sumSquares / static_cast<double>(cells)) : 0.0;
+    }
 };
 
 } // namespace swell::runtime

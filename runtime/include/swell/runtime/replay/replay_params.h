@@ -60,7 +60,7 @@ struct ReplayParams {
     double timeUnitSeconds = 4.0; ///< simulated seconds per animation time unit: A = this / frame
                                   ///< time (paper: A = 4/dt steps)
     FramePolicy policy = FramePolicy::Loop; ///< frames outside the cache (see FramePolicy)
-    double sigma = 2.0; ///< Gaussian sigma of eq. (7), in cells (paper 2.0), >= kMinSigma
+    double sigma = 2.0;     ///< Gaussian sigma of eq. (7), in cells (paper 2.0), >= kMinSigma
     double extentZ = 0.0;   ///< transverse extent in metres; 0: cellsZ * dx (square cells)
     std::uint64_t seed = 1; ///< noise seed
     NoiseParams noise;      ///< T, beta, c, filter of N (paper: 16, 2.0, 128, low-pass)
