@@ -5,6 +5,7 @@
 
 #include "swell/cache/frame.h"
 #include "swell/cache/header.h"
+#include "swell/runtime/replay/replay_params.h"
 #include "swell/runtime/split_mix64.h"
 
 #include <cmath>
@@ -12,6 +13,14 @@
 #include <vector>
 
 namespace swell::runtime::test {
+
+/// `base` (ReplayParams or Grid) with an N x M grid and K real slices.
+template <class T> T sized(int N, int M, int K, T base) {
+    base.cellsX = N;
+    base.cellsZ = M;
+    base.slices = K;
+    return base;
+}
 
 /// Domain x in [0, 4] m, y in [0, 1] m; dt 0.001 s, 10 steps per frame (A = 400 frames per
 /// time unit with the paper's 4 s time unit).

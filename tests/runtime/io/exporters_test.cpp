@@ -3,6 +3,8 @@
 
 #include "temp_dir.h"
 
+#include "synthetic_frames.h"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -21,9 +23,7 @@ fs::path tempFile(const std::string& name) {
 
 Grid smallGrid(int n, int m) {
     Grid g;
-    g.cellsX = n;
-    g.cellsZ = m;
-    g.slices = 4;
+    g = test::sized(n, m, 4, g);
     g.x0 = -0.5;
     g.dx = 0.25;
     g.dz = 0.5;

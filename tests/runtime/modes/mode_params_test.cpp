@@ -23,9 +23,7 @@ constexpr double kPi = std::numbers::pi;
 
 Grid squareGrid(int N, int K) {
     Grid g;
-    g.cellsX = N;
-    g.cellsZ = N;
-    g.slices = K;
+    g = test::sized(N, N, K, g);
     g.x0 = -3.0;
     g.dx = 0.5;
     g.dz = 0.5;
@@ -270,9 +268,7 @@ TEST(CpuWhirlpool, WithoutNoiseTheHeightDependsOnTheRadiusOnly) {
     const FrameSet set =
         FrameSet::whole(test::syntheticHeader(), test::syntheticFrames(60, 240, 9));
     ReplayParams p = paperDefaults(ReplayMode::Whirlpool);
-    p.cellsX = 40;
-    p.cellsZ = 40;
-    p.slices = 32;
+    p = test::sized(40, 40, 32, p);
     p.fluctuation = 0.0;
     const SliceSampler s(p, set.frameCount, framesPerTimeUnit(set.header, p));
     const CpuWhirlpool cpu(set, p, WhirlpoolParams{}, s);

@@ -71,9 +71,7 @@ ModeParams modeOf(const Case& c) {
 
 ReplayParams paramsOf(const Case& c) {
     ReplayParams p = paperDefaults(c.mode);
-    p.cellsX = c.N;
-    p.cellsZ = c.M;
-    p.slices = c.K;
+    p = test::sized(c.N, c.M, c.K, p);
     p.fluctuation = c.F;
     p.policy = c.policy;
     p.seed = c.seed;
@@ -142,9 +140,7 @@ TEST_F(ModeReplayTest, SeamlessTimelinesWithCrossFadesMatchTheCpuReferenceInEver
     for (ReplayMode m : {ReplayMode::Surging, ReplayMode::Ripple, ReplayMode::Whirlpool}) {
         for (Reconstruction rec : {Reconstruction::Envelope, Reconstruction::Paper}) {
             ReplayParams p = paperDefaults(m);
-            p.cellsX = 72;
-            p.cellsZ = 56;
-            p.slices = 32;
+            p = test::sized(72, 56, 32, p);
             p.timeUnitSeconds = 1.0; // A = 100 frames per unit: the loop is 1.7 units
             p.reconstruction = rec;
             ModeParams mode;
@@ -169,9 +165,7 @@ TEST_F(ModeReplayTest, SeamlessTimelinesWithCrossFadesMatchTheCpuReferenceInEver
 TEST_F(ModeReplayTest, OneRippleDirectionAtZeroIsTheSurgingReplayWithoutSynthesis) {
     const FrameSet& set = *s_frames;
     ReplayParams p = paperDefaults(ReplayMode::Ripple);
-    p.cellsX = 64;
-    p.cellsZ = 48;
-    p.slices = 64;
+    p = test::sized(64, 48, 64, p);
     ModeParams ripple;
     ripple.mode = ReplayMode::Ripple;
     ripple.ripple.anglesDegrees = {0.0};
@@ -193,9 +187,7 @@ TEST_F(ModeReplayTest, RippleAtZeroAndNinetyDegreesWithoutNoiseIsTheMeanOfTwoPro
     // base cell (n, m) at its cell (m, N - 1 - n), so eq. (8) gives (p(n) + p(m)) / 2.
     const FrameSet& set = *s_frames;
     ReplayParams p = paperDefaults(ReplayMode::Ripple);
-    p.cellsX = 40;
-    p.cellsZ = 40;
-    p.slices = 32;
+    p = test::sized(40, 40, 32, p);
     p.fluctuation = 0.0;
     ModeParams mode;
     mode.mode = ReplayMode::Ripple;
@@ -224,9 +216,7 @@ TEST_F(ModeReplayTest, WhirlpoolRotatesWithAnimationTime) {
     // h_spin(P) = h_still(R(-90) P), i.e. cell (n, m) reads the still cell (m, N - 1 - n).
     const FrameSet& set = *s_frames;
     ReplayParams p = paperDefaults(ReplayMode::Whirlpool);
-    p.cellsX = 48;
-    p.cellsZ = 48;
-    p.slices = 24; // J = 47: a quarter turn is 11.75 slices, exact in float
+    p = test::sized(48, 48, 24, p); // J = 47: a quarter turn is 11.75 slices, exact in float
     ModeParams mode;
     mode.mode = ReplayMode::Whirlpool;
     mode.whirlpool.turnsPerTimeUnit = 2.5;
@@ -310,9 +300,7 @@ TEST_F(ModeReplayTest, HeightTextureAndStageTimes) {
     const FrameSet& set = *s_frames;
     for (ReplayMode m : {ReplayMode::Ripple, ReplayMode::Whirlpool}) {
         ReplayParams p = paperDefaults(m);
-        p.cellsX = 45;
-        p.cellsZ = 38;
-        p.slices = 50;
+        p = test::sized(45, 38, 50, p);
         ModeParams mode;
         mode.mode = m;
         const auto samplers =

@@ -3,6 +3,8 @@
 
 #include "swell/runtime/modes/whirlpool.h"
 
+#include "synthetic_frames.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -14,9 +16,7 @@ namespace {
 
 Grid testGrid() {
     Grid g;
-    g.cellsX = 64;
-    g.cellsZ = 64;
-    g.slices = 32; // J = 63
+    g = test::sized(64, 64, 32, g); // J = 63
     g.x0 = -0.5;
     g.dx = 4.0 / 64;
     g.dz = 4.0 / 64;

@@ -1,6 +1,8 @@
 // Splash sprites under the opaque water surface are dropped before drawing, in order.
 #include "swell/runtime/render/splash_culling.h"
 
+#include "synthetic_frames.h"
+
 #include <gtest/gtest.h>
 
 #include <stdexcept>
@@ -11,9 +13,7 @@ namespace {
 
 Grid testGrid() {
     Grid g;
-    g.cellsX = 10;
-    g.cellsZ = 8;
-    g.slices = 4;
+    g = test::sized(10, 8, 4, g);
     g.x0 = 0.0;
     g.dx = 0.1;
     g.dz = 0.1;

@@ -15,9 +15,7 @@ struct Fixture {
     Fixture() {
         set = FrameSet::whole(test::syntheticHeader(), test::syntheticFrames(12, 40, 9));
         ReplayParams p;
-        p.cellsX = 32;
-        p.cellsZ = 16;
-        p.slices = 8;
+        p = test::sized(32, 16, 8, p);
         grid = makeGrid(set.header, p);
     }
     /// Every slice shows frame `f`.

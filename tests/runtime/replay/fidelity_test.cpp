@@ -43,9 +43,7 @@ FrameSet syntheticCache(const cache::SyntheticWave& w, int frames) {
 FidelityStats analyticError(const FrameSet& set, const cache::SyntheticWave& w, int N,
                             Reconstruction rec) {
     ReplayParams p;
-    p.cellsX = N;
-    p.cellsZ = 8;
-    p.slices = 8;
+    p = test::sized(N, 8, 8, p);
     p.fluctuation = 0.0;
     p.policy = FramePolicy::Clamp;
     p.reconstruction = rec;
@@ -108,9 +106,7 @@ TEST_F(CrossFadeReplay, GpuMatchesCpuOnSeamlessTimelinesInBothReconstructions) {
     const Timeline timeline = Timeline::seamless({12, 50, 8, 0.0, 0.0}); // frames 4 .. 49
     for (Reconstruction rec : {Reconstruction::Envelope, Reconstruction::Paper}) {
         ReplayParams p;
-        p.cellsX = 97;
-        p.cellsZ = 41;
-        p.slices = 24;
+        p = test::sized(97, 41, 24, p);
         p.fluctuation = 0.4;
         p.timeUnitSeconds = 0.3; // A = 30 frames per unit: the slices span the whole loop
         p.reconstruction = rec;
@@ -143,9 +139,7 @@ TEST_F(CrossFadeReplay, NoSliceJumpsAcrossTheSeam) {
     // residual of the seam, here two frames of the same smooth wave).
     FrameSet set = FrameSet::whole(test::syntheticHeader(), test::syntheticFrames(80, 400, 5));
     ReplayParams p;
-    p.cellsX = 64;
-    p.cellsZ = 4;
-    p.slices = 4;
+    p = test::sized(64, 4, 4, p);
     p.fluctuation = 0.0;
     p.reconstruction = Reconstruction::Envelope;
     const double A = framesPerTimeUnit(set.header, p);

@@ -48,9 +48,7 @@ TEST_F(GpuReconstruction, MatchesTheCpuReferenceForRandomTimesSeedsAndSizes) {
     SplitMix64 rng(99);
     for (const Case& c : cases) {
         ReplayParams p;
-        p.cellsX = c.N;
-        p.cellsZ = c.M;
-        p.slices = c.K;
+        p = test::sized(c.N, c.M, c.K, p);
         p.fluctuation = c.F;
         p.policy = c.policy;
         p.seed = c.seed;
@@ -92,9 +90,7 @@ TEST_F(GpuReconstruction, FallbackAndWindowKnownAnswers) {
         f.surface.push_back(v);
     const FrameSet set = FrameSet::whole(h, {f, cache::Frame{}});
     ReplayParams p;
-    p.cellsX = 16;
-    p.cellsZ = 4;
-    p.slices = 4;
+    p = test::sized(16, 4, 4, p);
     p.fluctuation = 0.0;
     const SliceSampler s(p, 2, 1.0);
     GpuReplay gpu(set, p, s);
@@ -113,9 +109,7 @@ TEST_F(GpuReconstruction, HoldingOnlyTheUsedFramesGivesTheSameResult) {
     const auto frames = test::syntheticFrames(300, 200, 8);
     const FrameSet whole = FrameSet::whole(test::syntheticHeader(), frames);
     ReplayParams p;
-    p.cellsX = 80;
-    p.cellsZ = 60;
-    p.slices = 100;
+    p = test::sized(80, 60, 100, p);
     const double A = framesPerTimeUnit(whole.header, p);
     const SliceSampler sampler(p, whole.frameCount, A);
     const std::vector<double> taus = {0.3, 0.31, 0.32};
@@ -143,9 +137,7 @@ TEST_F(GpuReconstruction, WithoutNoiseEveryRowIsTheSame) {
         FrameSet::whole(test::syntheticHeader(), test::syntheticFrames(100, 300, 2));
     ReplayParams p;
     p.fluctuation = 0.0;
-    p.cellsX = 64;
-    p.cellsZ = 32;
-    p.slices = 64;
+    p = test::sized(64, 32, 64, p);
     const SliceSampler sampler(p, set.frameCount, framesPerTimeUnit(set.header, p));
     GpuReplay gpu(set, p, sampler);
     gpu.update(0.1);
@@ -204,9 +196,7 @@ TEST_F(GpuReconstruction, HeightTextureHoldsTheLatestHeights) {
     const FrameSet set =
         FrameSet::whole(test::syntheticHeader(), test::syntheticFrames(120, 200, 4));
     ReplayParams p;
-    p.cellsX = 45;
-    p.cellsZ = 38;
-    p.slices = 50;
+    p = test::sized(45, 38, 50, p);
     const SliceSampler s(p, set.frameCount, framesPerTimeUnit(set.header, p));
     GpuReplay gpu(set, p, s);
     for (double tau : {0.05, 0.2}) {
@@ -228,9 +218,7 @@ TEST_F(GpuReconstruction, StageTimesComeFromTimerQueries) {
     const FrameSet set =
         FrameSet::whole(test::syntheticHeader(), test::syntheticFrames(50, 100, 4));
     ReplayParams p;
-    p.cellsX = 32;
-    p.cellsZ = 32;
-    p.slices = 32;
+    p = test::sized(32, 32, 32, p);
     const SliceSampler s(p, set.frameCount, framesPerTimeUnit(set.header, p));
     GpuReplay gpu(set, p, s);
     EXPECT_THROW(gpu.stageTimes(), std::logic_error);
