@@ -48,12 +48,21 @@ TEST(Writer, DestroyedBeforeFinishLeavesNothing) {
     EXPECT_TRUE(listDir(dir.path()).empty());
 }
 
-TEST(Writer, UnfinishedWriteNeverClobbersExistingFile) {
+/// A finished cache of `frames` synthetic frames at dir / "a.swell", and its bytes.
+struct ExistingCache {
     TempDir dir;
-    const auto w = smallWave();
-    const fs::path p = dir / "a.swell";
-    writeSynthetic(p, headerFor(w), w, 3);
-    const auto before = readBytes(p);
+    SyntheticWave w = smallWave();
+    fs::path p = dir / "a.swell";
+    std::vector<std::uint8_t> before;
+    explicit ExistingCache(std::size_t frames) {
+        writeSynthetic(p, headerFor(w), w, frames);
+        before = readBytes(p);
+    }
+};
+
+TEST(Writer, UnfinishedWriteNeverClobbersExistingFile) {
+    const ExistingCache c(3);
+    const auto& [dir, w, p, before] = c;
     {
         Writer writer(p, headerFor(w));
         writer.addFrame(syntheticFrame(w, 7));
@@ -64,11 +73,8 @@ TEST(Writer, UnfinishedWriteNeverClobbersExistingFile) {
 }
 
 TEST(Writer, KilledProcessLeavesNoFileAtFinalPath) {
-    TempDir dir;
-    const auto w = smallWave();
-    const fs::path p = dir / "a.swell";
-    writeSynthetic(p, headerFor(w), w, 2);
-    const auto before = readBytes(p);
+    const ExistingCache c(2);
+    const auto& [dir, w, p, before] = c;
     const pid_t pid = ::fork();
     ASSERT_GE(pid, 0);
     if (pid == 0) { // child: stream frames, then die mid-write

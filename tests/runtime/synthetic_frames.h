@@ -5,7 +5,9 @@
 
 #include "swell/cache/frame.h"
 #include "swell/cache/header.h"
+#include "swell/runtime/replay/frame_set.h"
 #include "swell/runtime/replay/replay_params.h"
+#include "swell/runtime/replay/slice_sampler.h"
 #include "swell/runtime/split_mix64.h"
 
 #include <cmath>
@@ -71,6 +73,16 @@ inline std::vector<cache::Frame> syntheticFrames(int count, int particles, std::
         }
     }
     return frames;
+}
+
+/// Every one of syntheticFrames(count, particles, seed) under syntheticHeader().
+inline FrameSet syntheticSet(int count, int particles, std::uint64_t seed) {
+    return FrameSet::whole(syntheticHeader(), syntheticFrames(count, particles, seed));
+}
+
+/// The sampler of `p` over every frame of `set`.
+inline SliceSampler samplerOf(const FrameSet& set, const ReplayParams& p) {
+    return SliceSampler(p, set.frameCount, framesPerTimeUnit(set.header, p));
 }
 
 } // namespace swell::runtime::test

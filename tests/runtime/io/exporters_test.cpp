@@ -17,10 +17,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-fs::path tempFile(const std::string& name) {
-    return swell::test::programTempFile("swell_export_", name);
-}
-
 Grid smallGrid(int n, int m) {
     Grid g;
     g = test::sized(n, m, 4, g);
@@ -63,7 +59,7 @@ TEST(Exporters, SurfaceMeshPlacesCellCentresAndFacesUp) {
 
 TEST(Exporters, SurfacePlyRoundTripIsExact) {
     const SurfaceMesh mesh = makeSurfaceMesh(field(7, 5), smallGrid(7, 5));
-    const fs::path p = tempFile("surface.ply");
+    const fs::path p = swell::test::programTempFile("swell_export_", "surface.ply");
     writeSurfacePly(p, mesh, "frame 3\nsecond line");
     const PlyData d = readPly(p);
     EXPECT_EQ(d.vertexProperties, (std::vector<std::string>{"x", "y", "z"}));
@@ -86,7 +82,7 @@ TEST(Exporters, SurfacePlyRoundTripIsExact) {
 
 TEST(Exporters, SplashPlyRoundTripIsExact) {
     const std::vector<SplashSprite> sprites{{0.1f, 0.2f, 0.3f, 1.0f}, {-1.0f, 2.5f, 3.25f, 0.125f}};
-    const fs::path p = tempFile("splash.ply");
+    const fs::path p = swell::test::programTempFile("swell_export_", "splash.ply");
     writeSplashPly(p, sprites);
     const PlyData d = readPly(p);
     EXPECT_EQ(d.vertexProperties, (std::vector<std::string>{"x", "y", "z", "alpha"}));
@@ -100,7 +96,7 @@ TEST(Exporters, SplashPlyRoundTripIsExact) {
 }
 
 TEST(Exporters, ReaderRejectsDamagedAndForeignFiles) {
-    const fs::path p = tempFile("bad.ply");
+    const fs::path p = swell::test::programTempFile("swell_export_", "bad.ply");
     const SurfaceMesh mesh = makeSurfaceMesh(field(3, 3), smallGrid(3, 3));
     writeSurfacePly(p, mesh);
     const auto size = fs::file_size(p);

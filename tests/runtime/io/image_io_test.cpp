@@ -16,10 +16,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-fs::path tempFile(const std::string& name) {
-    return swell::test::programTempFile("swell_image_io_", name);
-}
-
 Image gradient(int w, int h) {
     Image im(w, h);
     for (int y = 0; y < h; ++y) {
@@ -36,7 +32,7 @@ Image gradient(int w, int h) {
 TEST(ImageIo, PngRoundTripIsExactAtEveryCompressionLevel) {
     const Image im = gradient(37, 23);
     for (int level : {0, 1, 9}) {
-        const fs::path p = tempFile("rt.png");
+        const fs::path p = swell::test::programTempFile("swell_image_io_", "rt.png");
         writePng(p, im, level);
         const Image back = readPng(p);
         EXPECT_EQ(back.width, 37);
@@ -48,7 +44,7 @@ TEST(ImageIo, PngRoundTripIsExactAtEveryCompressionLevel) {
 
 TEST(ImageIo, ReadsSixteenBitGreyAsRgb) {
     HeightField f{3, 2, {0.0, 0.5, 1.0, 0.25, 0.75, 1.0}};
-    const fs::path p = tempFile("grey16.png");
+    const fs::path p = swell::test::programTempFile("swell_image_io_", "grey16.png");
     writeHeightPng(p, f, HeightScale{0.0, 1.0 / 65535.0});
     const Image im = readPng(p);
     ASSERT_EQ(im.width, 3);
@@ -60,8 +56,9 @@ TEST(ImageIo, ReadsSixteenBitGreyAsRgb) {
 }
 
 TEST(ImageIo, BadFilesThrowNamingTheFile) {
-    EXPECT_THROW(readPng(tempFile("missing.png")), RuntimeError);
-    const fs::path p = tempFile("not.png");
+    EXPECT_THROW(readPng(swell::test::programTempFile("swell_image_io_", "missing.png")),
+                 RuntimeError);
+    const fs::path p = swell::test::programTempFile("swell_image_io_", "not.png");
     std::ofstream(p) << "this is not a png file at all";
     try {
         readPng(p);
@@ -70,7 +67,7 @@ TEST(ImageIo, BadFilesThrowNamingTheFile) {
         EXPECT_NE(std::string(e.what()).find("not.png"), std::string::npos);
     }
     // A PNG cut in half is damaged.
-    const fs::path good = tempFile("cut.png");
+    const fs::path good = swell::test::programTempFile("swell_image_io_", "cut.png");
     writePng(good, gradient(64, 64), 0);
     const auto size = fs::file_size(good);
     fs::resize_file(good, size / 2);

@@ -265,12 +265,11 @@ TEST(SpiralGeometry, SpinTurnsTheSpiralsWithAnimationTime) {
 
 TEST(CpuWhirlpool, WithoutNoiseTheHeightDependsOnTheRadiusOnly) {
     // F = 0: every spiral shows the same frame, so the field is the profile at u(r).
-    const FrameSet set =
-        FrameSet::whole(test::syntheticHeader(), test::syntheticFrames(60, 240, 9));
+    const FrameSet set = test::syntheticSet(60, 240, 9);
     ReplayParams p = paperDefaults(ReplayMode::Whirlpool);
     p = test::sized(40, 40, 32, p);
     p.fluctuation = 0.0;
-    const SliceSampler s(p, set.frameCount, framesPerTimeUnit(set.header, p));
+    const SliceSampler s = test::samplerOf(set, p);
     const CpuWhirlpool cpu(set, p, WhirlpoolParams{}, s);
     const HeightField h = cpu.heights(0.05);
     double spread = 0.0;

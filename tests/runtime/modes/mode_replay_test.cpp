@@ -24,8 +24,7 @@ class ModeReplayTest : public swell::test::GlSuite {
 protected:
     static void SetUpTestSuite() {
         GlSuite::SetUpTestSuite();
-        s_frames = std::make_unique<FrameSet>(
-            FrameSet::whole(test::syntheticHeader(), test::syntheticFrames(260, 320, 21)));
+        s_frames = std::make_unique<FrameSet>(test::syntheticSet(260, 320, 21));
     }
     static void TearDownTestSuite() {
         s_frames.reset();
@@ -67,6 +66,14 @@ ModeParams modeOf(const Case& c) {
     m.ripple.weights = c.weights;
     m.whirlpool = c.whirlpool;
     return m;
+}
+
+/// A replay of `set` in mode m (its default mode parameters) with `p`.
+ModeReplay replayOf(const FrameSet& set, const ReplayParams& p, ReplayMode m) {
+    ModeParams mode;
+    mode.mode = m;
+    return ModeReplay(set, p, mode,
+                      makeSamplers(p, mode, set.frameCount, framesPerTimeUnit(set.header, p)));
 }
 
 ReplayParams paramsOf(const Case& c) {
@@ -248,12 +255,7 @@ TEST_F(ModeReplayTest, SameInputsGiveByteIdenticalHeightsAndGoldenFrames) {
     for (ReplayMode m : {ReplayMode::Ripple, ReplayMode::Whirlpool}) {
         ReplayParams p = paperDefaults(m);
         p.seed = 2024;
-        ModeParams mode;
-        mode.mode = m;
-        const double A = framesPerTimeUnit(set.header, p);
-        const auto s1 = makeSamplers(p, mode, set.frameCount, A);
-        const auto s2 = makeSamplers(p, mode, set.frameCount, A);
-        ModeReplay a(set, p, mode, s1), b(set, p, mode, s2);
+        ModeReplay a = replayOf(set, p, m), b = replayOf(set, p, m);
         std::uint64_t hashA = 0, hashB = 0, hashFrames = 0xcbf29ce484222325ULL;
         for (double tau : {0.1, 0.25, 0.4}) {
             a.update(tau);
@@ -281,12 +283,7 @@ TEST_F(ModeReplayTest, DifferentSeedsGiveVisiblyDifferentSurfaces) {
         p.cellsZ = 96;
         ReplayParams q = p;
         q.seed = 2;
-        ModeParams mode;
-        mode.mode = m;
-        const double A = framesPerTimeUnit(set.header, p);
-        const auto sp = makeSamplers(p, mode, set.frameCount, A);
-        const auto sq = makeSamplers(q, mode, set.frameCount, A);
-        ModeReplay a(set, p, mode, sp), b(set, q, mode, sq);
+        ModeReplay a = replayOf(set, p, m), b = replayOf(set, q, m);
         a.update(0.25);
         b.update(0.25);
         const HeightField ha = a.readHeights(), hb = b.readHeights();

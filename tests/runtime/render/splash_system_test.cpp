@@ -13,9 +13,8 @@ struct Fixture {
     FrameSet set;
     Grid grid;
     Fixture() {
-        set = FrameSet::whole(test::syntheticHeader(), test::syntheticFrames(12, 40, 9));
-        ReplayParams p;
-        p = test::sized(32, 16, 8, p);
+        set = test::syntheticSet(12, 40, 9);
+        ReplayParams p = test::sized(32, 16, 8, ReplayParams{});
         grid = makeGrid(set.header, p);
     }
     /// Every slice shows frame `f`.

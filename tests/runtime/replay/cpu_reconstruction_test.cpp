@@ -21,8 +21,7 @@ FrameSet frameSet(std::vector<cache::Frame> frames, float yMin = 0.0f) {
 }
 
 ReplayParams smallParams(int N = 16, int M = 8, int K = 4, double F = 0.0) {
-    ReplayParams p;
-    p = test::sized(N, M, K, p);
+    ReplayParams p = test::sized(N, M, K, ReplayParams{});
     p.fluctuation = F;
     return p;
 }

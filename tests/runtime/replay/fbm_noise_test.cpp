@@ -118,38 +118,35 @@ TEST(FbmNoise, NormalisedToUnitPeakOnThePaperGrid) {
     EXPECT_NEAR(mean / noise.values().size(), 0.0, 1e-12); // no DC term
 }
 
-TEST(FbmNoise, LowPassRemovesEverythingAboveTheCutoff) {
+/// The spectral power of 64 x 128 noise (seed 9) with `filter` at cut-off 20 that lies on
+/// either side of the cut-off: {kept, removed}.
+std::pair<double, double> powerAroundCutoff(NoiseFilter filter, double beta) {
     NoiseParams p;
     p.timeSamples = 64;
-    p.beta = 1.0;
+    p.beta = beta;
     p.cutoff = 20.0;
-    p.filter = NoiseFilter::LowPass;
+    p.filter = filter;
     const FbmNoise noise(p, 128, 9);
     const std::vector<double> power = powerSpectrum(noise.values(), 64, 128);
     double kept = 0, removed = 0;
     for (int i = 0; i < 64; ++i) {
         for (int v = 0; v < 65; ++v) {
-            (radius(i, v, 64) <= 20.0 ? kept : removed) += power[i * 65 + v];
+            const double r = radius(i, v, 64);
+            const bool keep = filter == NoiseFilter::LowPass ? r <= 20.0 : r >= 20.0;
+            (keep ? kept : removed) += power[i * 65 + v];
         }
     }
+    return {kept, removed};
+}
+
+TEST(FbmNoise, LowPassRemovesEverythingAboveTheCutoff) {
+    const auto [kept, removed] = powerAroundCutoff(NoiseFilter::LowPass, 1.0);
     EXPECT_GT(kept, 0.0);
     EXPECT_LT(removed, 1e-20 * kept);
 }
 
 TEST(FbmNoise, HighPassRemovesEverythingBelowTheCutoff) {
-    NoiseParams p;
-    p.timeSamples = 64;
-    p.beta = 2.0;
-    p.cutoff = 20.0;
-    p.filter = NoiseFilter::HighPass;
-    const FbmNoise noise(p, 128, 9);
-    const std::vector<double> power = powerSpectrum(noise.values(), 64, 128);
-    double kept = 0, removed = 0;
-    for (int i = 0; i < 64; ++i) {
-        for (int v = 0; v < 65; ++v) {
-            (radius(i, v, 64) >= 20.0 ? kept : removed) += power[i * 65 + v];
-        }
-    }
+    const auto [kept, removed] = powerAroundCutoff(NoiseFilter::HighPass, 2.0);
     EXPECT_GT(kept, 0.0);
     EXPECT_LT(removed, 1e-20 * kept);
 }

@@ -42,8 +42,7 @@ FrameSet syntheticCache(const cache::SyntheticWave& w, int frames) {
 /// RMS error at F = 0 of the middle row against the analytic surface, over `frames` frames.
 FidelityStats analyticError(const FrameSet& set, const cache::SyntheticWave& w, int N,
                             Reconstruction rec) {
-    ReplayParams p;
-    p = test::sized(N, 8, 8, p);
+    ReplayParams p = test::sized(N, 8, 8, ReplayParams{});
     p.fluctuation = 0.0;
     p.policy = FramePolicy::Clamp;
     p.reconstruction = rec;
@@ -102,11 +101,10 @@ TEST(Fidelity, EnvelopeReplayOfTheAnalyticWaveConvergesWithResolution) {
 class CrossFadeReplay : public swell::test::GlSuite {};
 
 TEST_F(CrossFadeReplay, GpuMatchesCpuOnSeamlessTimelinesInBothReconstructions) {
-    FrameSet set = FrameSet::whole(test::syntheticHeader(), test::syntheticFrames(60, 300, 11));
+    FrameSet set = test::syntheticSet(60, 300, 11);
     const Timeline timeline = Timeline::seamless({12, 50, 8, 0.0, 0.0}); // frames 4 .. 49
     for (Reconstruction rec : {Reconstruction::Envelope, Reconstruction::Paper}) {
-        ReplayParams p;
-        p = test::sized(97, 41, 24, p);
+        ReplayParams p = test::sized(97, 41, 24, ReplayParams{});
         p.fluctuation = 0.4;
         p.timeUnitSeconds = 0.3; // A = 30 frames per unit: the slices span the whole loop
         p.reconstruction = rec;
@@ -137,9 +135,8 @@ TEST_F(CrossFadeReplay, NoSliceJumpsAcrossTheSeam) {
     // At F = 0 every slice shows one entry; stepping one entry at a time across the seam, the
     // height field changes by no more than between two ordinary consecutive frames (plus the
     // residual of the seam, here two frames of the same smooth wave).
-    FrameSet set = FrameSet::whole(test::syntheticHeader(), test::syntheticFrames(80, 400, 5));
-    ReplayParams p;
-    p = test::sized(64, 4, 4, p);
+    FrameSet set = test::syntheticSet(80, 400, 5);
+    ReplayParams p = test::sized(64, 4, 4, ReplayParams{});
     p.fluctuation = 0.0;
     p.reconstruction = Reconstruction::Envelope;
     const double A = framesPerTimeUnit(set.header, p);

@@ -34,8 +34,7 @@ struct Case {
 TEST_F(GpuReconstruction, MatchesTheCpuReferenceForRandomTimesSeedsAndSizes) {
     // Frames: 260 frames (2.6 s) of travelling waves with gaps, a dry region and an empty
     // frame; A = 400 frames per time unit, so tau in [-0.5, 1.2] covers clamp and loop.
-    const FrameSet set =
-        FrameSet::whole(test::syntheticHeader(), test::syntheticFrames(260, 320, 21));
+    const FrameSet set = test::syntheticSet(260, 320, 21);
     const double depth = test::kSyntheticDepth;
     const Case cases[] = {
         {128, 128, 256, 0.3, FramePolicy::Loop, 1},  // the paper's configuration
@@ -47,12 +46,11 @@ TEST_F(GpuReconstruction, MatchesTheCpuReferenceForRandomTimesSeedsAndSizes) {
     };
     SplitMix64 rng(99);
     for (const Case& c : cases) {
-        ReplayParams p;
-        p = test::sized(c.N, c.M, c.K, p);
+        ReplayParams p = test::sized(c.N, c.M, c.K, ReplayParams{});
         p.fluctuation = c.F;
         p.policy = c.policy;
         p.seed = c.seed;
-        const SliceSampler sampler(p, set.frameCount, framesPerTimeUnit(set.header, p));
+        const SliceSampler sampler = test::samplerOf(set, p);
         GpuReplay gpu(set, p, sampler);
         const CpuReconstruction cpu(set, p, sampler);
         for (int t = 0; t < 4; ++t) {
@@ -89,8 +87,7 @@ TEST_F(GpuReconstruction, FallbackAndWindowKnownAnswers) {
     for (float v : {2.5f, 1.0f, 2.7f, 1.5f, 5.0f, 1.25f, 10.5f, 3.0f})
         f.surface.push_back(v);
     const FrameSet set = FrameSet::whole(h, {f, cache::Frame{}});
-    ReplayParams p;
-    p = test::sized(16, 4, 4, p);
+    ReplayParams p = test::sized(16, 4, 4, ReplayParams{});
     p.fluctuation = 0.0;
     const SliceSampler s(p, 2, 1.0);
     GpuReplay gpu(set, p, s);
@@ -108,8 +105,7 @@ TEST_F(GpuReconstruction, FallbackAndWindowKnownAnswers) {
 TEST_F(GpuReconstruction, HoldingOnlyTheUsedFramesGivesTheSameResult) {
     const auto frames = test::syntheticFrames(300, 200, 8);
     const FrameSet whole = FrameSet::whole(test::syntheticHeader(), frames);
-    ReplayParams p;
-    p = test::sized(80, 60, 100, p);
+    ReplayParams p = test::sized(80, 60, 100, ReplayParams{});
     const double A = framesPerTimeUnit(whole.header, p);
     const SliceSampler sampler(p, whole.frameCount, A);
     const std::vector<double> taus = {0.3, 0.31, 0.32};
@@ -133,12 +129,11 @@ TEST_F(GpuReconstruction, HoldingOnlyTheUsedFramesGivesTheSameResult) {
 TEST_F(GpuReconstruction, WithoutNoiseEveryRowIsTheSame) {
     // F = 0 (eq. 5): every slice shows the same frame, so the surface is uniform along z
     // (the "plain duplication" of the paper's Fig. 8a).
-    const FrameSet set =
-        FrameSet::whole(test::syntheticHeader(), test::syntheticFrames(100, 300, 2));
+    const FrameSet set = test::syntheticSet(100, 300, 2);
     ReplayParams p;
     p.fluctuation = 0.0;
     p = test::sized(64, 32, 64, p);
-    const SliceSampler sampler(p, set.frameCount, framesPerTimeUnit(set.header, p));
+    const SliceSampler sampler = test::samplerOf(set, p);
     GpuReplay gpu(set, p, sampler);
     gpu.update(0.1);
     const HeightField h = gpu.readHeights();
@@ -149,12 +144,11 @@ TEST_F(GpuReconstruction, WithoutNoiseEveryRowIsTheSame) {
 }
 
 TEST_F(GpuReconstruction, SameInputsGiveByteIdenticalHeights) {
-    const FrameSet set =
-        FrameSet::whole(test::syntheticHeader(), test::syntheticFrames(200, 320, 4));
+    const FrameSet set = test::syntheticSet(200, 320, 4);
     ReplayParams p; // paper defaults, 128 x 128, K = 256
     p.seed = 2024;
-    const SliceSampler s1(p, set.frameCount, framesPerTimeUnit(set.header, p));
-    const SliceSampler s2(p, set.frameCount, framesPerTimeUnit(set.header, p));
+    const SliceSampler s1 = test::samplerOf(set, p);
+    const SliceSampler s2 = test::samplerOf(set, p);
     GpuReplay a(set, p, s1);
     GpuReplay b(set, p, s2);
     std::uint64_t hashA = 0, hashB = 0, hashFrames = 0xcbf29ce484222325ULL;
@@ -174,14 +168,13 @@ TEST_F(GpuReconstruction, SameInputsGiveByteIdenticalHeights) {
 }
 
 TEST_F(GpuReconstruction, DifferentSeedsGiveVisiblyDifferentSurfaces) {
-    const FrameSet set =
-        FrameSet::whole(test::syntheticHeader(), test::syntheticFrames(200, 320, 4));
+    const FrameSet set = test::syntheticSet(200, 320, 4);
     ReplayParams p;
     p.seed = 1;
     ReplayParams q = p;
     q.seed = 2;
-    const SliceSampler sp(p, set.frameCount, framesPerTimeUnit(set.header, p));
-    const SliceSampler sq(q, set.frameCount, framesPerTimeUnit(set.header, q));
+    const SliceSampler sp = test::samplerOf(set, p);
+    const SliceSampler sq = test::samplerOf(set, q);
     GpuReplay a(set, p, sp), b(set, q, sq);
     a.update(0.25);
     b.update(0.25);
@@ -193,11 +186,9 @@ TEST_F(GpuReconstruction, DifferentSeedsGiveVisiblyDifferentSurfaces) {
 }
 
 TEST_F(GpuReconstruction, HeightTextureHoldsTheLatestHeights) {
-    const FrameSet set =
-        FrameSet::whole(test::syntheticHeader(), test::syntheticFrames(120, 200, 4));
-    ReplayParams p;
-    p = test::sized(45, 38, 50, p);
-    const SliceSampler s(p, set.frameCount, framesPerTimeUnit(set.header, p));
+    const FrameSet set = test::syntheticSet(120, 200, 4);
+    ReplayParams p = test::sized(45, 38, 50, ReplayParams{});
+    const SliceSampler s = test::samplerOf(set, p);
     GpuReplay gpu(set, p, s);
     for (double tau : {0.05, 0.2}) {
         gpu.update(tau);
@@ -215,11 +206,9 @@ TEST_F(GpuReconstruction, HeightTextureHoldsTheLatestHeights) {
 }
 
 TEST_F(GpuReconstruction, StageTimesComeFromTimerQueries) {
-    const FrameSet set =
-        FrameSet::whole(test::syntheticHeader(), test::syntheticFrames(50, 100, 4));
-    ReplayParams p;
-    p = test::sized(32, 32, 32, p);
-    const SliceSampler s(p, set.frameCount, framesPerTimeUnit(set.header, p));
+    const FrameSet set = test::syntheticSet(50, 100, 4);
+    ReplayParams p = test::sized(32, 32, 32, ReplayParams{});
+    const SliceSampler s = test::samplerOf(set, p);
     GpuReplay gpu(set, p, s);
     EXPECT_THROW(gpu.stageTimes(), std::logic_error);
     gpu.setTiming(true);
