@@ -136,7 +136,7 @@ public:
         if (m_o.json)
             std::cout << out.dump() << "\n";
         else
-            print(context, gpu, setup, frameMs, stage, check, cpuMs);
+            print(out, context, gpu, setup, frameMs, stage, check, cpuMs);
         return verdict(check, out["water_depth"].get<double>());
     }
 
@@ -194,13 +194,11 @@ private:
                 {"cpu_reference_fps", cpuMs > 0.0 ? 1000.0 / cpuMs : 0.0}};
     }
 
-    void print(const EglContext& context, const ModeReplay& gpu, const ReplaySetup& setup,
-               const std::vector<double>& frameMs, const StageTimes& stage,
-               const ReferenceCheck& check, double cpuMs) const {
-        double total = 0.0;
-        for (double ms : frameMs)
-            total += ms;
-        const double depth = waterDepth(setup.set);
+    /// The text summary of report() `out`.
+    void print(const json& out, const EglContext& context, const ModeReplay& gpu,
+               const ReplaySetup& setup, const std::vector<double>& frameMs,
+               const StageTimes& stage, const ReferenceCheck& check, double cpuMs) const {
+        const double depth = out["water_depth"].get<double>();
         const ReplayParams& p = m_o.params;
         std::cout << fmt::format(
             "swell-play bench  {}  ({}, EGL {})\n"
@@ -214,12 +212,11 @@ private:
             "  CPU reference: {:.1f} fps ({:.2f} ms/frame)\n",
             context.renderer(), context.version(), context.platform(), m_o.mode, p.cellsX, p.cellsZ,
             p.slices, 2 * p.slices - 1, p.seed, p.fluctuation, setup.set.ids.size(),
-            setup.set.frameCount, 1000.0 * static_cast<double>(frameMs.size()) / total, m_frames,
-            percentile(frameMs, 0.5), percentile(frameMs, 0.95), stage.sliceLookupMs,
-            stage.reconstructMs, stage.synthesisMs, stage.spiralMs, gpu.columnPassMs(),
-            check.frames, check.difference.maxAbs, check.difference.rms(),
-            check.difference.maxAbs / depth, depth, check.framesExact ? "exact" : "DIFFERS",
-            cpuMs > 0 ? 1000.0 / cpuMs : 0.0, cpuMs);
+            setup.set.frameCount, out["fps"].get<double>(), m_frames, percentile(frameMs, 0.5),
+            percentile(frameMs, 0.95), stage.sliceLookupMs, stage.reconstructMs, stage.synthesisMs,
+            stage.spiralMs, gpu.columnPassMs(), check.frames, check.difference.maxAbs,
+            check.difference.rms(), check.difference.maxAbs / depth, depth,
+            check.framesExact ? "exact" : "DIFFERS", cpuMs > 0 ? 1000.0 / cpuMs : 0.0, cpuMs);
     }
 
     /// 0, or 2 when the GPU is not within 1e-4 of the depth of the reference or a frame choice

@@ -117,8 +117,9 @@ public:
         m_plan0 = planTimeline(reader.header(), reader.frameCount(), m_o0.params,
                                [&](std::uint32_t id) { return reader.readFrame(id); });
         const F0Result f0 = measureF0(reader);
+        m_plan = planReplay(m_o, reader); // the replay's own timeline, planned once
         const std::vector<double> mixTaus = mixingTaus(reader);
-        const ReplaySetup setup = prepareReplay(m_o, reader, mixTaus);
+        const ReplaySetup setup = replayOn(m_o, reader, m_plan, mixTaus);
         const FidelityStats mixing = measureMixing(setup, mixTaus, f0);
         json out = resultJson(f0, mixing);
         if (m_seamSeconds > 0.0)
@@ -180,8 +181,8 @@ private:
 
     /// `--mix-times` animation times evenly over one period of the replay's timeline.
     std::vector<double> mixingTaus(const cache::Reader& reader) const {
-        const ReplaySetup probe = prepareReplay(m_o, reader, {});
-        const double period = static_cast<double>(probe.plan.timeline.size()) / probe.A;
+        const double period = static_cast<double>(m_plan.timeline.size()) /
+                              framesPerTimeUnit(reader.header(), m_o.params);
         std::vector<double> taus(static_cast<std::size_t>(m_mixTimes));
         for (std::size_t i = 0; i < taus.size(); ++i) {
             taus[i] = m_o.start / m_o.params.timeUnitSeconds +
@@ -241,7 +242,7 @@ private:
     json measureContinuity(const cache::Reader& reader) const {
         const double p999 = steadyChangeP999(reader);
         const std::vector<double> taus = outputTaus(m_o, m_seamSeconds);
-        const ReplaySetup s = prepareReplay(m_o, reader, taus);
+        const ReplaySetup s = replayOn(m_o, reader, m_plan, taus);
         ModeReplay gpu(s.set, m_o.params, m_o.modeParams, s.samplers);
         HeightField prev;
         std::size_t flatFrames = 0, flatRowCount = 0;
@@ -334,7 +335,8 @@ private:
     }
 
     Options m_o, m_o0;
-    TimelinePlan m_plan0;
+    TimelinePlan m_plan0;       ///< F = 0, clamp: the window's frames in order
+    TimelinePlan m_plan;        ///< the replay's timeline (policy, loop points)
     int m_frames = 0;           ///< F = 0 part: window frames measured (0: all)
     int m_mixTimes = 24;        ///< F > 0 part: animation times measured
     double m_seamSeconds = 0.0; ///< continuity part: simulated seconds replayed (0: skip)

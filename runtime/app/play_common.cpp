@@ -268,8 +268,7 @@ ReplaySetup replayOn(const Options& o, const cache::Reader& reader, const Timeli
     return s;
 }
 
-ReplaySetup prepareReplay(const Options& o, const cache::Reader& reader,
-                          const std::vector<double>& taus) {
+TimelinePlan planReplay(const Options& o, const cache::Reader& reader) {
     TimelinePlan plan;
     try {
         plan = planTimeline(reader.header(), reader.frameCount(), o.params,
@@ -282,7 +281,12 @@ ReplaySetup prepareReplay(const Options& o, const cache::Reader& reader,
         if (std::find(pendingNotes().begin(), pendingNotes().end(), note) == pendingNotes().end())
             pendingNotes().push_back(note);
     }
-    return replayOn(o, reader, plan, taus);
+    return plan;
+}
+
+ReplaySetup prepareReplay(const Options& o, const cache::Reader& reader,
+                          const std::vector<double>& taus) {
+    return replayOn(o, reader, planReplay(o, reader), taus);
 }
 
 json paramsJson(const Options& o, const ReplaySetup& setup) {

@@ -99,6 +99,9 @@ ReplaySetup prepareReplay(const Options& o, const cache::Reader& reader,
 /// Notes for the user collected while setting up (e.g. a cache without the bake's water record),
 /// printed on stderr once the command has succeeded (an error stays one line).
 std::vector<std::string>& pendingNotes();
+/// The timeline over `reader`'s cache for o.params (a pending note when the cache records no
+/// water extent or steady window); errors name the cache file.
+runtime::TimelinePlan planReplay(const Options& o, const cache::Reader& reader);
 /// A replay over an already planned timeline (the samplers and the frames `taus` select).
 ReplaySetup replayOn(const Options& o, const cache::Reader& reader,
                      const runtime::TimelinePlan& plan, const std::vector<double>& taus);

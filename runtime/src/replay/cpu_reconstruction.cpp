@@ -71,11 +71,9 @@ CpuReconstruction::CpuReconstruction(const FrameSet& frames, const ReplayParams&
     if (params.reconstruction == Reconstruction::Envelope) {
         const double binWidth = envelopeBinWidth(frames.header, m_grid);
         m_envelope.resize(frames.frames.size());
-        for (std::size_t i = 0; i < frames.frames.size(); ++i) {
-            const SurfaceEnvelope env(frames.frames[i], binWidth);
-            if (!env.empty())
-                m_envelope[i] = sampleEnvelope(env, m_grid.x0, m_grid.dx, N);
-        }
+        for (std::size_t i = 0; i < frames.frames.size(); ++i) // empty: no surface particle
+            m_envelope[i] = sampleEnvelope(SurfaceEnvelope(frames.frames[i], binWidth), m_grid.x0,
+                                           m_grid.dx, N);
     }
 
     m_rowSlices.resize(static_cast<std::size_t>(M));

@@ -26,6 +26,47 @@ GLuint groups(long long count, GLuint size) {
     return static_cast<GLuint>((count + size - 1) / size);
 }
 
+/// The surface particles of every held frame as (u, h - reference), u = (x - x0) / dx, sorted
+/// by x bin b = floor(u) (-1 .. N; others are beyond every window), and per frame the N + 3
+/// offsets of its bins: the inputs of column_pass.comp.
+void packParticles(const FrameSet& frames, const Grid& grid, double reference,
+                   std::vector<float>& particles, std::vector<GLuint>& binStart) {
+    const int N = grid.cellsX;
+    binStart.reserve(frames.frames.size() * static_cast<std::size_t>(N + 3));
+    std::vector<int> binOf;
+    std::vector<GLuint> fill;
+    for (const cache::Frame& f : frames.frames) {
+        const std::size_t P = f.surfaceCount();
+        binOf.assign(P, 0);
+        fill.assign(static_cast<std::size_t>(N + 2), 0);
+        for (std::size_t p = 0; p < P; ++p) {
+            const double u = (static_cast<double>(f.surface[2 * p]) - grid.x0) / grid.dx;
+            const double b = std::floor(u);
+            binOf[p] = b < -1.0 || b > N ? -2 : static_cast<int>(b); // -2: beyond every window
+            if (binOf[p] >= -1)
+                ++fill[static_cast<std::size_t>(binOf[p] + 1)];
+        }
+        GLuint running = static_cast<GLuint>(particles.size() / 2);
+        for (int b = -1; b <= N; ++b) {
+            binStart.push_back(running);
+            const GLuint c = fill[static_cast<std::size_t>(b + 1)];
+            fill[static_cast<std::size_t>(b + 1)] = running; // now the write cursor
+            running += c;
+        }
+        binStart.push_back(running);
+        particles.resize(2 * static_cast<std::size_t>(running));
+        for (std::size_t p = 0; p < P; ++p) {
+            if (binOf[p] < -1)
+                continue;
+            const GLuint at = fill[static_cast<std::size_t>(binOf[p] + 1)]++;
+            const double u = (static_cast<double>(f.surface[2 * p]) - grid.x0) / grid.dx;
+            particles[2 * at] = static_cast<float>(u);
+            particles[2 * at + 1] =
+                static_cast<float>(static_cast<double>(f.surface[2 * p + 1]) - reference);
+        }
+    }
+}
+
 } // namespace
 
 GpuReplay::GpuReplay(const FrameSet& frames, const ReplayParams& params,
@@ -84,46 +125,12 @@ GpuReplay::GpuReplay(const FrameSet& frames, const ReplayParams& params,
     m_reference = static_cast<float>(reference);
     m_missing = static_cast<float>(frames.header.domain.yMin - reference);
 
-    // ---- particles sorted by x bin (-1 .. N), one bin index per held frame
+    // ---- paper: particles sorted by x bin (-1 .. N), one bin index per held frame
     const std::size_t S = std::max<std::size_t>(m_slots, 1);
     std::vector<float> particles;
     std::vector<GLuint> binStart;
-    binStart.reserve(S * static_cast<std::size_t>(N + 3));
-    std::vector<int> binOf;
-    std::vector<GLuint> fill;
-    for (const cache::Frame& f : frames.frames) {
-        if (envelope)
-            break; // the columns are the frames' envelopes: no particles on the GPU
-        const std::size_t P = f.surfaceCount();
-        binOf.assign(P, 0);
-        fill.assign(static_cast<std::size_t>(N + 2), 0);
-        for (std::size_t p = 0; p < P; ++p) {
-            const double u = (static_cast<double>(f.surface[2 * p]) - m_grid.x0) / m_grid.dx;
-            const double b = std::floor(u);
-            binOf[p] = b < -1.0 || b > N ? -2 : static_cast<int>(b); // -2: beyond every window
-            if (binOf[p] >= -1)
-                ++fill[static_cast<std::size_t>(binOf[p] + 1)];
-        }
-        const GLuint base = static_cast<GLuint>(particles.size() / 2);
-        GLuint running = base;
-        for (int b = -1; b <= N; ++b) {
-            binStart.push_back(running);
-            const GLuint c = fill[static_cast<std::size_t>(b + 1)];
-            fill[static_cast<std::size_t>(b + 1)] = running; // now the write cursor
-            running += c;
-        }
-        binStart.push_back(running);
-        particles.resize(2 * static_cast<std::size_t>(running));
-        for (std::size_t p = 0; p < P; ++p) {
-            if (binOf[p] < -1)
-                continue;
-            const GLuint at = fill[static_cast<std::size_t>(binOf[p] + 1)]++;
-            const double u = (static_cast<double>(f.surface[2 * p]) - m_grid.x0) / m_grid.dx;
-            particles[2 * at] = static_cast<float>(u);
-            particles[2 * at + 1] =
-                static_cast<float>(static_cast<double>(f.surface[2 * p + 1]) - reference);
-        }
-    }
+    if (!envelope) // the envelope's columns come from the CPU: no particles on the GPU
+        packParticles(frames, m_grid, reference, particles, binStart);
     if (m_heldFrames == 0 || envelope)
         binStart.assign(static_cast<std::size_t>(N + 3), 0);
     // Driver limits: one shader-storage block per buffer, one work group row per held frame.
@@ -161,9 +168,8 @@ GpuReplay::GpuReplay(const FrameSet& frames, const ReplayParams& params,
         const auto t0 = std::chrono::steady_clock::now();
         const double binWidth = envelopeBinWidth(frames.header, m_grid);
         for (std::size_t slot = 0; slot < m_heldFrames; ++slot) {
-            const SurfaceEnvelope env(frames.frames[slot], binWidth);
-            const std::vector<double> eta =
-                env.empty() ? std::vector<double>{} : sampleEnvelope(env, m_grid.x0, m_grid.dx, N);
+            const std::vector<double> eta = sampleEnvelope(
+                SurfaceEnvelope(frames.frames[slot], binWidth), m_grid.x0, m_grid.dx, N);
             for (int n = 0; n < N; ++n) {
                 zeros[at(slot, n, 0)] =
                     eta.empty() ? m_missing

@@ -11,8 +11,7 @@ SliceSampler::SliceSampler(const ReplayParams& params, std::size_t frameCount, d
     : SliceSampler(params, Timeline::whole(frameCount, params.policy), A) {}
 
 SliceSampler::SliceSampler(const ReplayParams& params, Timeline timeline, double A)
-    : m_K(params.slices), m_timeline(std::move(timeline)), m_A(A), m_F(params.fluctuation),
-      m_policy(m_timeline.policy()) {
+    : m_K(params.slices), m_timeline(std::move(timeline)), m_A(A), m_F(params.fluctuation) {
     params.validate();
     if (m_timeline.size() == 0)
         throw std::invalid_argument("the replay's timeline has no frames");

@@ -55,6 +55,8 @@ double envelopeBinWidth(const cache::Header& header, const Grid& grid) {
 
 std::vector<double> sampleEnvelope(const SurfaceEnvelope& envelope, double x0, double dx,
                                    int count) {
+    if (envelope.empty())
+        return {};
     std::vector<double> out(static_cast<std::size_t>(std::max(count, 0)));
     for (int i = 0; i < count; ++i)
         out[static_cast<std::size_t>(i)] = envelope.at(x0 + (i + 0.5) * dx);

@@ -201,9 +201,11 @@ TimelinePlan planTimeline(const cache::Header& header, std::size_t frameCount,
     std::vector<std::vector<double>> profiles(count);
     const double binWidth = envelopeBinWidth(header, grid);
     for (std::size_t i = 0; i < count; ++i) {
-        const SurfaceEnvelope env(readFrame(static_cast<std::uint32_t>(first + i)), binWidth);
-        profiles[i] = env.empty() ? std::vector<double>(kSamples, header.domain.yMin)
-                                  : sampleEnvelope(env, grid.x0, step, kSamples);
+        profiles[i] = sampleEnvelope(
+            SurfaceEnvelope(readFrame(static_cast<std::uint32_t>(first + i)), binWidth), grid.x0,
+            step, kSamples);
+        if (profiles[i].empty()) // no surface particle: the empty-frame height
+            profiles[i].assign(kSamples, header.domain.yMin);
     }
     const int L = std::min(static_cast<int>(std::lround(params.crossfadeSeconds / plan.frameTime)),
                            static_cast<int>(count / 8));

@@ -44,7 +44,7 @@ public:
     const Timeline& timeline() const { return m_timeline; }
     double A() const { return m_A; }
     double fluctuation() const { return m_F; }
-    FramePolicy policy() const { return m_policy; }
+    FramePolicy policy() const { return m_timeline.policy(); }
     /// The noise, or null when F = 0 (none is built).
     const FbmNoise* noise() const { return m_noise ? &*m_noise : nullptr; }
 
@@ -53,7 +53,6 @@ private:
     Timeline m_timeline;
     double m_A;
     double m_F;
-    FramePolicy m_policy;
     std::optional<FbmNoise> m_noise;
 };
 

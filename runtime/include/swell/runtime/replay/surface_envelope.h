@@ -39,7 +39,8 @@ private:
 /// or half the grid's cell width when the cache records none.
 double envelopeBinWidth(const cache::Header& header, const Grid& grid);
 
-/// eta at x0 + (i + 1/2) dx, i = 0 .. count - 1 (column centres).
+/// eta at x0 + (i + 1/2) dx, i = 0 .. count - 1 (column centres); empty when the envelope is
+/// (the frame has no surface particle).
 std::vector<double> sampleEnvelope(const SurfaceEnvelope& envelope, double x0, double dx,
                                    int count);
 
