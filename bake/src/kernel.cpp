@@ -12,6 +12,7 @@ LatticeConstants latticeConstants(double spacing, double re) {
     const int reach = static_cast<int>(std::ceil(re / spacing)) + 1;
     double sumW = 0.0;
     double sumR2W = 0.0;
+    double halfSumY = 0.0; // sum of y w over the lower half lattice (y <= 0)
     for (int j = -reach; j <= reach; ++j) {
         for (int i = -reach; i <= reach; ++i) {
             if (i == 0 && j == 0)
@@ -20,9 +21,13 @@ LatticeConstants latticeConstants(double spacing, double re) {
             const double w = mpsWeight(r, re);
             sumW += w;           // K&O 1996: n0 on the initial lattice
             sumR2W += r * r * w; // K&O 1996 Laplacian model: lambda = sum r^2 w / sum w
+            if (j <= 0)
+                halfSumY += spacing * j * w;
         }
     }
-    return {sumW, sumW > 0.0 ? sumR2W / sumW : 0.0};
+    if (!(sumW > 0.0))
+        return {};
+    return {sumW, sumR2W / sumW, std::abs(halfSumY) / (sumW * spacing)};
 }
 
 } // namespace swell::bake

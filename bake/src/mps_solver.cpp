@@ -99,6 +99,10 @@ std::string_view toString(Preconditioner p) {
     return "?";
 }
 
+std::string_view toString(SurfaceTest s) {
+    return s == SurfaceTest::Density ? "density" : "distribution";
+}
+
 std::string_view toString(SourceTerm s) {
     return s == SourceTerm::Relaxed ? "relaxed" : "mixed";
 }
@@ -146,7 +150,8 @@ MpsSolver::MpsSolver(const PhysicsParams& physics, const SolverParams& solver, P
     m_latL = latticeConstants(m_l0, m_reL);
     m_grid.configure(m_domain, m_reList, n, lists.maxNeighbors);
 
-    for (auto* v : {&m_xs, &m_ys, &m_xStar, &m_yStar, &m_uStar, &m_vStar, &m_uC, &m_vC, &m_divU}) {
+    for (auto* v : {&m_xs, &m_ys, &m_xStar, &m_yStar, &m_uStar, &m_vStar, &m_uC, &m_vC, &m_divU,
+                    &m_fx, &m_fy, &m_shiftX, &m_shiftY}) {
         v->assign(n, 0.0);
     }
     m_surface.assign(n, 0);
@@ -313,6 +318,8 @@ const StepStats& MpsSolver::step() {
     solvePressure(); //                 ... and its solve
     timer.lap(Phase::PpeSolve);
     correctVelocity(dt); // 4. pressure gradient correction
+    if (m_par.model.shifting > 0.0)
+        shiftParticles();
     checkState(dt);
     timer.lap(Phase::Correction);
 
@@ -409,16 +416,24 @@ void MpsSolver::numberDensityAndSurface() {
     const double threshold = m_par.model.surfaceThreshold * m_latN.n0;
     const bool mixed = m_par.pressure.sourceTerm == SourceTerm::Mixed;
     const double coefD = kDim / m_latN.n0;
+    const ModelParams& model = m_par.model;
+    const bool distribution = model.surfaceTest == SurfaceTest::Distribution;
+    const double sparse = model.sparseThreshold * m_latN.n0;
+    const double asymmetric = model.distributionThreshold * m_latN.flatSurfaceAsymmetry;
+    const double fScale = 1.0 / (m_latN.n0 * m_l0);
     std::size_t surface = 0;
 #pragma omp parallel for schedule(static) reduction(+ : surface) if (n >= kParallelMin)
     for (std::size_t i = 0; i < n; ++i) {
         double s = 0.0;
         double div = 0.0;
+        double fx = 0.0, fy = 0.0;
         forNeighbours(
             m_grid.shortNeighbors(i), m_xStar, m_yStar, i, reN2,
             [&](std::uint32_t j, double dx, double dy, double r2) {
                 const double w = mpsWeight(std::sqrt(r2), m_reN);
                 s += w; // K&O 1996 particle number density n* = sum_j w(|r*_j - r*_i|)
+                fx += dx * w; // neighbour distribution (Khayyer, Gotoh & Shao 2009)
+                fy += dy * w;
                 if (mixed && m_p.kind[j] != ParticleKind::Dummy) {
                     // Divergence model: d/n0 sum (u_j - u_i).(r_j - r_i) / r^2 w
                     div +=
@@ -427,12 +442,18 @@ void MpsSolver::numberDensityAndSurface() {
             });
         m_p.n[i] = s;
         m_divU[i] = coefD * div;
+        m_fx[i] = fx * fScale;
+        m_fy[i] = fy * fScale;
         if (m_p.kind[i] == ParticleKind::Dummy) {
             m_surface[i] = kNotInPpe;
         } else {
             // Paper eq. (3), the K&O 1996 free-surface condition: free surface where
-            // n* < beta n0, p = 0 there.
-            m_surface[i] = s < threshold ? 1 : 0;
+            // n* < beta n0, p = 0 there; the distribution test also asks for a one-sided
+            // neighbourhood unless the particle is sparse.
+            bool free = s < threshold;
+            if (free && distribution && s >= sparse)
+                free = std::hypot(m_fx[i], m_fy[i]) > asymmetric;
+            m_surface[i] = free ? 1 : 0;
             surface += m_surface[i];
         }
     }
@@ -623,6 +644,58 @@ void MpsSolver::correctVelocity(double dt) {
     m_stats.maxSpeed = std::sqrt(maxSpeed2);
     m_stats.courant = m_stats.maxSpeed * dt / m_l0;
 }
+void MpsSolver::shiftParticles() {
+    // Particle shifting (Xu et al. 2009; Lind et al. 2012's Fickian form in MPS operators):
+    // dr = -C l0^2 grad c with grad c_i = 2d/n0 sum_j (r_j - r_i) / r^2 w (the gradient of a
+    // uniform concentration, zero on a regular lattice), so crowded particles spread out.
+    // Free-surface particles move only along the surface (the normal is minus their
+    // neighbour distribution), so shifting neither lifts nor sinks the surface.
+    const std::size_t n = m_p.size();
+    const double reN2 = m_reN * m_reN;
+    const double d = m_par.model.shifting * m_l0 * m_l0 * 2.0 * kDim / m_latN.n0;
+    const double maxShift = 0.2 * m_l0;
+#pragma omp parallel for schedule(static) if (n >= kParallelMin)
+    for (std::size_t i = 0; i < n; ++i) {
+        if (isFixed(m_p.kind[i]))
+            continue;
+        double gx = 0.0, gy = 0.0;
+        forNeighbours(m_grid.shortNeighbors(i), m_p.x, m_p.y, i, reN2,
+                      [&](std::uint32_t, double dx, double dy, double r2) {
+                          if (r2 <= 0.0)
+                              return;
+                          const double f = mpsWeight(std::sqrt(r2), m_reN) / r2;
+                          gx += f * dx;
+                          gy += f * dy;
+                      });
+        double sx = -d * gx, sy = -d * gy;
+        if (m_surface[i] == 1) {
+            const double fn = std::hypot(m_fx[i], m_fy[i]);
+            if (fn > 0.0) {
+                const double nx = -m_fx[i] / fn, ny = -m_fy[i] / fn;
+                const double along = sx * nx + sy * ny;
+                sx -= along * nx;
+                sy -= along * ny;
+            } else {
+                sx = sy = 0.0;
+            }
+        }
+        const double len = std::hypot(sx, sy);
+        if (len > maxShift) {
+            sx *= maxShift / len;
+            sy *= maxShift / len;
+        }
+        m_shiftX[i] = sx;
+        m_shiftY[i] = sy;
+    }
+#pragma omp parallel for schedule(static) if (n >= kParallelMin)
+    for (std::size_t i = 0; i < n; ++i) {
+        if (isFixed(m_p.kind[i]))
+            continue;
+        m_p.x[i] += m_shiftX[i];
+        m_p.y[i] += m_shiftY[i];
+    }
+}
+
 void MpsSolver::checkState(double dt) {
     const std::size_t n = m_p.size();
     std::size_t bad = n; // first non-finite particle

@@ -245,6 +245,12 @@ Scene parseScene(const json& j) {
         m.restitution = s.number("restitution", m.restitution, 0.0, 1.0);
         e.sourceTerm =
             s.enumeration("source_term", e.sourceTerm, {SourceTerm::Relaxed, SourceTerm::Mixed});
+        m.surfaceTest = s.enumeration("surface_test", m.surfaceTest,
+                                      {SurfaceTest::Density, SurfaceTest::Distribution});
+        m.sparseThreshold = s.number("sparse_threshold", m.sparseThreshold, 0.0, 1.0, true);
+        m.distributionThreshold =
+            s.number("distribution_threshold", m.distributionThreshold, 0.0, 10.0, false);
+        m.shifting = s.number("shifting", m.shifting, 0.0, 1.0, false);
         const bool corrected = s.boolean("gradient_correction", usesCorrectiveMatrix(m.gradient));
         const bool symmetric = s.boolean("symmetric_gradient", usesSymmetricPairs(m.gradient));
         m.gradient = gradientModel(symmetric, corrected);
@@ -444,6 +450,10 @@ json toJson(const Scene& sc) {
           {"source_term", std::string(toString(s.pressure.sourceTerm))},
           {"gradient_correction", usesCorrectiveMatrix(s.model.gradient)},
           {"symmetric_gradient", usesSymmetricPairs(s.model.gradient)},
+          {"surface_test", std::string(toString(s.model.surfaceTest))},
+          {"sparse_threshold", s.model.sparseThreshold},
+          {"distribution_threshold", s.model.distributionThreshold},
+          {"shifting", s.model.shifting},
           {"preconditioner", std::string(toString(s.pressure.preconditioner))},
           {"ppe_tolerance", s.pressure.tolerance},
           {"ppe_max_iterations", s.pressure.maxIterations},

@@ -14,6 +14,10 @@ struct LatticeConstants {
     double n0 = 0.0; ///< particle number density n0 = sum_j w(|r_j - r_i|) (dimensionless)
     double lambda =
         0.0; ///< Laplacian-model lambda = sum r^2 w / sum w (m^2), K&O 1996 Laplacian model
+    /// Neighbour-distribution asymmetry |sum_j (r_j - r_i) w| / (n0 l0) of a particle on the
+    /// flat top row of a half lattice (its upper neighbours missing); 0 inside a full lattice.
+    /// The scale of the distribution free-surface test (mps_params.h, SurfaceTest).
+    double flatSurfaceAsymmetry = 0.0;
 };
 
 /// n0 and lambda for a particle of a full 2D square lattice of spacing `spacing` (m)

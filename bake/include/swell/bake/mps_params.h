@@ -59,7 +59,19 @@ constexpr GradientModel gradientModel(bool symmetric, bool corrected) {
     return corrected ? GradientModel::MinimumPressureCorrected : GradientModel::MinimumPressure;
 }
 
+/// Free-surface test of the pressure solve (particles that pass get p = 0).
+enum class SurfaceTest {
+    /// Paper eq. (3), K&O 1996: n* < beta n0.
+    Density,
+    /// n* < beta n0 and, unless the particle is sparse (n* < sparseThreshold n0), an
+    /// asymmetric neighbourhood: |sum_j (r_j - r_i) w| / (n0 l0) above distributionThreshold
+    /// times that of a flat lattice surface (Khayyer, Gotoh & Shao 2009's auxiliary
+    /// condition). Interior particles whose n* dips below beta n0 keep their pressure.
+    Distribution,
+};
+
 std::string_view toString(Preconditioner p);
+std::string_view toString(SurfaceTest s);
 std::string_view toString(SourceTerm s);
 
 /// Time stepping.
@@ -78,6 +90,14 @@ struct ModelParams {
     double collisionDistance = 0.5; ///< pairs closer than this (l0) collide (textbook code)
     double restitution = 0.2;       ///< coefficient of restitution of collisions (-), textbook code
     GradientModel gradient = GradientModel::MinimumPressure; ///< pressure gradient model
+    SurfaceTest surfaceTest = SurfaceTest::Density;          ///< free-surface test
+    double sparseThreshold = 0.8; ///< Distribution test: n* below this (n0) is surface anyway
+    /// Distribution test: |F| above this fraction of a flat surface's |F| is surface (-).
+    double distributionThreshold = 0.5;
+    /// Particle shifting coefficient C (-): after each step water moves by
+    /// -C l0^2 grad c (c the particle concentration, MPS gradient over re_N), only along the
+    /// surface on free-surface particles (Lind et al. 2012); 0 turns shifting off.
+    double shifting = 0.0;
 };
 
 /// The pressure Poisson equation and its conjugate-gradient solve.

@@ -101,6 +101,7 @@ private:
     void assemblePressureEquation(double dt);
     void solvePressure();
     void correctVelocity(double dt);
+    void shiftParticles();
     void checkState(double dt);
     double chooseDt() const;
     [[noreturn]] void fail(std::size_t particle, const std::string& reason) const;
@@ -122,6 +123,8 @@ private:
     std::vector<double> m_xs, m_ys;                         // positions at the last neighbour build
     std::vector<double> m_xStar, m_yStar, m_uStar, m_vStar; // predicted state
     std::vector<double> m_divU;          // velocity divergence (mixed source term)
+    std::vector<double> m_fx, m_fy;      // neighbour distribution / (n0 l0) at r*
+    std::vector<double> m_shiftX, m_shiftY; // particle shifting displacements
     std::vector<std::uint8_t> m_surface; // 1 free surface (p = 0), 0 inside, kNotInPpe
     std::vector<std::int32_t> m_row;     // PPE row of each particle, -1 if none
     std::vector<std::uint32_t> m_rowParticle;
