@@ -366,7 +366,7 @@ BakeSummary runBake(const Scene& scene, const BakeOptions& opt) {
 
     // Stored frame: eq. (4) classification, only surface and splash particles kept (Sec. 3.2).
     const auto store = [&] {
-        ClassifiedFrame c = classifyParticles(P, n0, d1, d2);
+        ClassifiedFrame c = classifyParticles(P, n0, d1, d2, solver.surfaceLayer());
         writer.addFrame(c.frame);
         tot.surface += static_cast<double>(c.surface());
         tot.splash += static_cast<double>(c.splash());

@@ -6,13 +6,17 @@
 
 namespace swell::bake {
 
-ClassifiedFrame classifyParticles(const Particles& P, double n0, double d1, double d2) {
+ClassifiedFrame classifyParticles(const Particles& P, double n0, double d1, double d2,
+                                  std::span<const std::uint8_t> layer) {
     ClassifiedFrame out;
     std::vector<std::pair<double, double>> surface;
     for (std::size_t i = 0; i < P.size(); ++i) {
         if (P.kind[i] != ParticleKind::Water)
             continue;
-        switch (classifyWater(P.n[i], n0, d1, d2)) { // eq. (4)
+        WaterClass c = classifyWater(P.n[i], n0, d1, d2); // eq. (4)
+        if (c == WaterClass::Deep && !layer.empty() && layer[i])
+            c = WaterClass::Surface;
+        switch (c) {
         case WaterClass::Splash:
             out.frame.splash.insert(out.frame.splash.end(),
                                     {static_cast<float>(P.x[i]), static_cast<float>(P.y[i]),

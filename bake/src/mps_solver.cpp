@@ -99,6 +99,24 @@ std::string_view toString(Preconditioner p) {
     return "?";
 }
 
+std::string_view toString(GradientModel g) {
+    switch (g) {
+    case GradientModel::MinimumPressure:
+        return "minimum_pressure";
+    case GradientModel::MinimumPressureCorrected:
+        return "minimum_pressure_corrected";
+    case GradientModel::Symmetric:
+        return "symmetric";
+    case GradientModel::SymmetricCorrected:
+        return "symmetric_corrected";
+    }
+    return "?";
+}
+
+std::string_view toString(Scheme s) {
+    return s == Scheme::Textbook ? "textbook" : "swell";
+}
+
 std::string_view toString(SurfaceTest s) {
     return s == SurfaceTest::Density ? "density" : "distribution";
 }
@@ -155,6 +173,7 @@ MpsSolver::MpsSolver(const PhysicsParams& physics, const SolverParams& solver, P
         v->assign(n, 0.0);
     }
     m_surface.assign(n, 0);
+    m_layer.assign(n, 0);
     m_row.assign(n, -1);
     m_rowParticle.assign(n, 0);
     // One PPE row per particle at most, each with room for a full neighbour list + diagonal.
@@ -431,7 +450,7 @@ void MpsSolver::numberDensityAndSurface() {
             m_grid.shortNeighbors(i), m_xStar, m_yStar, i, reN2,
             [&](std::uint32_t j, double dx, double dy, double r2) {
                 const double w = mpsWeight(std::sqrt(r2), m_reN);
-                s += w; // K&O 1996 particle number density n* = sum_j w(|r*_j - r*_i|)
+                s += w;       // K&O 1996 particle number density n* = sum_j w(|r*_j - r*_i|)
                 fx += dx * w; // neighbour distribution (Khayyer, Gotoh & Shao 2009)
                 fy += dy * w;
                 if (mixed && m_p.kind[j] != ParticleKind::Dummy) {
@@ -450,10 +469,14 @@ void MpsSolver::numberDensityAndSurface() {
             // Paper eq. (3), the K&O 1996 free-surface condition: free surface where
             // n* < beta n0, p = 0 there; the distribution test also asks for a one-sided
             // neighbourhood unless the particle is sparse.
+            const bool oneSided = std::hypot(m_fx[i], m_fy[i]) > asymmetric;
             bool free = s < threshold;
             if (free && distribution && s >= sparse)
-                free = std::hypot(m_fx[i], m_fy[i]) > asymmetric;
+                free = oneSided;
             m_surface[i] = free ? 1 : 0;
+            // The surface layer for eq. (4): the free surface and, with the distribution
+            // test, every one-sided neighbourhood (a crest compressed above beta n0 too).
+            m_layer[i] = distribution && (free || oneSided) ? 1 : 0;
             surface += m_surface[i];
         }
     }
@@ -575,8 +598,10 @@ void MpsSolver::correctVelocity(double dt) {
     // the correction u' = -dt/rho grad p, u = u* + u', r = r* + dt u'.
     const double coefG = kDim / m_latN.n0;
     const double k = dt / m_phys.density;
-    const bool corrected = usesCorrectiveMatrix(m_par.model.gradient);
-    const bool symmetric = usesSymmetricPairs(m_par.model.gradient);
+    const GradientModel model = m_par.model.gradient;
+    const bool corrected = usesCorrectiveMatrix(model);
+    const bool symmetric = usesSymmetricPairs(model);
+    const bool minimum = usesMinimumPressure(model);
     double maxSpeed2 = 0.0;
 #pragma omp parallel for schedule(static) reduction(max : maxSpeed2) if (n >= kParallelMin)
     for (std::size_t i = 0; i < n; ++i) {
@@ -587,9 +612,9 @@ void MpsSolver::correctVelocity(double dt) {
         }
         const auto shortList = m_grid.shortNeighbors(i);
         // Minimum pressure among neighbours within re (the K&O 1996 gradient model uses
-        // p_i^min for stability); the symmetric pair term does not need it.
+        // p_i^min for stability); the other pair terms do not need it.
         double pm = m_p.p[i];
-        if (!symmetric) {
+        if (minimum) {
             forNeighbours(shortList, m_xStar, m_yStar, i, reN2,
                           [&](std::uint32_t j, double, double, double) {
                               if (m_p.kind[j] == ParticleKind::Dummy)
@@ -597,29 +622,28 @@ void MpsSolver::correctVelocity(double dt) {
                               pm = std::min(pm, m_p.p[j]);
                           });
         }
+        // gx, gy: the pair sum; cxx..cyy: the corrective matrix's moment tensor.
         double gx = 0.0, gy = 0.0;
+        double cxx = 0.0, cxy = 0.0, cyy = 0.0;
+        const double base = minimum ? pm : (symmetric ? -m_p.p[i] : m_p.p[i]);
         forNeighbours(shortList, m_xStar, m_yStar, i, reN2,
                       [&](std::uint32_t j, double dx, double dy, double r2) {
                           if (m_p.kind[j] == ParticleKind::Dummy || r2 <= 0.0)
                               return;
-                          const double pij = symmetric ? m_p.p[j] + m_p.p[i] : m_p.p[j] - pm;
-                          const double f = pij / r2 * mpsWeight(std::sqrt(r2), m_reN);
+                          const double wr = mpsWeight(std::sqrt(r2), m_reN);
+                          const double f = (m_p.p[j] - base) / r2 * wr;
                           gx += f * dx;
                           gy += f * dy;
+                          if (!corrected)
+                              return;
+                          const double w = wr / r2;
+                          cxx += w * dx * dx;
+                          cxy += w * dx * dy;
+                          cyy += w * dy * dy;
                       });
         if (corrected) {
             // Khayyer & Gotoh (2011) corrective matrix:
             // C_i = (d/n0 sum w r_ij r_ij^T / r^2)^-1.
-            double cxx = 0.0, cxy = 0.0, cyy = 0.0;
-            forNeighbours(shortList, m_xStar, m_yStar, i, reN2,
-                          [&](std::uint32_t j, double dx, double dy, double r2) {
-                              if (m_p.kind[j] == ParticleKind::Dummy || r2 <= 0.0)
-                                  return;
-                              const double w = mpsWeight(std::sqrt(r2), m_reN) / r2;
-                              cxx += w * dx * dx;
-                              cxy += w * dx * dy;
-                              cyy += w * dy * dy;
-                          });
             cxx *= coefG;
             cxy *= coefG;
             cyy *= coefG;

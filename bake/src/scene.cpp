@@ -222,6 +222,8 @@ Scene parseScene(const json& j) {
     {
         Section s(sol ? *sol : kEmpty, "solver");
         SolverParams& p = scene.solver;
+        // The scheme sets the model and pressure defaults; the keys below override them.
+        p = schemeParams(s.enumeration("scheme", Scheme::Swell, {Scheme::Textbook, Scheme::Swell}));
         TimeStepParams& t = p.time;
         ModelParams& m = p.model;
         PressureParams& e = p.pressure;
@@ -251,9 +253,16 @@ Scene parseScene(const json& j) {
         m.distributionThreshold =
             s.number("distribution_threshold", m.distributionThreshold, 0.0, 10.0, false);
         m.shifting = s.number("shifting", m.shifting, 0.0, 1.0, false);
+        if (m.shifting > 0.0 && m.surfaceTest != SurfaceTest::Distribution) {
+            throw SceneError("solver.shifting",
+                             "particle shifting needs solver.surface_test \"distribution\" (it "
+                             "moves free-surface particles along the surface normal that test "
+                             "finds)");
+        }
         const bool corrected = s.boolean("gradient_correction", usesCorrectiveMatrix(m.gradient));
         const bool symmetric = s.boolean("symmetric_gradient", usesSymmetricPairs(m.gradient));
         m.gradient = gradientModel(symmetric, corrected);
+
         e.preconditioner =
             s.enumeration("preconditioner", e.preconditioner,
                           {Preconditioner::Jacobi, Preconditioner::SymmetricGaussSeidel,
@@ -434,7 +443,8 @@ json toJson(const Scene& sc) {
           {"gravity", sc.physics.gravity}}},
         {"geometry", geo},
         {"solver",
-         {{"dt", s.time.dt},
+         {{"scheme", std::string(toString(s.scheme))},
+          {"dt", s.time.dt},
           {"end_time", sc.run.endTime},
           {"adaptive_dt", s.time.adaptive},
           {"courant_target", s.time.courantTarget},

@@ -1,6 +1,7 @@
 #pragma once
 #include <cstddef>
 #include <cstdint>
+#include <span>
 
 #include "swell/bake/particles.h"
 #include "swell/cache/frame.h"
@@ -31,6 +32,10 @@ struct ClassifiedFrame {
 /// keeps the surface and splash ones (Sec. 3.2: only they go to the animation step).
 /// Surface particles are sorted by x (then y) so the cache's delta filter sees smooth
 /// data; their order carries no meaning. Wall and dummy particles are skipped.
-ClassifiedFrame classifyParticles(const Particles& particles, double n0, double d1, double d2);
+/// `layer` (one flag per particle, or empty) marks the solver's surface layer
+/// (MpsSolver::surfaceLayer): a flagged particle with n >= d1 n0 is surface even above d2 n0,
+/// so a compressed crest still counts; eq. (4)'s thresholds are unchanged.
+ClassifiedFrame classifyParticles(const Particles& particles, double n0, double d1, double d2,
+                                  std::span<const std::uint8_t> layer = {});
 
 } // namespace swell::bake

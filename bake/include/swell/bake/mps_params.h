@@ -48,6 +48,10 @@ enum class GradientModel {
 constexpr bool usesSymmetricPairs(GradientModel g) {
     return g == GradientModel::Symmetric || g == GradientModel::SymmetricCorrected;
 }
+/// Whether `g` needs the minimum neighbour pressure p_i^min.
+constexpr bool usesMinimumPressure(GradientModel g) {
+    return g == GradientModel::MinimumPressure || g == GradientModel::MinimumPressureCorrected;
+}
 /// Whether `g` applies the Khayyer & Gotoh corrective matrix.
 constexpr bool usesCorrectiveMatrix(GradientModel g) {
     return g == GradientModel::MinimumPressureCorrected || g == GradientModel::SymmetricCorrected;
@@ -72,7 +76,22 @@ enum class SurfaceTest {
 
 std::string_view toString(Preconditioner p);
 std::string_view toString(SurfaceTest s);
+std::string_view toString(GradientModel g);
 std::string_view toString(SourceTerm s);
+
+/// A named set of model and pressure-solve settings (scene key solver.scheme); individual
+/// solver keys still override it. docs/validation.md measures both on every case.
+enum class Scheme {
+    /// Koshizuka & Oka 1996 as the textbook code has it: minimum-pressure gradient, free
+    /// surface by number density alone (paper eq. (3)). Kept for comparison.
+    Textbook,
+    /// The default: the Khayyer & Gotoh (2011) corrected gradient (first-order consistent on
+    /// truncated neighbourhoods: surface, walls) and the neighbour-distribution free-surface
+    /// test, which keeps interior particles whose n* dips below beta n0 in the pressure solve
+    /// and finds the whole surface layer for the classification of eq. (4).
+    Swell,
+};
+std::string_view toString(Scheme s);
 
 /// Time stepping.
 struct TimeStepParams {
@@ -119,12 +138,25 @@ struct NeighborParams {
 };
 
 /// Numerical settings of the semi-implicit MPS solver (scene section "solver",
-/// docs/scenes.md).
+/// docs/scenes.md). The member defaults are Scheme::Textbook's; scenes start from
+/// schemeParams(Scheme::Swell) unless they name another scheme.
 struct SolverParams {
+    Scheme scheme = Scheme::Textbook; ///< the named set the settings started from
     TimeStepParams time;
     ModelParams model;
     PressureParams pressure;
     NeighborParams neighbors;
 };
+
+/// The settings of a named scheme (everything else at its default).
+inline SolverParams schemeParams(Scheme scheme) {
+    SolverParams p;
+    p.scheme = scheme;
+    if (scheme == Scheme::Swell) {
+        p.model.gradient = GradientModel::MinimumPressureCorrected;
+        p.model.surfaceTest = SurfaceTest::Distribution;
+    }
+    return p;
+}
 
 } // namespace swell::bake

@@ -2,6 +2,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <span>
 #include <vector>
 
 #include <Eigen/Sparse>
@@ -88,6 +89,14 @@ public:
     std::vector<std::uint32_t> ppeRowParticles() const;
     /// Free-surface flags of the last step (1 = p fixed at 0).
     const std::vector<std::uint8_t>& surfaceFlags() const { return m_surface; }
+    /// Surface-layer flags of the last step for the classification of eq. (4) (1 = on the
+    /// layer: free surface or a one-sided neighbourhood); empty unless the surface test is
+    /// SurfaceTest::Distribution, and all 0 before the first step.
+    std::span<const std::uint8_t> surfaceLayer() const {
+        if (m_par.model.surfaceTest != SurfaceTest::Distribution)
+            return {};
+        return m_layer;
+    }
 
 private:
     /// m_surface value of a particle outside the pressure solve (dummies).
@@ -122,11 +131,12 @@ private:
     // work arrays (structure of arrays, sized once)
     std::vector<double> m_xs, m_ys;                         // positions at the last neighbour build
     std::vector<double> m_xStar, m_yStar, m_uStar, m_vStar; // predicted state
-    std::vector<double> m_divU;          // velocity divergence (mixed source term)
-    std::vector<double> m_fx, m_fy;      // neighbour distribution / (n0 l0) at r*
+    std::vector<double> m_divU;             // velocity divergence (mixed source term)
+    std::vector<double> m_fx, m_fy;         // neighbour distribution / (n0 l0) at r*
     std::vector<double> m_shiftX, m_shiftY; // particle shifting displacements
-    std::vector<std::uint8_t> m_surface; // 1 free surface (p = 0), 0 inside, kNotInPpe
-    std::vector<std::int32_t> m_row;     // PPE row of each particle, -1 if none
+    std::vector<std::uint8_t> m_surface;    // 1 free surface (p = 0), 0 inside, kNotInPpe
+    std::vector<std::uint8_t> m_layer;      // 1 on the surface layer (classification)
+    std::vector<std::int32_t> m_row;        // PPE row of each particle, -1 if none
     std::vector<std::uint32_t> m_rowParticle;
 
     std::vector<double> m_uC, m_vC;     // velocities after collisions
