@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <vector>
 
 #include "swell/bake/classification.h"
@@ -57,4 +58,26 @@ TEST(Classification, NoSplashGivesNoSplashRecords) {
     const ClassifiedFrame c = classifyParticles(P, 10.0, 0.49, 0.96);
     EXPECT_TRUE(c.frame.splash.empty());
     EXPECT_EQ(c.surface(), 5u);
+}
+
+// The solver's surface layer (distribution test) promotes a crest particle compressed above
+// d2 n0 to surface; splash and eq. (4)'s own surface stay as they are, walls are never kept.
+TEST(Classification, SurfaceLayerFlagsKeepCompressedCrestParticles) {
+    Particles P;
+    addWater(P, 0.10, 0.10, 9.9); // deep by n, on the layer: surface
+    addWater(P, 0.20, 0.10, 9.9); // deep by n, off the layer: deep
+    addWater(P, 0.30, 0.40, 1.0); // splash, on the layer: still splash
+    addWater(P, 0.40, 0.10, 9.0); // surface by n, off the layer: still surface
+    P.add(0.0, 0.0, ParticleKind::Wall);
+    P.n.back() = 9.9;
+    const std::vector<std::uint8_t> layer{1, 0, 1, 0, 1};
+    const ClassifiedFrame c = classifyParticles(P, 10.0, 0.49, 0.96, layer);
+    EXPECT_EQ(c.surface(), 2u);
+    EXPECT_EQ(c.splash(), 1u);
+    EXPECT_EQ(c.deep, 1u);
+    const std::vector<float> surface{0.10f, 0.10f, 0.40f, 0.10f};
+    EXPECT_EQ(c.frame.surface, surface);
+    const ClassifiedFrame plain = classifyParticles(P, 10.0, 0.49, 0.96);
+    EXPECT_EQ(plain.surface(), 1u);
+    EXPECT_EQ(plain.deep, 2u);
 }

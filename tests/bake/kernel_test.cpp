@@ -61,3 +61,13 @@ TEST(Kernel, LatticeConstantsRejectBadInput) {
     EXPECT_THROW(latticeConstants(0.0, 1.0), std::invalid_argument);
     EXPECT_THROW(latticeConstants(1.0, -1.0), std::invalid_argument);
 }
+
+// The flat-surface asymmetry for re = 2.1 l0: the lower half lattice's sum of y w is
+// -(w(1) + 2 w(sqrt 2)) l0 - 2 w(2) l0 (w(sqrt 5) = 0), over n0 l0.
+TEST(Kernel, FlatSurfaceAsymmetryMatchesTheHalfLatticeSum) {
+    const double w1 = 2.1 - 1.0, w2 = 2.1 / std::sqrt(2.0) - 1.0, w4 = 2.1 / 2.0 - 1.0;
+    const double n0 = 4.0 * (w1 + w2 + w4);
+    const LatticeConstants c = latticeConstants(0.01, 0.021);
+    EXPECT_NEAR(c.flatSurfaceAsymmetry, (w1 + 2.0 * w2 + 2.0 * w4) / n0, 1e-12);
+    EXPECT_NEAR(latticeConstants(0.5, 1.05).flatSurfaceAsymmetry, c.flatSurfaceAsymmetry, 1e-12);
+}

@@ -313,3 +313,40 @@ TEST(MpsSolver, PistonBackWallFollowsItsMotionAndPushesWater) {
     }
     EXPECT_GT(meanU / static_cast<double>(nearPiston), 0.5 * s.displacement); // pushed along
 }
+
+// A block whose spacing is 3 % wider than l0 has n* < beta n0 everywhere. The density test
+// (paper eq. (3)) then calls every particle free surface; the distribution test keeps the
+// interior in the pressure solve and flags only the one-sided outer layer.
+TEST(MpsSolver, DistributionSurfaceTestKeepsAnExpandedInteriorInThePressureSolve) {
+    const double l0 = 0.01, spread = 1.03 * l0;
+    Particles P;
+    for (int j = 0; j < 12; ++j)
+        for (int i = 0; i < 12; ++i)
+            P.add(0.1 + spread * i, 0.1 + spread * j, ParticleKind::Water);
+    const Box domain{0.0, 0.0, 0.4, 0.4};
+    auto surfaceCount = [&](SurfaceTest test, std::size_t& interior) {
+        SolverParams par;
+        par.model.surfaceTest = test;
+        PhysicsParams phys;
+        phys.gravity = 0.0;
+        MpsSolver solver(phys, par, P, l0, domain);
+        solver.step();
+        std::size_t count = 0;
+        interior = 0;
+        const Particles& q = solver.particles();
+        for (std::size_t k = 0; k < q.size(); ++k) {
+            count += solver.surfaceFlags()[k] == 1;
+            const bool inner = q.x[k] > 0.1 + 2.5 * spread && q.x[k] < 0.1 + 8.5 * spread &&
+                               q.y[k] > 0.1 + 2.5 * spread && q.y[k] < 0.1 + 8.5 * spread;
+            interior += inner && solver.surfaceFlags()[k] == 1;
+        }
+        return count;
+    };
+    std::size_t interior = 0;
+    EXPECT_EQ(surfaceCount(SurfaceTest::Density, interior), P.size());
+    EXPECT_GT(interior, 0u);
+    const std::size_t flagged = surfaceCount(SurfaceTest::Distribution, interior);
+    EXPECT_EQ(interior, 0u);
+    EXPECT_GE(flagged, 44u); // at least the outer ring of 4 x 11
+    EXPECT_LT(flagged, P.size() / 2);
+}

@@ -313,3 +313,38 @@ TEST(Scene, RippleScenesLoadAndRecyclingErrorsNameTheKey) {
     j["piston"] = json::object();
     EXPECT_EQ(errorKey(j), "recycling");
 }
+
+TEST(Scene, SchemeSetsTheModelAndKeysOverrideIt) {
+    json j = minimal();
+    const Scene byDefault = parseScene(j);
+    EXPECT_EQ(byDefault.solver.scheme, Scheme::Swell);
+    EXPECT_EQ(byDefault.solver.model.gradient, GradientModel::MinimumPressureCorrected);
+    EXPECT_EQ(byDefault.solver.model.surfaceTest, SurfaceTest::Distribution);
+    j["solver"]["scheme"] = "textbook";
+    const Scene textbook = parseScene(j);
+    EXPECT_EQ(textbook.solver.model.gradient, GradientModel::MinimumPressure);
+    EXPECT_EQ(textbook.solver.model.surfaceTest, SurfaceTest::Density);
+    j["solver"]["gradient_correction"] = true; // a key overrides its scheme's value
+    EXPECT_EQ(parseScene(j).solver.model.gradient, GradientModel::MinimumPressureCorrected);
+    EXPECT_EQ(toJson(parseScene(j))["solver"]["scheme"], "textbook");
+}
+
+TEST(Scene, UnknownSchemeAndUnsupportedCombinationsAreClearErrors) {
+    json j = minimal();
+    j["solver"]["scheme"] = "cmps";
+    EXPECT_EQ(errorKey(j), "solver.scheme");
+    try {
+        parseScene(j);
+    } catch (const SceneError& e) {
+        EXPECT_NE(std::string(e.what()).find("\"textbook\", \"swell\""), std::string::npos)
+            << e.what();
+    }
+    j = minimal();
+    j["solver"]["scheme"] = "textbook";
+    j["solver"]["shifting"] = 0.02; // shifting needs the distribution test's surface normals
+    EXPECT_EQ(errorKey(j), "solver.shifting");
+    j["solver"]["surface_test"] = "distribution";
+    EXPECT_EQ(errorKey(j), "<accepted>");
+    j["solver"]["surface_test"] = "neighbours";
+    EXPECT_EQ(errorKey(j), "solver.surface_test");
+}
