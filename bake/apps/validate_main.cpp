@@ -87,6 +87,24 @@ json damBreak(const Scene& scene, double tEnd, const std::string& csv) {
         out["front_error_mean_a225"] = e225.mean;
         out["front_error_mean_a1125"] = e1125.mean;
         out["points"] = e225.points + e1125.points;
+        // Time origin tied to the front (alignedFront): each series shifted so that the front
+        // reaches that series' first recorded position at its T; combined like the raw figures.
+        const AlignedFront a225 = alignedFront(series, martinMoyceA225(), 0.8, 3.0);
+        const AlignedFront a1125 = alignedFront(series, martinMoyceA1125(), 0.8, 3.0);
+        const int alignedPoints = a225.error.points + a1125.error.points;
+        const auto combined = [&](double v225, double v1125) {
+            return (v225 * a225.error.points + v1125 * a1125.error.points) / alignedPoints;
+        };
+        out["aligned_front_error_mean"] = combined(a225.error.mean, a1125.error.mean);
+        out["aligned_front_error_max"] = std::max(a225.error.max, a1125.error.max);
+        out["aligned_front_error_mean_signed"] =
+            combined(a225.error.meanSigned, a1125.error.meanSigned);
+        out["aligned_shift_T"] = combined(a225.shift, a1125.shift);
+        out["aligned_front_error_mean_a225"] = a225.error.mean;
+        out["aligned_front_error_mean_a1125"] = a1125.error.mean;
+        out["aligned_shift_T_a225"] = a225.shift;
+        out["aligned_shift_T_a1125"] = a1125.shift;
+        out["aligned_points"] = alignedPoints;
         json z = json::object();
         for (double T : {1.0, 2.0, 3.0}) {
             for (std::size_t k = 1; k < series.size(); ++k) {

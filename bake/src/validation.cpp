@@ -3,7 +3,11 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
+#include <vector>
+
+#include <fmt/format.h>
 
 namespace swell::bake {
 namespace {
@@ -74,6 +78,81 @@ FrontError compareFront(std::span<const FrontPoint> sim, std::span<const FrontPo
         const double span = hi->T - lo->T;
         const double z = span > 0.0 ? lo->Z + (hi->Z - lo->Z) * (p.T - lo->T) / span : hi->Z;
         const double d = z - p.Z;
+        e.mean += std::abs(d);
+        e.meanSigned += d;
+        e.max = std::max(e.max, std::abs(d));
+        ++e.points;
+    }
+    if (e.points > 0) {
+        e.mean /= e.points;
+        e.meanSigned /= e.points;
+    }
+    return e;
+}
+
+AlignedFront alignedFront(std::span<const FrontPoint> sim, std::span<const FrontPoint> exp,
+                          double tLo, double tHi) {
+    if (sim.size() < 2 || exp.size() < 2)
+        throw std::invalid_argument(
+            "alignedFront: need two or more simulated and experimental points");
+    const FrontPoint anchor = exp.front(); // (T_1, Z_1): the experiment's first record
+    if (sim.front().Z > anchor.Z) {
+        throw std::invalid_argument(fmt::format(
+            "alignedFront: the simulated front starts at Z = {} beyond the experiment's "
+            "first position Z_1 = {}",
+            sim.front().Z, anchor.Z));
+    }
+    double crossing = std::numeric_limits<double>::quiet_NaN();
+    for (std::size_t k = 0; k < sim.size(); ++k) {
+        if (sim[k].Z < anchor.Z)
+            continue;
+        if (k == 0) {
+            crossing = sim[0].T; // starts exactly at Z_1
+        } else {
+            const FrontPoint& a = sim[k - 1];
+            const FrontPoint& b = sim[k];
+            crossing = a.T + (b.T - a.T) * (anchor.Z - a.Z) / (b.Z - a.Z);
+        }
+        break;
+    }
+    if (std::isnan(crossing)) {
+        throw std::invalid_argument(fmt::format(
+            "alignedFront: the simulated front never reaches the experiment's first position "
+            "Z_1 = {} (largest Z {} up to T = {})",
+            anchor.Z,
+            std::max_element(sim.begin(), sim.end(),
+                             [](const FrontPoint& a, const FrontPoint& b) { return a.Z < b.Z; })
+                ->Z,
+            sim.back().T));
+    }
+    AlignedFront out;
+    out.shift = anchor.T - crossing;
+    std::vector<FrontPoint> shifted(sim.begin(), sim.end());
+    for (FrontPoint& p : shifted)
+        p.T += out.shift;
+    out.error = compareFront(shifted, exp.subspan(1), tLo, tHi);
+    return out;
+}
+
+LevelError compareLevel(std::span<const LevelPoint> sim, std::span<const LevelPoint> record,
+                        double tLo, double tHi) {
+    if (sim.size() < 2)
+        throw std::invalid_argument("compareLevel: need at least two simulated points");
+    LevelError e;
+    for (const LevelPoint& p : record) {
+        if (p.t < tLo || p.t > tHi)
+            continue;
+        if (p.t < sim.front().t || p.t > sim.back().t) {
+            throw std::invalid_argument(fmt::format(
+                "compareLevel: the simulation ({} to {} s) does not cover the record time {} s",
+                sim.front().t, sim.back().t, p.t));
+        }
+        const auto hi = std::lower_bound(sim.begin(), sim.end(), p.t,
+                                         [](const LevelPoint& a, double t) { return a.t < t; });
+        const auto lo = hi == sim.begin() ? hi : hi - 1;
+        const double span = hi->t - lo->t;
+        const double h = span > 0.0 ? lo->h + (hi->h - lo->h) * (p.t - lo->t) / span : hi->h;
+        const double d = h - p.h;
         e.mean += std::abs(d);
         e.meanSigned += d;
         e.max = std::max(e.max, std::abs(d));

@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -61,6 +62,55 @@ TEST(Validation, FrontComparisonInterpolatesAndAverages) {
     EXPECT_NEAR(e.meanSigned, 0.0, 1e-12);
     EXPECT_NEAR(e.max, 0.5, 1e-12);
     EXPECT_THROW(compareFront(sim, exp, 0.0, 3.0), std::invalid_argument); // 2.5 not covered
+}
+
+// alignedFront: a copy of the experiment delayed by a known dT is recovered with error ~0 and
+// shift -dT (interpolation between the experimental points is linear, so the copy is exact).
+TEST(Validation, AlignedFrontRecoversAKnownShiftWithZeroError) {
+    const std::span<const FrontPoint> exp = martinMoyceA225();
+    const double dT = 0.137;
+    std::vector<FrontPoint> sim{{0.0, 1.0}};
+    for (const FrontPoint& p : exp)
+        sim.push_back({p.T + dT, p.Z});
+    const AlignedFront a = alignedFront(sim, exp, 0.8, 3.0);
+    EXPECT_NEAR(a.shift, -dT, 1e-12);
+    EXPECT_NEAR(a.error.mean, 0.0, 1e-12);
+    EXPECT_NEAR(a.error.max, 0.0, 1e-12);
+    EXPECT_EQ(a.error.points, 3); // T = 1.219, 1.997, 2.547; the alignment point 0.832 excluded
+    // The raw comparison of the same series sees the delay.
+    EXPECT_GT(compareFront(sim, exp, 0.8, 3.0).mean, 0.05);
+}
+
+// The crossing is the FIRST one, linearly interpolated, and the shift is not fitted: a series
+// that runs ahead by a constant 0.5 in Z keeps an error after alignment.
+TEST(Validation, AlignedFrontUsesTheFirstCrossingOfTheFirstPoint) {
+    const std::vector<FrontPoint> exp{{1.0, 2.0}, {2.0, 3.0}, {3.0, 4.0}};
+    // Crosses Z_1 = 2 between T = 0.5 and 1.0, falls back below it after T = 5 and crosses
+    // again between T = 6 and 7 (a later crossing must not be used).
+    const std::vector<FrontPoint> sim{{0.0, 1.5}, {0.5, 1.5}, {1.0, 2.5},
+                                      {5.0, 6.5}, {6.0, 1.0}, {7.0, 2.5}};
+    const AlignedFront a = alignedFront(sim, exp, 0.0, 3.0);
+    // Z = 2 between T = 0.5 (1.5) and 1.0 (2.5): T = 0.75, so shift = 1 - 0.75.
+    EXPECT_NEAR(a.shift, 0.25, 1e-12);
+    EXPECT_EQ(a.error.points, 2);
+    // Shifted: T' = T + 0.25; at T' = 2: T = 1.75, Z = 2.5 + 0.75 = 3.25 vs 3.
+    EXPECT_NEAR(a.error.mean, 0.25, 1e-12);
+    EXPECT_NEAR(a.error.meanSigned, 0.25, 1e-12);
+}
+
+TEST(Validation, AlignedFrontRejectsASeriesThatNeverReachesTheFirstPosition) {
+    const std::vector<FrontPoint> exp{{1.0, 2.0}, {2.0, 3.0}};
+    const std::vector<FrontPoint> slow{{0.0, 1.0}, {3.0, 1.9}, {6.0, 1.99}};
+    try {
+        alignedFront(slow, exp, 0.0, 3.0);
+        ADD_FAILURE() << "no error for a front that never reaches Z_1";
+    } catch (const std::invalid_argument& e) {
+        EXPECT_NE(std::string(e.what()).find("never reaches"), std::string::npos) << e.what();
+    }
+    const std::vector<FrontPoint> beyond{{0.0, 2.5}, {3.0, 4.0}};
+    EXPECT_THROW(alignedFront(beyond, exp, 0.0, 3.0), std::invalid_argument);
+    EXPECT_THROW(alignedFront(std::vector<FrontPoint>{{0.0, 1.0}}, exp, 0.0, 3.0),
+                 std::invalid_argument);
 }
 
 TEST(Validation, SurgeFrontIgnoresSplashAndWalls) {
