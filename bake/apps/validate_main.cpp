@@ -250,6 +250,10 @@ json regularWave(const Scene& scene, double from, double to, const std::string& 
     out["wavelength_theory"] = c.theory.wavelength;
     out["wavelength"] = c.wavelength;
     out["wavelength_error"] = c.wavelengthError();
+    out["wavelength_fit"] = c.wavelengthFit;
+    out["wavelength_fit_error"] = c.wavelengthFitError();
+    out["decay_per_wavelength"] = c.decayPerWavelength;
+    out["decay_total"] = c.decayTotal;
     out["steepness_theory"] = c.theory.steepness;
     out["ms_per_step"] = summary.msPerStep;
     out["us_per_particle_step"] =

@@ -5,6 +5,7 @@
 #include <fstream>
 #include <limits>
 #include <numbers>
+#include <span>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -29,6 +30,24 @@ const PistonParams& sinusoidalPiston(const Scene& scene) {
     return *scene.piston;
 }
 
+/// Slope of the least-squares line through (x, y); x not all equal (distinct gauges).
+double lineSlope(std::span<const double> x, std::span<const double> y) {
+    const double n = static_cast<double>(x.size());
+    double mx = 0.0, my = 0.0;
+    for (std::size_t i = 0; i < x.size(); ++i) {
+        mx += x[i] / n;
+        my += y[i] / n;
+    }
+    double sxy = 0.0, sxx = 0.0;
+    for (std::size_t i = 0; i < x.size(); ++i) {
+        sxy += (x[i] - mx) * (y[i] - my);
+        sxx += (x[i] - mx) * (x[i] - mx);
+    }
+    if (!(sxx > 0.0))
+        throw std::invalid_argument("the regular-wave check needs gauges at distinct x");
+    return sxy / sxx;
+}
+
 LinearPistonWave theoryOf(const Scene& scene, double& depth) {
     const PistonParams& p = sinusoidalPiston(scene);
     depth = stillWaterLevel(scene) - scene.geometry.tank->y0;
@@ -43,12 +62,12 @@ WaveWindow regularWaveWindow(const Scene& scene) {
     const PistonParams& p = *scene.piston;
     // Group velocity of linear theory: c_g = c / 2 (1 + 2kh / sinh 2kh), c = omega / k.
     const double cg = groupVelocity(2.0 * std::numbers::pi / p.period, h, scene.physics.gravity);
-    const auto [gMin, gMax] =
-        std::minmax_element(scene.output.gauges.begin(), scene.output.gauges.end());
+    const auto gMax = std::max_element(scene.output.gauges.begin(), scene.output.gauges.end());
     const Box& tank = *scene.geometry.tank;
     WaveWindow win;
     win.start = p.rampTime + (*gMax - tank.x0) / cg + p.period;
-    const double reflected = (2.0 * (tank.x1 - tank.x0) - (*gMin - tank.x0)) / cg;
+    // The reflection reaches the farthest gauge (nearest to the far wall) first.
+    const double reflected = (2.0 * (tank.x1 - tank.x0) - (*gMax - tank.x0)) / cg;
     win.end = std::min(scene.run.endTime, reflected);
     return win;
 }
@@ -93,6 +112,31 @@ RegularWaveCheck checkRegularWave(const Scene& scene, std::span<const ProbeSampl
     const double lag = std::fmod(fits[1].phase - fits[0].phase + 2.0 * twoPi, twoPi);
     out.wavelength =
         lag > 0.0 ? twoPi * std::abs(dx) / lag : std::numeric_limits<double>::infinity();
+
+    // All gauges in order of x: unwrapped phase and ln H against x, least-squares lines.
+    std::vector<std::size_t> order(nGauges);
+    for (std::size_t g = 0; g < nGauges; ++g)
+        order[g] = g;
+    std::sort(order.begin(), order.end(),
+              [&](std::size_t a, std::size_t b) { return out.gauges[a] < out.gauges[b]; });
+    std::vector<double> xs, phase, logH;
+    for (std::size_t i = 0; i < nGauges; ++i) {
+        const std::size_t g = order[i];
+        xs.push_back(out.gauges[g]);
+        logH.push_back(std::log(out.heights[g]));
+        if (i == 0) {
+            phase.push_back(fits[g].phase);
+        } else {
+            const double step =
+                std::fmod(fits[g].phase - fits[order[i - 1]].phase + 2.0 * twoPi, twoPi);
+            phase.push_back(phase.back() + step);
+        }
+    }
+    const double phaseSlope = lineSlope(xs, phase);
+    out.wavelengthFit =
+        phaseSlope > 0.0 ? twoPi / phaseSlope : std::numeric_limits<double>::infinity();
+    out.decayPerWavelength = 1.0 - std::exp(lineSlope(xs, logH) * out.theory.wavelength);
+    out.decayTotal = 1.0 - out.heights[order.back()] / out.heights[order.front()];
     return out;
 }
 

@@ -1,5 +1,6 @@
 // Regular-wave check (regular_wave.h): fit window, fits against synthetic gauge records made
 // from linear theory itself, and the probes CSV reader.
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -12,6 +13,7 @@
 #include "swell/bake/error.h"
 #include "swell/bake/regular_wave.h"
 #include "swell/bake/scene.h"
+#include "swell/bake/wave_theory.h"
 #include "temp_dir.h"
 
 using namespace swell::bake;
@@ -20,9 +22,10 @@ namespace {
 
 const std::filesystem::path kScenes = SWELL_SCENES_DIR;
 
-/// Gauge records of a linear progressive wave of height H and wavelength L, sampled every dt.
+/// Gauge records of a linear progressive wave of height H at x = 0 and wavelength L, sampled
+/// every dt, whose height decays as exp(-decay x) (decay in 1/m).
 std::vector<ProbeSample> linearRecord(const Scene& scene, double H, double L, double tEnd,
-                                      double dt) {
+                                      double dt, double decay = 0.0) {
     const double omega = 2.0 * std::numbers::pi / scene.piston->period;
     const double k = 2.0 * std::numbers::pi / L;
     std::vector<ProbeSample> out;
@@ -31,7 +34,8 @@ std::vector<ProbeSample> linearRecord(const Scene& scene, double H, double L, do
         s.time = t;
         s.frontX = 1.0;
         for (double x : scene.output.gauges)
-            s.elevations.push_back(0.5 * H * std::cos(k * x - omega * t) + 0.003);
+            s.elevations.push_back(0.5 * H * std::exp(-decay * x) * std::cos(k * x - omega * t) +
+                                   0.003);
         out.push_back(s);
     }
     return out;
@@ -64,6 +68,78 @@ TEST(RegularWave, RecoversHeightAndLengthOfALinearWave) {
     EXPECT_NEAR(c.wavelengthError(), 0.0, 1e-6);
     EXPECT_GT(c.samples, 50U);
     EXPECT_NEAR(c.theory.kh, 1.0, 0.005); // dispersion relation at h = 0.2 m, T = 1.03 s
+}
+
+// Far gauges (scenes/progressive_wave*.json, three wavelengths): the window opens one period
+// after the fully grown wave passed the farthest gauge and closes when the far-wall reflection
+// of the piston's first motion reaches that same gauge (the first one it reaches), both at c_g.
+TEST(RegularWave, WindowForFarGaugesClosesBeforeTheReflectionReachesTheFarthest) {
+    for (const char* name : {"progressive_wave.json", "progressive_wave_deep.json"}) {
+        const Scene scene = loadScene(kScenes / name);
+        const LinearPistonWave th = linearPistonWave(scene.piston->stroke, scene.piston->period,
+                                                     0.2, scene.physics.gravity);
+        const double cg = groupVelocity(2.0 * std::numbers::pi / scene.piston->period, 0.2, 9.81);
+        const auto& g = scene.output.gauges;
+        const double far = *std::max_element(g.begin(), g.end());
+        const double near = *std::min_element(g.begin(), g.end());
+        EXPECT_GE(far - near, 3.0 * th.wavelength - 1e-3) << name; // at least 3 wavelengths
+        const WaveWindow w = regularWaveWindow(scene);
+        EXPECT_NEAR(w.start, scene.piston->rampTime + far / cg + scene.piston->period, 1e-9)
+            << name;
+        const double reflected = (2.0 * scene.geometry.tank->x1 - far) / cg;
+        EXPECT_LT(w.end, reflected) << name;
+        EXPECT_NEAR(w.end, scene.run.endTime, 1e-12) << name;
+        EXPECT_GE(w.end - w.start, 2.0 * scene.piston->period) << name;
+        EXPECT_LT(w.end - w.start, 2.5 * scene.piston->period) << name; // end time kept short
+        // The h/40 version is the same case at twice the resolution.
+        const std::string fine = std::string(name).insert(std::string(name).size() - 5, "_h40");
+        const Scene s40 = loadScene(kScenes / fine);
+        EXPECT_DOUBLE_EQ(s40.geometry.particleSpacing, 0.005) << fine;
+        EXPECT_DOUBLE_EQ(s40.solver.time.dt, 0.5 * scene.solver.time.dt) << fine;
+        EXPECT_EQ(s40.output.gauges, g) << fine;
+        const WaveWindow w40 = regularWaveWindow(s40);
+        EXPECT_DOUBLE_EQ(w40.start, w.start) << fine;
+        EXPECT_DOUBLE_EQ(w40.end, w.end) << fine;
+    }
+    // The deeper case: kh = 1.5 and H/L = 0.035 (Biesel) as its description says.
+    const Scene deep = loadScene(kScenes / "progressive_wave_deep.json");
+    const LinearPistonWave th =
+        linearPistonWave(deep.piston->stroke, deep.piston->period, 0.2, deep.physics.gravity);
+    EXPECT_NEAR(th.kh, 1.5, 0.005);
+    EXPECT_NEAR(th.steepness, 0.035, 0.001);
+    EXPECT_FALSE(th.breaks());
+}
+
+// A linear wave whose height decays as exp(-a x) over seven gauges spanning three wavelengths:
+// the fits recover the decay per wavelength, the total decay and the wavelength from all gauges.
+TEST(RegularWave, FitsDecayAndWavelengthOverAllGauges) {
+    Scene scene = loadScene(kScenes / "progressive_wave.json");
+    const WaveWindow w = regularWaveWindow(scene);
+    const double L = 1.15;     // not the theoretical 1.26 m: the fit must read the record
+    const double decay = 0.05; // 1/m
+    // Gauge order in the scene must not matter.
+    std::reverse(scene.output.gauges.begin(), scene.output.gauges.end());
+    const RegularWaveCheck c =
+        checkRegularWave(scene, linearRecord(scene, 0.03, L, scene.run.endTime, 0.01, decay), w);
+    const auto& g = scene.output.gauges;
+    const double span =
+        *std::max_element(g.begin(), g.end()) - *std::min_element(g.begin(), g.end());
+    EXPECT_NEAR(c.wavelengthFit, L, 1e-6);
+    EXPECT_NEAR(c.wavelengthFitError(), L / c.theory.wavelength - 1.0, 1e-6);
+    EXPECT_NEAR(c.decayPerWavelength, 1.0 - std::exp(-decay * c.theory.wavelength), 1e-6);
+    EXPECT_NEAR(c.decayTotal, 1.0 - std::exp(-decay * span), 1e-6);
+    for (std::size_t k = 0; k < g.size(); ++k)
+        EXPECT_NEAR(c.heights[k], 0.03 * std::exp(-decay * g[k]), 1e-7) << g[k];
+    // No decay: zero. Two gauges: the fit is the two-gauge wavelength.
+    const RegularWaveCheck flat =
+        checkRegularWave(scene, linearRecord(scene, 0.03, L, scene.run.endTime, 0.01), w);
+    EXPECT_NEAR(flat.decayPerWavelength, 0.0, 1e-7);
+    EXPECT_NEAR(flat.decayTotal, 0.0, 1e-7);
+    scene.output.gauges = {0.5, 1.13};
+    const RegularWaveCheck two =
+        checkRegularWave(scene, linearRecord(scene, 0.03, L, scene.run.endTime, 0.01), w);
+    EXPECT_NEAR(two.wavelengthFit, two.wavelength, 1e-9);
+    EXPECT_NEAR(two.wavelength, L, 1e-6);
 }
 
 TEST(RegularWave, DryGaugeOrRandomPistonIsAClearError) {

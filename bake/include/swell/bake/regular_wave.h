@@ -13,10 +13,20 @@
 
 namespace swell::bake {
 
-/// Time window of a regular-wave record that linear theory describes: it opens one period
-/// after the ramp has ended and the fully grown wave, moving at the group velocity, has
-/// passed the farthest gauge; it closes when the reflection from the far wall can reach the
-/// nearest gauge (or at the end of the run).
+/// Time window of a regular-wave record that linear theory describes, for gauges anywhere
+/// between the paddle and the far wall. Wave energy travels at the group velocity c_g of
+/// linear theory (the piston's frequency, still-water depth).
+/// - Opens one period after the fully grown wave has passed the FARTHEST gauge: the piston
+///   reaches full stroke at the end of its ramp, and that part of the wave train reaches gauge x
+///   at ramp_time + (x - x_paddle) / c_g; the farthest gauge is the last to be reached.
+/// - Closes when the reflection from the far wall x_1 reaches the FARTHEST gauge (the one
+///   nearest to that wall, hence the first to see it): the first motion of the piston (t = 0)
+///   arrives there at (2 (x_1 - x_paddle) - (x - x_paddle)) / c_g; or at the end of the run if
+///   that is earlier. Because the piston's stroke is ramped from zero, the reflected wave is
+///   still small at that moment. The dispersive precursor that runs ahead of the group (up to
+///   sqrt(g h)) is neglected; with a ramp of two periods it is a few per cent of the height.
+/// A scene for far gauges needs a tank long enough that the window is at least two periods
+/// (scenes/progressive_wave.json).
 struct WaveWindow {
     double start = 0.0; ///< (s)
     double end = 0.0;   ///< (s)
@@ -33,9 +43,20 @@ struct RegularWaveCheck {
     std::vector<double> gauges;  ///< gauge x (m)
     std::vector<double> heights; ///< H = 2 x amplitude of the harmonic fit at each gauge (m)
     double wavelength = 0.0;     ///< 2 pi dx / (phase lag) between the first two gauges (m)
+    /// Wavelength from the phase slope over ALL gauges (m): 2 pi / (least-squares slope of
+    /// the unwrapped phase against x). The gauges are taken in order of x and each phase lag
+    /// between neighbours in [0, 2 pi) (a wave travelling towards +x; neighbouring gauges must be
+    /// less than a wavelength apart). Equals `wavelength` for two gauges.
+    double wavelengthFit = 0.0;
+    /// Height decay along the tank, from a least-squares fit ln H = a + b x over all gauges:
+    /// fractional loss per (theoretical) wavelength, 1 - exp(b L); positive when the wave decays.
+    double decayPerWavelength = 0.0;
+    /// 1 - H(last gauge) / H(first gauge), gauges in order of x.
+    double decayTotal = 0.0;
     /// Relative errors against theory: measured / theory - 1.
     double heightError(std::size_t gauge) const { return heights.at(gauge) / theory.height - 1.0; }
     double wavelengthError() const { return wavelength / theory.wavelength - 1.0; }
+    double wavelengthFitError() const { return wavelengthFit / theory.wavelength - 1.0; }
 };
 
 /// Fits each gauge's record inside `window` with a cos wt + b sin wt + c at the piston's
