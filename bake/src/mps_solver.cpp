@@ -166,6 +166,21 @@ MpsSolver::MpsSolver(const PhysicsParams& physics, const SolverParams& solver, P
     m_reShort = std::min(m_reList, std::max(m_reN, m_collide) + lists.skin * m_l0);
     m_latN = latticeConstants(m_l0, m_reN);
     m_latL = latticeConstants(m_l0, m_reL);
+    {
+        // Khayyer & Gotoh (2010) higher-order Laplacian, normalized on the lattice:
+        // k sum_j (x_j^2 - 0) re / r^3 = 2 (the Laplacian of x^2), divided by rho.
+        const int reach = static_cast<int>(std::ceil(model.reLaplacian)) + 1;
+        double sum = 0.0;
+        for (int jy = -reach; jy <= reach; ++jy) {
+            for (int jx = -reach; jx <= reach; ++jx) {
+                const double r = m_l0 * std::hypot(double(jx), double(jy));
+                if ((jx == 0 && jy == 0) || r >= m_reL)
+                    continue;
+                sum += (m_l0 * jx) * (m_l0 * jx) * m_reL / (r * r * r);
+            }
+        }
+        m_hlScale = 2.0 / sum / m_phys.density;
+    }
     m_grid.configure(m_domain, m_reList, n, lists.maxNeighbors);
 
     for (auto* v : {&m_xs, &m_ys, &m_xStar, &m_yStar, &m_uStar, &m_vStar, &m_uC, &m_vC, &m_divU,
@@ -517,6 +532,8 @@ void MpsSolver::assemblePressureEquation(double dt) {
     // the artificial compressibility C (textbook code) makes the system strictly diagonally
     // dominant, hence symmetric positive definite.
     const double a = 2.0 * kDim / (m_latL.n0 * m_latL.lambda) / m_phys.density;
+    const bool higher = m_par.model.higherOrderLaplacian;
+    const double minR = 0.5 * m_l0; // HL: the r^-3 weight is capped below half a spacing
     const double compress = m_par.pressure.compressibility / (dt * dt);
     const double gamma = m_par.pressure.relaxation;
     const double n0 = m_latN.n0;
@@ -534,7 +551,9 @@ void MpsSolver::assemblePressureEquation(double dt) {
                       [&](std::uint32_t j, double, double, double r2) {
                           if (m_surface[j] == kNotInPpe)
                               return;
-                          const double c = a * mpsWeight(std::sqrt(r2), m_reL);
+                          const double c = higher ? m_hlScale * m_reL /
+                                                        std::pow(std::max(std::sqrt(r2), minR), 3)
+                                                  : a * mpsWeight(std::sqrt(r2), m_reL);
                           diagValue += c;
                           const int cj = m_row[j];
                           if (cj < 0)

@@ -253,6 +253,7 @@ Scene parseScene(const json& j) {
         m.distributionThreshold =
             s.number("distribution_threshold", m.distributionThreshold, 0.0, 10.0, false);
         m.shifting = s.number("shifting", m.shifting, 0.0, 1.0, false);
+        m.higherOrderLaplacian = s.boolean("higher_order_laplacian", m.higherOrderLaplacian);
         if (m.shifting > 0.0 && m.surfaceTest != SurfaceTest::Distribution) {
             throw SceneError("solver.shifting",
                              "particle shifting needs solver.surface_test \"distribution\" (it "
@@ -464,6 +465,7 @@ json toJson(const Scene& sc) {
           {"sparse_threshold", s.model.sparseThreshold},
           {"distribution_threshold", s.model.distributionThreshold},
           {"shifting", s.model.shifting},
+          {"higher_order_laplacian", s.model.higherOrderLaplacian},
           {"preconditioner", std::string(toString(s.pressure.preconditioner))},
           {"ppe_tolerance", s.pressure.tolerance},
           {"ppe_max_iterations", s.pressure.maxIterations},

@@ -321,25 +321,40 @@ def replace_section(path, name, text):
         f.write(doc)
 
 
-def plot(path, title, xlabel, ylabel, series, logx=False, logy=False, annotate=None):
-    """series: [(label, xs, ys)]. Writes a PNG; returns False when matplotlib is missing."""
+def plot(path, title, xlabel, ylabel, series, logx=False, logy=False, annotate=None, legend_extra=(),
+         figsize=(6.4, 4.2), plain_x=False):
+    """series: [(label, xs, ys)] or [(label, xs, ys, style)], style: keyword arguments of
+    matplotlib's plot (color, linestyle, marker, ...) over the default "o-"; a label starting
+    with "_" stays out of the legend. legend_extra: [(label, style)], legend entries without
+    data (what a colour or a line style stands for). annotate: {label: [text per point]}.
+    plain_x: x tick labels as plain numbers, minor ticks too (a log axis within a decade or two).
+    Writes a PNG; returns False when matplotlib is missing."""
     try:
         import matplotlib
         matplotlib.use("Agg")
         import matplotlib.pyplot as plt
     except ImportError:
         return False
-    fig, ax = plt.subplots(figsize=(6.4, 4.2), dpi=100)
-    for label, xs, ys in series:
+    fig, ax = plt.subplots(figsize=figsize, dpi=100)
+    for label, xs, ys, *style in series:
         pts = [(x, y) for x, y in zip(xs, ys) if x is not None and y is not None and y == y]
         if not pts:
             continue
-        ax.plot([p[0] for p in pts], [p[1] for p in pts], "o-", label=label)
+        kw = {"marker": "o", "linestyle": "-"}
+        kw.update(style[0] if style else {})
+        line, = ax.plot([p[0] for p in pts], [p[1] for p in pts], label=label, **kw)
         if annotate:
             for (x, y), a in zip(pts, annotate.get(label, [])):
-                ax.annotate(a, (x, y), textcoords="offset points", xytext=(4, 4), fontsize=7)
+                ax.annotate(a, (x, y), textcoords="offset points", xytext=(4, 4), fontsize=7,
+                            color=line.get_color() if style else None)
+    for label, style in legend_extra:
+        ax.plot([], [], label=label, **style)
     if logx:
         ax.set_xscale("log")
+    if plain_x:
+        from matplotlib.ticker import FuncFormatter
+        for set_formatter in (ax.xaxis.set_major_formatter, ax.xaxis.set_minor_formatter):
+            set_formatter(FuncFormatter(lambda v, _: "%g" % v))
     if logy:
         ax.set_yscale("log")
     ax.set_title(title, fontsize=10)

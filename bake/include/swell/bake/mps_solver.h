@@ -123,6 +123,7 @@ private:
     LatticeConstants m_latN;
     LatticeConstants m_latL;
     double m_reN, m_reL, m_reList, m_reShort, m_collide;
+    double m_hlScale = 0.0; // higher-order Laplacian: k / rho (times re / r^3 per pair)
     double m_time = 0.0;
     long m_step = 0;
     StepStats m_stats;
