@@ -3,7 +3,7 @@
     common       helpers (running programs, machine, CSV, Markdown, marked doc sections, plots)
                  and the Context the sections share (quick flag, command log, loads, out/bench/)
     cli          the command line of tools/bench: section choice, machine.json, CSV, docs
-    bake         dam break, still tank, regular waves      -> dam_break/still_tank/regular_wave.csv
+    bake         both schemes: dam break, still tank, waves, Lobovsky -> dam_break/still_tank/regular_wave/lobovsky.csv
     replay       swell-play bench sweeps                     -> replay.csv
     fidelity     replay fidelity sweep and continuity        -> fidelity.csv, continuity.csv
     compression  encodings and filters against error         -> compression.csv

@@ -17,14 +17,14 @@ from . import bake, common as bl, compression, fidelity, render, replay, skips
 # In the order they run; each module: CSVS, SECTIONS, PLOTS, run(ctx), table(rows, m), plot(rows, dir).
 MODULES = {"bake": bake, "replay": replay, "fidelity": fidelity, "compression": compression,
            "skips": skips, "render": render}
-BAKE_PARTS = bake.CSVS  # --only dam_break, still_tank, regular_wave: one bake part
+BAKE_PARTS = bake.CSVS  # --only dam_break, still_tank, regular_wave, lobovsky: one bake part
 
 
 def parse_args(argv=None):
     ap = argparse.ArgumentParser(prog="tools/bench", description=__doc__.split("\n\n")[0].replace("\n", " "))
     ap.add_argument("--quick", action="store_true", help="fewer, shorter runs (< 10 min)")
     ap.add_argument("--only", default="",
-                    help="comma list of sections: bake (or dam_break, still_tank, regular_wave), replay, "
+                    help="comma list of sections: bake (or dam_break, still_tank, regular_wave, lobovsky), replay, "
                          "fidelity, compression, skips, render")
     ap.add_argument("--no-docs", action="store_true", help="do not rewrite docs/BENCHMARKS.md")
     ap.add_argument("--docs-only", action="store_true",
