@@ -118,8 +118,11 @@ def run_bake(case, timeout, log):
 def replay_cases(bake_cache, synth):
     c = []
     b = bake_cache
-    small = ["--frames", 20, "--warmup", 2, "--error-frames", 2, "--cpu-frames", 1]
-    big = ["--frames", 3, "--warmup", 1, "--error-frames", 1, "--cpu-frames", 0]
+    # Every frame (--window all): the cases push the replay's parameters, not the steady
+    # window (the one-frame caches have none; F = 1 spreads slices over more than the
+    # small bake's steady window).
+    small = ["--window", "all", "--frames", 20, "--warmup", 2, "--error-frames", 2, "--cpu-frames", 1]
+    big = ["--window", "all", "--frames", 3, "--warmup", 1, "--error-frames", 1, "--cpu-frames", 0]
     c += [("F at its bound (1)", b, ["-F", 1] + small, "ok"),
           ("F above its bound (1.0001)", b, ["-F", 1.0001] + small, "error"),
           ("F = 0", b, ["-F", 0] + small, "ok"),
@@ -213,10 +216,11 @@ def main():
         # The other subcommands on a cache without surface particles: finite files, no crash.
         p = synth["zero surface particles (40 frames)"]
         for label, cmd in [("heights, zero surface particles",
-                            ["heights", p, "--out", os.path.join(OUT, "h"), "--res", "16x16", "--seconds", "0.2"]),
+                            ["heights", p, "--out", os.path.join(OUT, "h"), "--res", "16x16", "--seconds", "0.2",
+                             "--window", "all"]),
                            ("render, zero surface particles",
                             ["render", p, "--out", os.path.join(OUT, "r"), "--size", "160x90", "--seconds",
-                             "0.2"])]:
+                             "0.2", "--window", "all"])]:
             r = bl.run([bl.exe("swell-play")] + cmd + ["--json"], timeout=args.timeout, log=log)
             ok = r.rc == 0 and r.json is not None
             replay_rows.append({"case": label, "expect": "ok", "wall_s": round(r.wall, 1),

@@ -62,9 +62,10 @@ Frame syntheticFrame(const SyntheticWave& w, std::size_t index) {
 }
 
 nlohmann::json syntheticReplayJson(const SyntheticWave& w) {
-    const double spacing =
-        w.surfaceCount > 1 ? static_cast<double>(w.length) / static_cast<double>(w.surfaceCount - 1)
-                           : 0.0;
+    // The surface particles' spacing; a wave of fewer than two particles has none, so it
+    // records the whole length (the replay needs a positive l0 for its envelope bins).
+    const double spacing = static_cast<double>(w.length) /
+                           static_cast<double>(std::max<std::size_t>(w.surfaceCount, 2) - 1);
     return nlohmann::json{{"water_x_min", 0.0},
                           {"water_x_max", static_cast<double>(w.length)},
                           {"still_water_level", static_cast<double>(w.depth)},
