@@ -189,6 +189,17 @@ TEST(Validation, DamBreakFrontFollowsMartinMoyceAtCiResolution) {
         (e225.mean * e225.points + e1125.mean * e1125.points) / (e225.points + e1125.points);
     RecordProperty("front_error_mean", fmt::format("{:.4f}", mean));
     EXPECT_LT(mean, 0.35) << "mean |dZ| over T in [0.8, 3.0] (bound: 0.35 a, docs/validation.md)";
+    // On the time origin tied to the first recorded front (alignedFront): measured 0.092 a mean,
+    // 0.163 a max with the default scheme (docs/validation.md section 7).
+    const AlignedFront a225 = alignedFront(run.series, martinMoyceA225());
+    const AlignedFront a1125 = alignedFront(run.series, martinMoyceA1125());
+    const int n = a225.error.points + a1125.error.points;
+    ASSERT_EQ(n, 7);
+    const double aligned =
+        (a225.error.mean * a225.error.points + a1125.error.mean * a1125.error.points) / n;
+    RecordProperty("aligned_front_error_mean", fmt::format("{:.4f}", aligned));
+    EXPECT_LT(aligned, 0.11);
+    EXPECT_LT(std::max(a225.error.max, a1125.error.max), 0.19);
     // The front must actually travel: Z(3) well past the column (Martin & Moyce: ~3.7-4.0).
     EXPECT_GT(run.series.back().Z, 3.0);
 }
@@ -250,7 +261,8 @@ TEST(Validation, LobovskyDamBreakRunsStableAtCiResolution) {
         worst = std::max(worst, e.mean / H);
     }
     RecordProperty("mean_abs_error_over_H_worst", fmt::format("{:.4f}", worst));
-    EXPECT_LT(worst, 0.15) << "worst gauge's mean |h_sim - h_exp| / H over t in [0, 1.5] s";
+    // Measured 0.078 H (default scheme, H2), 0.087 H textbook (docs/validation.md section 7).
+    EXPECT_LT(worst, 0.095) << "worst gauge's mean |h_sim - h_exp| / H over t in [0, 1.5] s";
 }
 
 namespace {
@@ -425,9 +437,10 @@ TEST(Validation, RegularWaveMatchesLinearWavemakerTheoryAtCiResolution) {
     runBake(scene, opt);
     const std::vector<ProbeSample> samples = readProbeCsv(opt.probes);
     const RegularWaveCheck c = checkRegularWave(scene, samples, regularWaveWindow(scene));
-    // Bounds (docs/validation.md): height within 15 % of Biesel at the gauge 2.5 h from the paddle,
-    // wavelength within 10 % of the dispersion relation.
-    EXPECT_NEAR(c.heightError(0), 0.0, 0.15)
+    // Bounds (docs/validation.md): height within 10 % of Biesel at the gauge 2.5 h from the
+    // paddle (measured +4.0 % with one thread, default scheme; thread counts move it by a few
+    // per cent), wavelength within 10 % of the dispersion relation (measured +5.5 %).
+    EXPECT_NEAR(c.heightError(0), 0.0, 0.10)
         << "H = " << c.heights[0] << " m, Biesel " << c.theory.height;
     EXPECT_NEAR(c.wavelengthError(), 0.0, 0.10)
         << "L = " << c.wavelength << " m, theory " << c.theory.wavelength;
