@@ -166,21 +166,8 @@ MpsSolver::MpsSolver(const PhysicsParams& physics, const SolverParams& solver, P
     m_reShort = std::min(m_reList, std::max(m_reN, m_collide) + lists.skin * m_l0);
     m_latN = latticeConstants(m_l0, m_reN);
     m_latL = latticeConstants(m_l0, m_reL);
-    {
-        // Khayyer & Gotoh (2010) higher-order Laplacian, normalized on the lattice:
-        // k sum_j (x_j^2 - 0) re / r^3 = 2 (the Laplacian of x^2), divided by rho.
-        const int reach = static_cast<int>(std::ceil(model.reLaplacian)) + 1;
-        double sum = 0.0;
-        for (int jy = -reach; jy <= reach; ++jy) {
-            for (int jx = -reach; jx <= reach; ++jx) {
-                const double r = m_l0 * std::hypot(double(jx), double(jy));
-                if ((jx == 0 && jy == 0) || r >= m_reL)
-                    continue;
-                sum += (m_l0 * jx) * (m_l0 * jx) * m_reL / (r * r * r);
-            }
-        }
-        m_hlScale = 2.0 / sum / m_phys.density;
-    }
+    // Khayyer & Gotoh (2010) higher-order Laplacian, normalized on the lattice (kernel.h).
+    m_hlScale = m_latL.higherOrderLaplacian / m_phys.density;
     m_grid.configure(m_domain, m_reList, n, lists.maxNeighbors);
 
     for (auto* v : {&m_xs, &m_ys, &m_xStar, &m_yStar, &m_uStar, &m_vStar, &m_uC, &m_vC, &m_divU,
