@@ -39,6 +39,39 @@ constexpr std::array<FrontPoint, 10> kA1125{{{0.849, 1.245},
                                              {4.961, 6.271},
                                              {5.316, 6.717}}};
 
+/// Mean, max and signed mean of sim - ref over the reference points whose time is in
+/// [tLo, tHi], the simulated series (sorted by time) linearly interpolated at each of them;
+/// `uncovered(t)` throws for a reference time outside the simulated series.
+template <class Error, class Point, class Time, class Value, class Uncovered>
+Error compareInterpolated(std::span<const Point> sim, std::span<const Point> ref, double tLo,
+                          double tHi, Time time, Value value, Uncovered uncovered) {
+    Error e;
+    for (const Point& p : ref) {
+        const double t = time(p);
+        if (t < tLo || t > tHi)
+            continue;
+        if (t < time(sim.front()) || t > time(sim.back()))
+            uncovered(t);
+        const auto hi = std::lower_bound(sim.begin(), sim.end(), t,
+                                         [&](const Point& a, double x) { return time(a) < x; });
+        const auto lo = hi == sim.begin() ? hi : hi - 1;
+        const double span = time(*hi) - time(*lo);
+        const double v = span > 0.0
+                             ? value(*lo) + (value(*hi) - value(*lo)) * (t - time(*lo)) / span
+                             : value(*hi);
+        const double d = v - value(p);
+        e.mean += std::abs(d);
+        e.meanSigned += d;
+        e.max = std::max(e.max, std::abs(d));
+        ++e.points;
+    }
+    if (e.points > 0) {
+        e.mean /= e.points;
+        e.meanSigned /= e.points;
+    }
+    return e;
+}
+
 } // namespace
 
 std::span<const FrontPoint> martinMoyceA225() {
@@ -64,30 +97,13 @@ FrontError compareFront(std::span<const FrontPoint> sim, std::span<const FrontPo
                         double tLo, double tHi) {
     if (sim.size() < 2)
         throw std::invalid_argument("compareFront: need at least two simulated points");
-    FrontError e;
-    for (const FrontPoint& p : exp) {
-        if (p.T < tLo || p.T > tHi)
-            continue;
-        if (p.T < sim.front().T || p.T > sim.back().T) {
+    return compareInterpolated<FrontError>(
+        sim, exp, tLo, tHi, [](const FrontPoint& p) { return p.T; },
+        [](const FrontPoint& p) { return p.Z; },
+        [](double) {
             throw std::invalid_argument(
                 "compareFront: the simulation does not cover the experimental times");
-        }
-        const auto hi = std::lower_bound(sim.begin(), sim.end(), p.T,
-                                         [](const FrontPoint& a, double t) { return a.T < t; });
-        const auto lo = hi == sim.begin() ? hi : hi - 1;
-        const double span = hi->T - lo->T;
-        const double z = span > 0.0 ? lo->Z + (hi->Z - lo->Z) * (p.T - lo->T) / span : hi->Z;
-        const double d = z - p.Z;
-        e.mean += std::abs(d);
-        e.meanSigned += d;
-        e.max = std::max(e.max, std::abs(d));
-        ++e.points;
-    }
-    if (e.points > 0) {
-        e.mean /= e.points;
-        e.meanSigned /= e.points;
-    }
-    return e;
+        });
 }
 
 AlignedFront alignedFront(std::span<const FrontPoint> sim, std::span<const FrontPoint> exp,
@@ -138,31 +154,14 @@ LevelError compareLevel(std::span<const LevelPoint> sim, std::span<const LevelPo
                         double tLo, double tHi) {
     if (sim.size() < 2)
         throw std::invalid_argument("compareLevel: need at least two simulated points");
-    LevelError e;
-    for (const LevelPoint& p : record) {
-        if (p.t < tLo || p.t > tHi)
-            continue;
-        if (p.t < sim.front().t || p.t > sim.back().t) {
+    return compareInterpolated<LevelError>(
+        sim, record, tLo, tHi, [](const LevelPoint& p) { return p.t; },
+        [](const LevelPoint& p) { return p.h; },
+        [&](double t) {
             throw std::invalid_argument(fmt::format(
                 "compareLevel: the simulation ({} to {} s) does not cover the record time {} s",
-                sim.front().t, sim.back().t, p.t));
-        }
-        const auto hi = std::lower_bound(sim.begin(), sim.end(), p.t,
-                                         [](const LevelPoint& a, double t) { return a.t < t; });
-        const auto lo = hi == sim.begin() ? hi : hi - 1;
-        const double span = hi->t - lo->t;
-        const double h = span > 0.0 ? lo->h + (hi->h - lo->h) * (p.t - lo->t) / span : hi->h;
-        const double d = h - p.h;
-        e.mean += std::abs(d);
-        e.meanSigned += d;
-        e.max = std::max(e.max, std::abs(d));
-        ++e.points;
-    }
-    if (e.points > 0) {
-        e.mean /= e.points;
-        e.meanSigned /= e.points;
-    }
-    return e;
+                sim.front().t, sim.back().t, t));
+        });
 }
 
 HarmonicFit fitHarmonic(std::span<const double> t, std::span<const double> v, double omega) {
