@@ -80,35 +80,28 @@ json damBreak(const Scene& scene, double tEnd, const std::string& csv) {
     if (out["outcome"] == "stable") {
         const FrontError e225 = compareFront(series, martinMoyceA225(), 0.8, 3.0);
         const FrontError e1125 = compareFront(series, martinMoyceA1125(), 0.8, 3.0);
-        const double mean =
-            (e225.mean * e225.points + e1125.mean * e1125.points) / (e225.points + e1125.points);
-        const double signedMean =
-            (e225.meanSigned * e225.points + e1125.meanSigned * e1125.points) /
-            (e225.points + e1125.points);
-        out["front_error_mean"] = mean;
-        out["front_error_max"] = std::max(e225.max, e1125.max);
-        out["front_error_mean_signed"] = signedMean;
+        const FrontError raw = pooled(e225, e1125);
+        out["front_error_mean"] = raw.mean;
+        out["front_error_max"] = raw.max;
+        out["front_error_mean_signed"] = raw.meanSigned;
         out["front_error_mean_a225"] = e225.mean;
         out["front_error_mean_a1125"] = e1125.mean;
-        out["points"] = e225.points + e1125.points;
+        out["points"] = raw.points;
         // Time origin tied to the front (alignedFront): each series shifted so that the front
-        // reaches that series' first recorded position at its T; combined like the raw figures.
+        // reaches that series' first recorded position at its T; pooled like the raw figures.
         const AlignedFront a225 = alignedFront(series, martinMoyceA225(), 0.8, 3.0);
         const AlignedFront a1125 = alignedFront(series, martinMoyceA1125(), 0.8, 3.0);
-        const int alignedPoints = a225.error.points + a1125.error.points;
-        const auto combined = [&](double v225, double v1125) {
-            return (v225 * a225.error.points + v1125 * a1125.error.points) / alignedPoints;
-        };
-        out["aligned_front_error_mean"] = combined(a225.error.mean, a1125.error.mean);
-        out["aligned_front_error_max"] = std::max(a225.error.max, a1125.error.max);
-        out["aligned_front_error_mean_signed"] =
-            combined(a225.error.meanSigned, a1125.error.meanSigned);
-        out["aligned_shift_T"] = combined(a225.shift, a1125.shift);
+        const FrontError aligned = pooled(a225.error, a1125.error);
+        out["aligned_front_error_mean"] = aligned.mean;
+        out["aligned_front_error_max"] = aligned.max;
+        out["aligned_front_error_mean_signed"] = aligned.meanSigned;
+        out["aligned_shift_T"] =
+            (a225.shift * a225.error.points + a1125.shift * a1125.error.points) / aligned.points;
         out["aligned_front_error_mean_a225"] = a225.error.mean;
         out["aligned_front_error_mean_a1125"] = a1125.error.mean;
         out["aligned_shift_T_a225"] = a225.shift;
         out["aligned_shift_T_a1125"] = a1125.shift;
-        out["aligned_points"] = alignedPoints;
+        out["aligned_points"] = aligned.points;
         json z = json::object();
         for (double T : {1.0, 2.0, 3.0}) {
             for (std::size_t k = 1; k < series.size(); ++k) {

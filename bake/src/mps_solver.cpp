@@ -471,10 +471,13 @@ void MpsSolver::numberDensityAndSurface() {
             // Paper eq. (3), the K&O 1996 free-surface condition: free surface where
             // n* < beta n0, p = 0 there; the distribution test also asks for a one-sided
             // neighbourhood unless the particle is sparse.
-            const bool oneSided = std::hypot(m_fx[i], m_fy[i]) > asymmetric;
             bool free = s < threshold;
-            if (free && distribution && s >= sparse)
-                free = oneSided;
+            bool oneSided = false;
+            if (distribution) {
+                oneSided = std::hypot(m_fx[i], m_fy[i]) > asymmetric;
+                if (free && s >= sparse)
+                    free = oneSided;
+            }
             m_surface[i] = free ? 1 : 0;
             // The surface layer for eq. (4): the free surface and, with the distribution
             // test, every one-sided neighbourhood (a crest compressed above beta n0 too).

@@ -30,6 +30,13 @@ const PistonParams& sinusoidalPiston(const Scene& scene) {
     return *scene.piston;
 }
 
+/// Phase lag (rad, in [0, 2 pi)) of a gauge with fit phase `to` behind one with `from`: the
+/// wave reaches the farther gauge later.
+double phaseLag(double from, double to) {
+    const double twoPi = 2.0 * std::numbers::pi;
+    return std::fmod(to - from + 2.0 * twoPi, twoPi);
+}
+
 /// Slope of the least-squares line through (x, y); x not all equal (distinct gauges).
 double lineSlope(std::span<const double> x, std::span<const double> y) {
     const double n = static_cast<double>(x.size());
@@ -109,7 +116,7 @@ RegularWaveCheck checkRegularWave(const Scene& scene, std::span<const ProbeSampl
     // Phase lag between the first two gauges: the wave reaches the farther one later.
     const double twoPi = 2.0 * std::numbers::pi;
     const double dx = out.gauges[1] - out.gauges[0];
-    const double lag = std::fmod(fits[1].phase - fits[0].phase + 2.0 * twoPi, twoPi);
+    const double lag = phaseLag(fits[0].phase, fits[1].phase);
     out.wavelength =
         lag > 0.0 ? twoPi * std::abs(dx) / lag : std::numeric_limits<double>::infinity();
 
@@ -127,9 +134,7 @@ RegularWaveCheck checkRegularWave(const Scene& scene, std::span<const ProbeSampl
         if (i == 0) {
             phase.push_back(fits[g].phase);
         } else {
-            const double step =
-                std::fmod(fits[g].phase - fits[order[i - 1]].phase + 2.0 * twoPi, twoPi);
-            phase.push_back(phase.back() + step);
+            phase.push_back(phase.back() + phaseLag(fits[order[i - 1]].phase, fits[g].phase));
         }
     }
     const double phaseSlope = lineSlope(xs, phase);

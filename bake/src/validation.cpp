@@ -106,6 +106,17 @@ FrontError compareFront(std::span<const FrontPoint> sim, std::span<const FrontPo
         });
 }
 
+FrontError pooled(const FrontError& a, const FrontError& b) {
+    FrontError e;
+    e.points = a.points + b.points;
+    e.max = std::max(a.max, b.max);
+    if (e.points > 0) {
+        e.mean = (a.mean * a.points + b.mean * b.points) / e.points;
+        e.meanSigned = (a.meanSigned * a.points + b.meanSigned * b.points) / e.points;
+    }
+    return e;
+}
+
 AlignedFront alignedFront(std::span<const FrontPoint> sim, std::span<const FrontPoint> exp,
                           double tLo, double tHi) {
     if (sim.size() < 2 || exp.size() < 2)

@@ -35,6 +35,9 @@ struct FrontError {
 };
 FrontError compareFront(std::span<const FrontPoint> simulated,
                         std::span<const FrontPoint> experiment, double tLo, double tHi);
+/// Two comparisons pooled (the two Martin & Moyce series): mean and signed mean weighted by
+/// their point counts, the larger max, the points added; zero when neither has points.
+FrontError pooled(const FrontError& a, const FrontError& b);
 
 /// Front comparison on a time origin tied to the front position. Martin & Moyce's t = 0 (when
 /// the gate release counts as complete) could not be found in any source we can read, so the
