@@ -442,12 +442,14 @@ void MpsSolver::numberDensityAndSurface() {
     const double sparse = model.sparseThreshold * m_latN.n0;
     const double asymmetric = model.distributionThreshold * m_latN.flatSurfaceAsymmetry;
     const double fScale = 1.0 / (m_latN.n0 * m_l0);
+    const bool shifting = model.shifting > 0.0;
     std::size_t surface = 0;
 #pragma omp parallel for schedule(static) reduction(+ : surface) if (n >= kParallelMin)
     for (std::size_t i = 0; i < n; ++i) {
         double s = 0.0;
         double div = 0.0;
         double fx = 0.0, fy = 0.0;
+        double cx = 0.0, cy = 0.0;
         forNeighbours(
             m_grid.shortNeighbors(i), m_xStar, m_yStar, i, reN2,
             [&](std::uint32_t j, double dx, double dy, double r2) {
@@ -455,6 +457,10 @@ void MpsSolver::numberDensityAndSurface() {
                 s += w;       // K&O 1996 particle number density n* = sum_j w(|r*_j - r*_i|)
                 fx += dx * w; // neighbour distribution (Khayyer, Gotoh & Shao 2009)
                 fy += dy * w;
+                if (shifting && r2 > 0.0) { // concentration gradient sum (shiftParticles)
+                    cx += dx * w / r2;
+                    cy += dy * w / r2;
+                }
                 if (mixed && m_p.kind[j] != ParticleKind::Dummy) {
                     // Divergence model: d/n0 sum (u_j - u_i).(r_j - r_i) / r^2 w
                     div +=
@@ -465,6 +471,8 @@ void MpsSolver::numberDensityAndSurface() {
         m_divU[i] = coefD * div;
         m_fx[i] = fx * fScale;
         m_fy[i] = fy * fScale;
+        m_shiftX[i] = cx;
+        m_shiftY[i] = cy;
         if (m_p.kind[i] == ParticleKind::Dummy) {
             m_surface[i] = kNotInPpe;
         } else {
@@ -680,27 +688,18 @@ void MpsSolver::correctVelocity(double dt) {
 void MpsSolver::shiftParticles() {
     // Particle shifting (Xu et al. 2009; Lind et al. 2012's Fickian form in MPS operators):
     // dr = -C l0^2 grad c with grad c_i = 2d/n0 sum_j (r_j - r_i) / r^2 w (the gradient of a
-    // uniform concentration, zero on a regular lattice), so crowded particles spread out.
+    // uniform concentration, zero on a regular lattice), so crowded particles spread out. The
+    // pair sums were taken at r* with the number density (numberDensityAndSurface).
     // Free-surface particles move only along the surface (the normal is minus their
     // neighbour distribution), so shifting neither lifts nor sinks the surface.
     const std::size_t n = m_p.size();
-    const double reN2 = m_reN * m_reN;
     const double d = m_par.model.shifting * m_l0 * m_l0 * 2.0 * kDim / m_latN.n0;
     const double maxShift = 0.2 * m_l0;
 #pragma omp parallel for schedule(static) if (n >= kParallelMin)
     for (std::size_t i = 0; i < n; ++i) {
         if (isFixed(m_p.kind[i]))
             continue;
-        double gx = 0.0, gy = 0.0;
-        forNeighbours(m_grid.shortNeighbors(i), m_p.x, m_p.y, i, reN2,
-                      [&](std::uint32_t, double dx, double dy, double r2) {
-                          if (r2 <= 0.0)
-                              return;
-                          const double f = mpsWeight(std::sqrt(r2), m_reN) / r2;
-                          gx += f * dx;
-                          gy += f * dy;
-                      });
-        double sx = -d * gx, sy = -d * gy;
+        double sx = -d * m_shiftX[i], sy = -d * m_shiftY[i];
         if (m_surface[i] == 1) {
             const double fn = std::hypot(m_fx[i], m_fy[i]);
             if (fn > 0.0) {
@@ -717,15 +716,8 @@ void MpsSolver::shiftParticles() {
             sx *= maxShift / len;
             sy *= maxShift / len;
         }
-        m_shiftX[i] = sx;
-        m_shiftY[i] = sy;
-    }
-#pragma omp parallel for schedule(static) if (n >= kParallelMin)
-    for (std::size_t i = 0; i < n; ++i) {
-        if (isFixed(m_p.kind[i]))
-            continue;
-        m_p.x[i] += m_shiftX[i];
-        m_p.y[i] += m_shiftY[i];
+        m_p.x[i] += sx;
+        m_p.y[i] += sy;
     }
 }
 

@@ -256,9 +256,11 @@ Scene parseScene(const json& j) {
         m.higherOrderLaplacian = s.boolean("higher_order_laplacian", m.higherOrderLaplacian);
         if (m.shifting > 0.0 && m.surfaceTest != SurfaceTest::Distribution) {
             throw SceneError("solver.shifting",
-                             "particle shifting needs solver.surface_test \"distribution\" (it "
-                             "moves free-surface particles along the surface normal that test "
-                             "finds)");
+                             fmt::format("particle shifting (C = {:g}) needs solver.surface_test "
+                                         "\"distribution\" (it moves free-surface particles "
+                                         "along the surface normal that test finds); set "
+                                         "solver.shifting to 0 to use another surface test",
+                                         m.shifting));
         }
         const bool corrected = s.boolean("gradient_correction", usesCorrectiveMatrix(m.gradient));
         const bool symmetric = s.boolean("symmetric_gradient", usesSymmetricPairs(m.gradient));

@@ -417,7 +417,7 @@ TEST_F(BakeDriver, SummaryReportsConservationOfCountVolumeAndEnergy) {
 }
 
 // The demo's surging scene breaks (paper Sec. 3.3.1: "breaking, merging and collision"): the
-// default scheme's bake keeps splash particles in its frames (measured 2.7 per frame, max 20;
+// default scheme's bake keeps splash particles in its frames (measured 1.9 per frame;
 // the non-breaking scene before issue 14 kept 0.24) and no water leaves the tank.
 TEST_F(BakeDriver, SurgingSmallBreaksWithSplashesAndKeepsItsWater) {
     const Scene scene = loadScene(kScenes / "surging_small.json");

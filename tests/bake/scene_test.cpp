@@ -322,10 +322,20 @@ TEST(Scene, SchemeSetsTheModelAndKeysOverrideIt) {
     EXPECT_EQ(byDefault.solver.scheme, Scheme::Swell);
     EXPECT_EQ(byDefault.solver.model.gradient, GradientModel::MinimumPressureCorrected);
     EXPECT_EQ(byDefault.solver.model.surfaceTest, SurfaceTest::Distribution);
+    EXPECT_EQ(byDefault.solver.pressure.sourceTerm, SourceTerm::Mixed);
+    EXPECT_DOUBLE_EQ(byDefault.solver.pressure.relaxation, 0.02);
+    EXPECT_DOUBLE_EQ(byDefault.solver.model.shifting, 0.02);
+    EXPECT_DOUBLE_EQ(byDefault.solver.model.collisionDistance, 0.8);
+    EXPECT_DOUBLE_EQ(byDefault.solver.model.restitution, 0.0);
     j["solver"]["scheme"] = "textbook";
     const Scene textbook = parseScene(j);
     EXPECT_EQ(textbook.solver.model.gradient, GradientModel::MinimumPressure);
     EXPECT_EQ(textbook.solver.model.surfaceTest, SurfaceTest::Density);
+    EXPECT_EQ(textbook.solver.pressure.sourceTerm, SourceTerm::Relaxed);
+    EXPECT_DOUBLE_EQ(textbook.solver.pressure.relaxation, 0.2);
+    EXPECT_DOUBLE_EQ(textbook.solver.model.shifting, 0.0);
+    EXPECT_DOUBLE_EQ(textbook.solver.model.collisionDistance, 0.5);
+    EXPECT_DOUBLE_EQ(textbook.solver.model.restitution, 0.2);
     j["solver"]["gradient_correction"] = true; // a key overrides its scheme's value
     EXPECT_EQ(parseScene(j).solver.model.gradient, GradientModel::MinimumPressureCorrected);
     EXPECT_EQ(toJson(parseScene(j))["solver"]["scheme"], "textbook");
@@ -349,4 +359,18 @@ TEST(Scene, UnknownSchemeAndUnsupportedCombinationsAreClearErrors) {
     EXPECT_EQ(errorKey(j), "<accepted>");
     j["solver"]["surface_test"] = "neighbours";
     EXPECT_EQ(errorKey(j), "solver.surface_test");
+    // The default scheme shifts: the density test alone is refused with a message that
+    // names the shifting coefficient and how to turn it off.
+    j = minimal();
+    j["solver"]["surface_test"] = "density";
+    EXPECT_EQ(errorKey(j), "solver.shifting");
+    try {
+        parseScene(j);
+    } catch (const SceneError& e) {
+        EXPECT_NE(std::string(e.what()).find("C = 0.02"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("solver.shifting to 0"), std::string::npos)
+            << e.what();
+    }
+    j["solver"]["shifting"] = 0.0;
+    EXPECT_EQ(errorKey(j), "<accepted>");
 }

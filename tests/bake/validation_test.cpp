@@ -200,14 +200,14 @@ TEST(Validation, DamBreakFrontFollowsMartinMoyceAtCiResolution) {
     RecordProperty("front_error_mean", fmt::format("{:.4f}", raw.mean));
     EXPECT_LT(raw.mean, 0.35)
         << "mean |dZ| over T in [0.8, 3.0] (bound: 0.35 a, docs/validation.md)";
-    // On the time origin tied to the first recorded front (alignedFront): measured 0.092 a mean,
-    // 0.163 a max with the default scheme (docs/validation.md section 7).
+    // On the time origin tied to the first recorded front (alignedFront): measured 0.040 a mean,
+    // 0.101 a max with the default scheme (docs/validation.md section 7).
     const FrontError aligned = pooled(alignedFront(run.series, martinMoyceA225()).error,
                                       alignedFront(run.series, martinMoyceA1125()).error);
     ASSERT_EQ(aligned.points, 7);
     RecordProperty("aligned_front_error_mean", fmt::format("{:.4f}", aligned.mean));
-    EXPECT_LT(aligned.mean, 0.11);
-    EXPECT_LT(aligned.max, 0.19);
+    EXPECT_LT(aligned.mean, 0.06);
+    EXPECT_LT(aligned.max, 0.13);
     // The front must actually travel: Z(3) well past the column (Martin & Moyce: ~3.7-4.0).
     EXPECT_GT(run.series.back().Z, 3.0);
 }
@@ -228,8 +228,8 @@ TEST(Validation, TextbookSchemeDamBreakStaysWithinItsBound) {
 // Lobovsky et al. (2014) dam break, H = 0.3 m, at CI resolution H/15 (lobovsky_small.json):
 // water height at the gauges H1..H4 (sampleProbes with the floor as level, 0 where dry) after
 // every step, compared with the records over t in [0, 1.5] s (compareLevel). Asserts only a
-// stable run and a finite worst-gauge error below a loose bound: measured 0.078 H (gauge H2,
-// default scheme; the textbook scheme: 0.087 H, H2), 2 threads, about 1 s; bound 0.15 H.
+// stable run and a worst-gauge error a little above the measured one: 0.085 H (gauge H2,
+// default scheme; the textbook scheme: 0.087 H, H2), 2 threads, about 1 s.
 TEST(Validation, LobovskyDamBreakRunsStableAtCiResolution) {
     const Scene scene = loadScene(kScenes / "lobovsky_small.json");
     const double H = scene.geometry.water.at(0).height();
@@ -267,8 +267,8 @@ TEST(Validation, LobovskyDamBreakRunsStableAtCiResolution) {
         worst = std::max(worst, e.mean / H);
     }
     RecordProperty("mean_abs_error_over_H_worst", fmt::format("{:.4f}", worst));
-    // Measured 0.078 H (default scheme, H2), 0.087 H textbook (docs/validation.md section 7).
-    EXPECT_LT(worst, 0.095) << "worst gauge's mean |h_sim - h_exp| / H over t in [0, 1.5] s";
+    // Measured 0.085 H (default scheme, H2), 0.087 H textbook (docs/validation.md section 7).
+    EXPECT_LT(worst, 0.105) << "worst gauge's mean |h_sim - h_exp| / H over t in [0, 1.5] s";
 }
 
 namespace {
@@ -322,9 +322,10 @@ StillTankResult runStillTank(Scene scene, long steps, double settle) {
 
 } // namespace
 
-// Still tank, 20,000 steps at dt = 1 ms, H = 0.1 m, l0 = H/10, default scheme ("swell": the
-// Khayyer & Gotoh corrected gradient): measured 1.010 rho g H (docs/validation.md). The
-// textbook scheme reads 1.054 at this resolution.
+// Still tank, 20,000 steps at dt = 1 ms, H = 0.1 m, l0 = H/10, water's viscosity, default
+// scheme: measured 0.987 rho g H (docs/validation.md section 7; the textbook scheme reads
+// 1.054). Max |u| after 2 s: 0.11 of sqrt(g H) (the textbook scheme and the corrected
+// gradient with the relaxed source keep churning at 0.5); the 1 % goal is not met.
 TEST(Validation, StillTankHydrostaticPressureWithTheDefaultScheme) {
     const Scene scene = loadScene(kScenes / "still_tank_small.json");
     ASSERT_EQ(scene.solver.scheme, Scheme::Swell);
@@ -332,7 +333,9 @@ TEST(Validation, StillTankHydrostaticPressureWithTheDefaultScheme) {
     EXPECT_EQ(r.steps, 20000);
     EXPECT_EQ(r.escaped, 0u);
     RecordProperty("bottom_pressure_ratio", fmt::format("{:.4f}", r.pressureRatio));
+    RecordProperty("max_speed_ratio", fmt::format("{:.4f}", r.maxSpeedRatio));
     EXPECT_NEAR(r.pressureRatio, 1.0, 0.02);
+    EXPECT_LT(r.maxSpeedRatio, 0.15);
 }
 
 // The goal is max |u| < 1 % of sqrt(g H) after settling. The textbook (p_j - p_i^min)
@@ -341,10 +344,9 @@ TEST(Validation, StillTankHydrostaticPressureWithTheDefaultScheme) {
 // at beta n0 flicker between p = 0 and p > 0 and give spikes up to 1.6-1.8 % of sqrt(g H)
 // (docs/validation.md section 3). Each case: 20,000 steps, about 22 s.
 Scene settlingStillTank() {
-    Scene scene = loadScene(kScenes / "still_tank_small.json");
-    scene.solver.model.gradient = GradientModel::Symmetric;
-    scene.solver.pressure.relaxation = 0.05;
-    return scene;
+    return loadScene(
+        kScenes / "still_tank_small.json",
+        {"solver.scheme=textbook", "solver.symmetric_gradient=true", "solver.relaxation=0.05"});
 }
 
 TEST(Validation, StillTankWithSymmetricGradientSettlesBelowThreePercentOfWaveSpeed) {
@@ -444,8 +446,8 @@ TEST(Validation, RegularWaveMatchesLinearWavemakerTheoryAtCiResolution) {
     const std::vector<ProbeSample> samples = readProbeCsv(opt.probes);
     const RegularWaveCheck c = checkRegularWave(scene, samples, regularWaveWindow(scene));
     // Bounds (docs/validation.md): height within 10 % of Biesel at the gauge 2.5 h from the
-    // paddle (measured +4.0 % with one thread, default scheme; thread counts move it by a few
-    // per cent), wavelength within 10 % of the dispersion relation (measured +5.5 %).
+    // paddle (measured +0.6 % with one thread, default scheme; thread counts move it by a few
+    // per cent), wavelength within 10 % of the dispersion relation (measured +6.9 %).
     EXPECT_NEAR(c.heightError(0), 0.0, 0.10)
         << "H = " << c.heights[0] << " m, Biesel " << c.theory.height;
     EXPECT_NEAR(c.wavelengthError(), 0.0, 0.10)

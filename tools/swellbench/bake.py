@@ -1,5 +1,6 @@
 """Bake accuracy against cost for the two MPS schemes (solver.scheme): "swell", the default
-(Khayyer & Gotoh corrected gradient + neighbour-distribution free-surface test), and
+(Khayyer & Gotoh corrected gradient, neighbour-distribution free-surface test, mixed source with
+particle shifting and inelastic collisions: docs/validation.md section 7.1), and
 "textbook" (Koshizuka & Oka 1996). Every case runs both schemes at several particle spacings:
 dam break against Martin & Moyce (raw and aligned front error), still-tank bed pressure,
 regular waves against Biesel (full: also progressive waves over three wavelengths) and the
@@ -295,8 +296,10 @@ def schemes_text():
     textbook = SCHEMES[1][0]
     return ("**Schemes.** Every case runs both MPS schemes of `solver.scheme` with the same scene, "
             "spacing and dt. Rows **%s**: the default scheme `swell` (the scenes set no scheme key): "
-            "the Khayyer & Gotoh corrected pressure gradient and the neighbour-distribution "
-            "free-surface test. Rows **%s**: Koshizuka & Oka 1996 as the textbook code has it "
+            "the Khayyer & Gotoh corrected pressure gradient, the neighbour-distribution "
+            "free-surface test, the Tanaka & Masunaga mixed source (gamma 0.02) with particle "
+            "shifting (C 0.02) and inelastic collisions from 0.8 l0 (docs/validation.md 7.1). "
+            "Rows **%s**: Koshizuka & Oka 1996 as the textbook code has it "
             "(minimum-pressure gradient, density-only surface test; the default before issue 14), "
             "run with `%s`. One thread (`--threads 1`); cost = solver time / steps / all particles "
             "(water + wall + dummy), in µs per particle-step." % (

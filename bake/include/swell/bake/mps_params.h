@@ -86,9 +86,12 @@ enum class Scheme {
     /// surface by number density alone (paper eq. (3)). Kept for comparison.
     Textbook,
     /// The default: the Khayyer & Gotoh (2011) corrected gradient (first-order consistent on
-    /// truncated neighbourhoods: surface, walls) and the neighbour-distribution free-surface
+    /// truncated neighbourhoods: surface, walls); the neighbour-distribution free-surface
     /// test, which keeps interior particles whose n* dips below beta n0 in the pressure solve
-    /// and finds the whole surface layer for the classification of eq. (4).
+    /// and finds the whole surface layer for the classification of eq. (4); the mixed source
+    /// (Tanaka & Masunaga 2010) with gamma = 0.02 and particle shifting C = 0.02 (Lind et al.
+    /// 2012), so the density noise of a disordered particle set is not turned into velocity;
+    /// fully inelastic collisions from 0.8 l0.
     Swell,
 };
 std::string_view toString(Scheme s);
@@ -159,6 +162,15 @@ inline SolverParams schemeParams(Scheme scheme) {
     if (scheme == Scheme::Swell) {
         p.model.gradient = GradientModel::MinimumPressureCorrected;
         p.model.surfaceTest = SurfaceTest::Distribution;
+        // The mixed source projects u* to zero divergence and keeps only a small density
+        // relaxation, so density noise of a disordered particle set is not kicked into the
+        // velocity every step; shifting keeps the particle set ordered instead. Collisions
+        // from 0.8 l0, fully inelastic, keep impacts (Lobovsky) stable under that source.
+        p.pressure.sourceTerm = SourceTerm::Mixed;
+        p.pressure.relaxation = 0.02;
+        p.model.shifting = 0.02;
+        p.model.collisionDistance = 0.8;
+        p.model.restitution = 0.0;
     }
     return p;
 }

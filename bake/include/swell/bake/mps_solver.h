@@ -134,7 +134,7 @@ private:
     std::vector<double> m_xStar, m_yStar, m_uStar, m_vStar; // predicted state
     std::vector<double> m_divU;             // velocity divergence (mixed source term)
     std::vector<double> m_fx, m_fy;         // neighbour distribution / (n0 l0) at r*
-    std::vector<double> m_shiftX, m_shiftY; // particle shifting displacements
+    std::vector<double> m_shiftX, m_shiftY; // shifting: sum (r_j - r_i) / r^2 w at r*
     std::vector<std::uint8_t> m_surface;    // 1 free surface (p = 0), 0 inside, kNotInPpe
     std::vector<std::uint8_t> m_layer;      // 1 on the surface layer (classification)
     std::vector<std::int32_t> m_row;        // PPE row of each particle, -1 if none
