@@ -450,6 +450,7 @@ void MpsSolver::numberDensityAndSurface() {
         double div = 0.0;
         double fx = 0.0, fy = 0.0;
         double cx = 0.0, cy = 0.0;
+        const bool shiftSums = shifting && !isFixed(m_p.kind[i]); // fixed particles never shift
         forNeighbours(
             m_grid.shortNeighbors(i), m_xStar, m_yStar, i, reN2,
             [&](std::uint32_t j, double dx, double dy, double r2) {
@@ -457,7 +458,7 @@ void MpsSolver::numberDensityAndSurface() {
                 s += w;       // K&O 1996 particle number density n* = sum_j w(|r*_j - r*_i|)
                 fx += dx * w; // neighbour distribution (Khayyer, Gotoh & Shao 2009)
                 fy += dy * w;
-                if (shifting && r2 > 0.0) { // concentration gradient sum (shiftParticles)
+                if (shiftSums && r2 > 0.0) { // concentration gradient sum (shiftParticles)
                     cx += dx * w / r2;
                     cy += dy * w / r2;
                 }
