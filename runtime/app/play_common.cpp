@@ -1,5 +1,6 @@
 #include "play_common.h"
 
+#include "swell/runtime/playback.h"
 #include "swell/runtime/replay/bake_record.h"
 
 #include <algorithm>
@@ -171,14 +172,7 @@ double tauOf(const Options& o, std::size_t i) {
 
 FrameSet loadUsed(const cache::Reader& reader, std::span<const SliceSampler> samplers,
                   const std::vector<double>& taus) {
-    FrameSet set;
-    set.header = reader.header();
-    set.frameCount = reader.frameCount();
-    set.ids = framesUsed(samplers, taus);
-    set.frames.reserve(set.ids.size());
-    for (std::uint32_t id : set.ids)
-        set.frames.push_back(reader.readFrame(id));
-    return set;
+    return readFrames(reader, framesUsed(samplers, taus));
 }
 
 /// Mean water depth of the held frames: mean surface height above the domain's bottom.
@@ -198,15 +192,7 @@ double waterDepth(const FrameSet& set) {
 void resolveAutoRes(Options& o, const cache::Header& header) {
     if (o.res != "auto")
         return;
-    const BakeRecord record = bakeRecord(header);
-    int n = 256;
-    if (record.particleSpacing > 0.0) {
-        ReplayParams p = o.params;
-        p.cellsX = 1;
-        const Grid g = makeGrid(header, p); // the x range the grid spans
-        n = static_cast<int>(std::lround(g.dx / record.particleSpacing));
-        n = std::clamp(n, 16, 4096);
-    }
+    const int n = autoCells(header, o.params);
     o.params.cellsX = o.params.cellsZ = n;
     o.res = fmt::format("{}x{}", n, n);
 }

@@ -119,7 +119,7 @@ public:
         // derived from the run's seed; they follow the mode's layout (mode_splashes.h).
         for (int d = 0; d < static_cast<int>(setup.samplers.size()); ++d)
             m_splashes.emplace_back(setup.set, m_gpu.grid(), r.splash,
-                                    sliceSetSeed(o.params.seed, d) ^ 0x5b1a54e5ULL);
+                                    splashSeed(o.params.seed, d));
     }
 
     /// Renders and writes every frame of `taus`, the contact sheet and the video.

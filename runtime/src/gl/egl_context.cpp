@@ -124,10 +124,33 @@ EglContext::~EglContext() {
 }
 
 void EglContext::makeCurrent() const {
+    if (eglGetCurrentContext() == m_context)
+        return;
     if (eglMakeCurrent(m_display, EGL_NO_SURFACE, EGL_NO_SURFACE, m_context) != EGL_TRUE) {
         throw RuntimeError(
             fmt::format("cannot make the GL context current (EGL error 0x{:x})", eglGetError()));
     }
+}
+
+} // namespace swell::runtime
+
+namespace swell::runtime {
+
+std::string requireCurrentContext() {
+    // Without a current context a GL call does nothing (libglvnd) and glGetString gives null.
+    const auto* version = reinterpret_cast<const char*>(glGetString(GL_VERSION));
+    if (version == nullptr)
+        throw RuntimeError("no GL context is current on this thread (the caller's context was "
+                           "asked for: make a GL 4.5 core context current first)");
+    GLint major = 0, minor = 0;
+    glGetIntegerv(GL_MAJOR_VERSION, &major);
+    glGetIntegerv(GL_MINOR_VERSION, &minor);
+    if (major * 10 + minor < 45)
+        throw RuntimeError(fmt::format(
+            "the current GL context is {} (GL_VERSION '{}'): the replay needs GL 4.5 with compute "
+            "shaders",
+            fmt::format("{}.{}", major, minor), version));
+    return version;
 }
 
 } // namespace swell::runtime

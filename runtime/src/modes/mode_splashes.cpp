@@ -52,4 +52,8 @@ void placeSplashes(std::vector<SplashSprite>& sprites, const Grid& grid, const M
     });
 }
 
+std::uint64_t splashSeed(std::uint64_t seed, int d) {
+    return sliceSetSeed(seed, d) ^ 0x5b1a54e5ULL;
+}
+
 } // namespace swell::runtime

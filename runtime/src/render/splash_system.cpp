@@ -1,5 +1,6 @@
 #include "swell/runtime/render/splash_system.h"
 
+#include "../json_read.h"
 #include "swell/runtime/parallel_chunks.h"
 #include "swell/runtime/split_mix64.h"
 
@@ -43,6 +44,28 @@ void SplashParams::validate() const {
         throw std::invalid_argument("splash gravity must be >= 0");
     if (sliceStride < 1)
         throw std::invalid_argument("splash slice stride must be >= 1");
+}
+
+SplashParams splashParamsFromJson(const nlohmann::json& j) {
+    using namespace json_read;
+    rejectUnknown(j,
+                  {"enabled", "artificial_per_real", "spawn_radius", "sprite_radius",
+                   "velocity_jitter", "min_speed", "min_lifetime", "max_lifetime", "gravity",
+                   "slice_stride"},
+                  "splash.", "splash");
+    SplashParams p;
+    read(j, "enabled", "splash.", p.enabled);
+    read(j, "artificial_per_real", "splash.", p.artificialPerReal);
+    read(j, "spawn_radius", "splash.", p.spawnRadius);
+    read(j, "sprite_radius", "splash.", p.spriteRadius);
+    read(j, "velocity_jitter", "splash.", p.velocityJitter);
+    read(j, "min_speed", "splash.", p.minSpeed);
+    read(j, "min_lifetime", "splash.", p.minLifetime);
+    read(j, "max_lifetime", "splash.", p.maxLifetime);
+    read(j, "gravity", "splash.", p.gravity);
+    read(j, "slice_stride", "splash.", p.sliceStride);
+    p.validate();
+    return p;
 }
 
 SplashSystem::SplashSystem(const FrameSet& frames, const Grid& grid, const SplashParams& params,

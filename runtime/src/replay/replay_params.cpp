@@ -144,12 +144,16 @@ nlohmann::json toJson(const ReplayParams& p) {
 }
 
 ReplayParams replayParamsFromJson(const nlohmann::json& j) {
+    return replayParamsFromJson(j, ReplayParams{});
+}
+
+ReplayParams replayParamsFromJson(const nlohmann::json& j, const ReplayParams& base) {
     rejectUnknown(j,
                   {"cells_x", "cells_z", "slices", "fluctuation", "time_unit_seconds", "policy",
                    "sigma", "extent_z", "seed", "noise", "extent_x", "reconstruction", "window",
                    "crossfade_seconds"},
                   "");
-    ReplayParams p;
+    ReplayParams p = base;
     read(j, "cells_x", "", p.cellsX);
     read(j, "cells_z", "", p.cellsZ);
     read(j, "slices", "", p.slices);

@@ -22,7 +22,7 @@ public:
     const std::string& version() const { return m_version; }
     /// "device" (EGL_EXT_platform_device) or "surfaceless" (EGL_MESA_platform_surfaceless).
     const std::string& platform() const { return m_platform; }
-    /// Makes this context current on the calling thread.
+    /// Makes this context current on the calling thread (nothing to do when it is).
     void makeCurrent() const;
     /// llvmpipe's rasteriser threads (LP_NUM_THREADS) when the context was made; 0 if unset
     /// (one per core) or the renderer is not llvmpipe.
@@ -36,6 +36,10 @@ private:
     std::string m_platform;
     int m_llvmpipeThreads = 0;
 };
+
+/// Checks that the calling thread has a current GL 4.5 (or later) context, e.g. an
+/// application's own; returns its GL_VERSION. Throws RuntimeError saying what is missing.
+std::string requireCurrentContext();
 
 /// Mesa's llvmpipe (the software rasteriser used where there is no GPU) sets up each draw on
 /// the calling thread and rasterises it in 64 x 64 pixel tiles on LP_NUM_THREADS threads, by

@@ -15,6 +15,7 @@
 #include "swell/runtime/render/splash_system.h"
 #include "swell/runtime/replay/replay_params.h"
 
+#include <cstdint>
 #include <vector>
 
 namespace swell::runtime {
@@ -25,5 +26,9 @@ namespace swell::runtime {
 /// ripple direction out of range.
 void placeSplashes(std::vector<SplashSprite>& sprites, const Grid& grid, const ModeParams& mode,
                    int direction, double tau);
+
+/// Seed of the artificial splashes of slice set d: a stream of its own, apart from the set's
+/// noise seed (sliceSetSeed), so the same run seed gives the same sprites everywhere.
+std::uint64_t splashSeed(std::uint64_t seed, int d);
 
 } // namespace swell::runtime

@@ -10,6 +10,7 @@
 #include "swell/runtime/replay/replay_params.h"
 
 #include <cstdint>
+#include <nlohmann/json_fwd.hpp>
 #include <span>
 #include <vector>
 
@@ -36,6 +37,11 @@ struct SplashParams {
     /// Throws std::invalid_argument naming the field.
     void validate() const;
 };
+
+/// Reads the keys present ("enabled", "artificial_per_real", "spawn_radius", "sprite_radius",
+/// "velocity_jitter", "min_speed", "min_lifetime", "max_lifetime", "gravity", "slice_stride")
+/// over the defaults, then validate(); unknown keys and wrong types throw naming "splash.KEY".
+SplashParams splashParamsFromJson(const nlohmann::json& j);
 
 /// One point sprite: world position (metres) and opacity (0..1).
 struct SplashSprite {

@@ -88,6 +88,8 @@ nlohmann::json toJson(const ReplayParams& params);
 /// Reads the keys present over the defaults, then validate(). An unknown key, a wrong type or
 /// a bad value throws std::invalid_argument naming the key.
 ReplayParams replayParamsFromJson(const nlohmann::json& j);
+/// The same over `base` instead of the defaults.
+ReplayParams replayParamsFromJson(const nlohmann::json& j, const ReplayParams& base);
 
 /// The base mesh I_XZ and the slices (Sec. 4.2). x spans [x0, x0 + N dx]: the water's recorded
 /// x range, the cache domain or an explicit range (ReplayParams::extentX);
