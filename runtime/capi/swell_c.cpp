@@ -124,9 +124,9 @@ PlaybackConfig configOf(const swell_replay_config& c) {
     }
     config.mode = swell::runtime::modeParamsFromJson(modeJson);
     if (c.cells_x < 0 || c.cells_z < 0 || (c.cells_x == 0) != (c.cells_z == 0))
-        throw std::invalid_argument(fmt::format(
-            "config.cells_x, cells_z: both > 0, or both 0 for auto; got {} x {}", c.cells_x,
-            c.cells_z));
+        throw std::invalid_argument(
+            fmt::format("config.cells_x, cells_z: both > 0, or both 0 for auto; got {} x {}",
+                        c.cells_x, c.cells_z));
     config.params.cellsX = c.cells_x;
     config.params.cellsZ = c.cells_z;
     if (c.slices < 0)
@@ -232,8 +232,8 @@ swell_status swell_replay_create(const swell_cache* cache, const swell_replay_co
         need(cache, "swell_replay_create", "cache");
         need(config, "swell_replay_create", "config");
         if (config->context != SWELL_CONTEXT_HEADLESS && config->context != SWELL_CONTEXT_CURRENT)
-            throw std::invalid_argument(fmt::format(
-                "config.context: {} is not a swell_context", static_cast<int>(config->context)));
+            throw std::invalid_argument(fmt::format("config.context: {} is not a swell_context",
+                                                    static_cast<int>(config->context)));
         PlaybackConfig playback = configOf(*config);
         auto replay = std::make_unique<swell_replay>();
         if (config->context == SWELL_CONTEXT_HEADLESS)
@@ -314,8 +314,9 @@ swell_status swell_replay_splashes(swell_replay* replay, swell_splash* out, size
         for (std::size_t i = 0; i < n; ++i)
             out[i] = swell_splash{sprites[i].x, sprites[i].y, sprites[i].z, sprites[i].alpha};
         if (capacity < sprites.size())
-            throw BufferSizeError(fmt::format(
-                "swell_replay_splashes: {} sprites, the buffer holds {}", sprites.size(), capacity));
+            throw BufferSizeError(
+                fmt::format("swell_replay_splashes: {} sprites, the buffer holds {}",
+                            sprites.size(), capacity));
     });
 }
 

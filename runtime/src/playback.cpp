@@ -108,8 +108,7 @@ const HeightField& Playback::heights() {
     return m_heights;
 }
 
-void Playback::sample(std::span<const double> x, std::span<const double> z,
-                      std::span<double> out) {
+void Playback::sample(std::span<const double> x, std::span<const double> z, std::span<double> out) {
     sampleHeights(heights(), grid(), x, z, out);
 }
 
@@ -119,7 +118,8 @@ std::vector<SplashSprite> Playback::splashes() const {
         return sprites;
     const double tau = m_seconds / m_config.params.timeUnitSeconds;
     for (std::size_t d = 0; d < m_splashes.size(); ++d) {
-        std::vector<SplashSprite> more = m_splashes[d].sprites(m_samplers[d].frames(tau), m_seconds);
+        std::vector<SplashSprite> more =
+            m_splashes[d].sprites(m_samplers[d].frames(tau), m_seconds);
         placeSplashes(more, m_gpu->grid(), m_config.mode, static_cast<int>(d), tau);
         sprites.insert(sprites.end(), more.begin(), more.end());
     }

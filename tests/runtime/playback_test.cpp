@@ -69,7 +69,8 @@ TEST_F(PlaybackTest, ShowsTheWaveTheCacheHolds) {
         for (int m = 0; m < g.cellsZ; ++m) {
             for (int n = 0; n < g.cellsX; ++n) {
                 const double x = g.x0 + (n + 0.5) * g.dx;
-                worst = std::max(worst, std::abs(h.at(n, m) - cache::syntheticHeight(s_wave, x, t)));
+                worst =
+                    std::max(worst, std::abs(h.at(n, m) - cache::syntheticHeight(s_wave, x, t)));
             }
         }
         EXPECT_LT(worst, 0.002) << "t = " << t; // amplitude 0.05 m
@@ -87,8 +88,8 @@ TEST_F(PlaybackTest, MatchesTheCpuReferenceAndHoldsOnlyTimelineFrames) {
     const std::vector<SliceSampler> samplers =
         makeSamplers(playback.config().params, playback.config().mode, playback.plan().timeline,
                      framesPerTimeUnit(reader.header(), playback.config().params));
-    const CpuModeReference cpu(playback.frames(), playback.config().params,
-                               playback.config().mode, samplers);
+    const CpuModeReference cpu(playback.frames(), playback.config().params, playback.config().mode,
+                               samplers);
     for (const double t : {0.0, 0.77, 3.1, 40.0}) { // 40 s: far past the cache's 4.8 s (loops)
         playback.advance(t);
         const HeightField& gpu = playback.heights();

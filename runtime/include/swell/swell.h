@@ -68,11 +68,11 @@ typedef struct swell_replay swell_replay;
 /* What a cache holds. */
 typedef struct swell_cache_info {
     size_t frame_count;
-    double frame_seconds;          /* simulated seconds between frames */
-    double x_min, x_max;           /* domain, metres (x: propagation, y: up) */
+    double frame_seconds; /* simulated seconds between frames */
+    double x_min, x_max;  /* domain, metres (x: propagation, y: up) */
     double y_min, y_max;
-    double particle_spacing;       /* l0 of the bake, metres (0: not recorded) */
-    double steady_start_seconds;   /* first steady frame's time (0: not recorded) */
+    double particle_spacing;     /* l0 of the bake, metres (0: not recorded) */
+    double steady_start_seconds; /* first steady frame's time (0: not recorded) */
 } swell_cache_info;
 
 /* A replay's settings. Start from swell_replay_config_default(), then change fields. */
@@ -125,8 +125,7 @@ SWELL_API void swell_replay_config_default(swell_replay_config* config);
 /* Plans the timeline, decodes the frames it can show and uploads them (takes a while on
  * long caches). */
 SWELL_API swell_status swell_replay_create(const swell_cache* cache,
-                                           const swell_replay_config* config,
-                                           swell_replay** out);
+                                           const swell_replay_config* config, swell_replay** out);
 /* NULL is allowed. With SWELL_CONTEXT_CURRENT the caller's context must still be current. */
 SWELL_API void swell_replay_destroy(swell_replay* replay);
 SWELL_API swell_status swell_replay_grid(const swell_replay* replay, swell_grid* out);
@@ -141,8 +140,8 @@ SWELL_API swell_status swell_replay_finish(swell_replay* replay);
 SWELL_API swell_status swell_replay_heights(swell_replay* replay, float* heights, size_t count);
 /* Heights at `count` points (x[i], z[i]) in metres: bilinear between cell centres, NaN
  * outside the mesh. For buoyancy and other gameplay queries. */
-SWELL_API swell_status swell_replay_sample(swell_replay* replay, const double* x,
-                                           const double* z, size_t count, double* heights);
+SWELL_API swell_status swell_replay_sample(swell_replay* replay, const double* x, const double* z,
+                                           size_t count, double* heights);
 /* The splash sprites at the current time. `*count` receives how many there are. With
  * out == NULL (and capacity 0) that is all; else up to `capacity` are copied into `out`, and
  * the call returns SWELL_ERROR_BUFFER_SIZE when capacity < *count (the first `capacity` are
