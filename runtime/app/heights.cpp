@@ -35,7 +35,8 @@ public:
         cmd->add_flag("--blender-disp", m_sequence.displacement,
                       "also disp_NNNN.exr from disp_0001 (Blender frame 1), the layout of "
                       "Blender's Ocean bake: R G B = x y z displacement (m, y up), G = height - "
-                      "still-water level; ZIP; half with exr-half, else float");
+                      "the bake's still-water level (else y = 0); ZIP; half with exr-half, else "
+                      "float");
         return cmd;
     }
 

@@ -28,10 +28,9 @@ double msSince(Clock::time_point t0) {
 
 void addHeightFormatOption(CLI::App* cmd, std::string& value, const std::string& name) {
     cmd->add_option(name, value,
-                    fmt::format("height maps: png16 (16-bit greyscale height_NNNNN.png, scaled to "
-                                "the domain), exr-half or exr-float (height_NNNNN.exr, one "
-                                "channel Y in metres, ZIP); one of {}",
-                                kHeightFormatNames))
+                    "height maps: png16 (16-bit greyscale height_NNNNN.png, scaled to the "
+                    "domain), exr-half or exr-float (height_NNNNN.exr: one channel Y, metres, "
+                    "ZIP)")
         ->capture_default_str();
 }
 
