@@ -1,16 +1,16 @@
-// swell-play heights: the replay's height fields as 16-bit PNGs with a JSON sidecar (scale,
-// grid, every parameter and the seed).
+// swell-play heights: the replay's height fields as 16-bit PNGs or OpenEXR, optionally normal
+// maps and Blender's displacement sequence, with a JSON sidecar (format, scale, grid, frames,
+// every parameter and the seed): height_sequence.h.
 
 #include "command.h"
 #include "play_common.h"
 
 #include "swell/runtime/gl/egl_context.h"
-#include "swell/runtime/io/height_png.h"
+#include "swell/runtime/io/height_sequence.h"
 #include "swell/runtime/modes/mode_replay.h"
 
 #include <filesystem>
 #include <fmt/format.h>
-#include <fstream>
 #include <iostream>
 
 namespace swell::play {
@@ -21,17 +21,29 @@ using namespace swell::runtime;
 class HeightsCommand : public Command {
 public:
     CLI::App* add(CLI::App& app) override {
-        CLI::App* cmd = app.add_subcommand("heights", "write height fields (16-bit PNG + JSON)");
+        CLI::App* cmd = app.add_subcommand(
+            "heights", "write height fields (16-bit PNG or OpenEXR; normal maps, Blender "
+                       "displacement) + JSON");
         addCommon(cmd, m_o);
         cmd->add_option("--out", m_outDir, "output folder")->required();
         cmd->add_option("--seconds", m_seconds, "simulated seconds to write")
             ->capture_default_str();
+        addHeightFormatOption(cmd, m_format, "--format");
+        cmd->add_flag("--normals", m_sequence.normals,
+                      "also normal_NNNNN.exr: unit normals, R G B = x y z (world space, y up, "
+                      "-1..1); half with exr-half, else float");
+        cmd->add_flag("--blender-disp", m_sequence.displacement,
+                      "also disp_NNNN.exr from disp_0001 (Blender frame 1), the layout of "
+                      "Blender's Ocean bake: R G B = x y z displacement (m, y up), G = height - "
+                      "the bake's still-water level (else y = 0); ZIP; half with exr-half, else "
+                      "float");
         return cmd;
     }
 
     int run() override {
         finishOptions(m_o);
         checkSeconds(m_seconds);
+        m_sequence.format = parseHeightFormat(m_format, "--format");
         const cache::Reader reader(m_o.cache);
         resolveAutoRes(m_o, reader.header());
         const std::vector<double> taus = outputTaus(m_o, m_seconds);
@@ -39,24 +51,19 @@ public:
         std::filesystem::create_directories(m_outDir);
         const EglContext context;
         ModeReplay gpu(setup.set, m_o.params, m_o.modeParams, setup.samplers);
-        const HeightScale scale = heightScale(setup.set.header.domain);
-        json frames = json::array();
+        HeightSequence sequence(m_outDir, m_sequence, heightScale(setup.set.header.domain),
+                                gpu.grid(), displacementReference(setup));
         Progress progress("swell-play heights", taus.size(), !m_o.json);
         for (std::size_t i = 0; i < taus.size(); ++i) {
             gpu.update(taus[i]);
-            const std::string name = fmt::format("height_{:05d}.png", i);
-            writeHeightPng(std::filesystem::path(m_outDir) / name, gpu.readHeights(), scale);
-            frames.push_back({{"file", name}, {"tau", taus[i]}, {"seconds", secondsOf(m_o, i)}});
+            sequence.write(i, gpu.readHeights(), taus[i], secondsOf(m_o, i));
             progress.step(i);
         }
         progress.done();
-        const auto metaPath = std::filesystem::path(m_outDir) / "heights.json";
-        std::ofstream(metaPath) << heightsSidecar(paramsJson(m_o, setup), scale, gpu.grid(),
-                                                  context.renderer(), frames)
-                                       .dump(2)
-                                << "\n";
+        const auto metaPath = sequence.writeSidecar(paramsJson(m_o, setup), context.renderer());
         if (m_o.json) {
             std::cout << json{{"out", m_outDir},
+                              {"format", heightFormatName(m_sequence.format)},
                               {"count", taus.size()},
                               {"frames_decoded", setup.set.ids.size()},
                               {"renderer", context.renderer()},
@@ -66,9 +73,11 @@ public:
                       << "\n";
         } else {
             std::cout << fmt::format(
-                "swell-play heights: {} frames ({}x{}) in {}, metadata {} ({})\n", taus.size(),
-                m_o.params.cellsX, m_o.params.cellsZ, m_outDir, metaPath.string(),
-                context.renderer());
+                "swell-play heights: {} frames ({}x{}, {}{}{}) in {}, metadata {} ({})\n",
+                taus.size(), m_o.params.cellsX, m_o.params.cellsZ,
+                heightFormatName(m_sequence.format), m_sequence.normals ? ", normals" : "",
+                m_sequence.displacement ? ", Blender displacement" : "", m_outDir,
+                metaPath.string(), context.renderer());
         }
         return 0;
     }
@@ -77,6 +86,8 @@ private:
     Options m_o;
     std::string m_outDir;
     double m_seconds = 2.0;
+    std::string m_format = "png16";  ///< --format, parsed into m_sequence.format by run()
+    HeightSequenceParams m_sequence; ///< what is written per frame
 };
 
 } // namespace

@@ -26,6 +26,14 @@ double msSince(Clock::time_point t0) {
     return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
 }
 
+void addHeightFormatOption(CLI::App* cmd, std::string& value, const std::string& name) {
+    cmd->add_option(name, value,
+                    "height maps: png16 (16-bit greyscale height_NNNNN.png, scaled to the "
+                    "domain), exr-half or exr-float (height_NNNNN.exr: one channel Y, metres, "
+                    "ZIP)")
+        ->capture_default_str();
+}
+
 void addCommon(CLI::App* cmd, Options& o) {
     cmd->add_option("CACHE", o.cache, "input .swell cache")->required();
     cmd->add_option("--mode", o.mode,
@@ -187,6 +195,13 @@ double waterDepth(const FrameSet& set) {
     const double bottom = set.header.domain.yMin;
     return count > 0 ? sum / static_cast<double>(count) - bottom
                      : static_cast<double>(set.header.domain.yMax) - bottom;
+}
+
+ReferenceLevel displacementReference(const ReplaySetup& setup) {
+    const double still = setup.plan.record.stillWaterLevel;
+    if (std::isfinite(still))
+        return {still, "still_water_level: the still-water surface the bake recorded"};
+    return {0.0, "y = 0: the cache records no still-water level (G is the height itself)"};
 }
 
 void resolveAutoRes(Options& o, const cache::Header& header) {

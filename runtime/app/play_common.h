@@ -4,6 +4,7 @@
 
 #include "swell/cache/reader.h"
 #include "swell/runtime/io/height_png.h"
+#include "swell/runtime/io/height_sequence.h"
 #include "swell/runtime/modes/mode_params.h"
 #include "swell/runtime/replay/frame_set.h"
 #include "swell/runtime/replay/replay_params.h"
@@ -50,6 +51,9 @@ struct Options {
 };
 
 void addCommon(CLI::App* cmd, Options& o);
+/// The height-map format option `name` (heights --format, render --heights-format): one of
+/// runtime::kHeightFormatNames, parsed by runtime::parseHeightFormat when the command runs.
+void addHeightFormatOption(CLI::App* cmd, std::string& value, const std::string& name);
 /// Resolves the string options into o.params and validates everything.
 void finishOptions(Options& o);
 /// With --res auto, sets the grid from the cache (see Options::res); else nothing.
@@ -112,6 +116,9 @@ runtime::FrameSet loadUsed(const cache::Reader& reader,
 
 /// Mean water depth of the held frames: mean surface height above the domain's bottom.
 double waterDepth(const runtime::FrameSet& set);
+/// The level the Blender displacement sequence is measured from: the still-water level the
+/// bake recorded (bake_record.h), else y = 0 (the displacement is then the height itself).
+runtime::ReferenceLevel displacementReference(const ReplaySetup& setup);
 /// Every parameter, the seed, the grid and the timeline (window, loop points) of a replay.
 json paramsJson(const Options& o, const ReplaySetup& setup);
 double percentile(std::vector<double> v, double q);

@@ -9,7 +9,7 @@
 #include "swell/runtime/error.h"
 #include "swell/runtime/gl/egl_context.h"
 #include "swell/runtime/io/exporters.h"
-#include "swell/runtime/io/height_png.h"
+#include "swell/runtime/io/height_sequence.h"
 #include "swell/runtime/modes/mode_replay.h"
 #include "swell/runtime/modes/mode_splashes.h"
 #include "swell/runtime/render/splash_system.h"
@@ -33,7 +33,7 @@ struct RenderOptions {
     std::string size = "1280x720"; ///< image width x height
     double seconds = 3.0;          ///< simulated seconds to render
     std::string video;             ///< mp4 to encode with ffmpeg (empty: none)
-    std::string exports;           ///< comma list: heights, mesh, splashes
+    std::string exports;           ///< comma list: heights, normals, blender-disp, mesh, splashes
     std::string skyDir;            ///< folder with px, nx, py, ny, pz, nz .png (empty: procedural)
     std::vector<double> eye;       ///< camera position x y z (empty: default framing)
     std::vector<double> target;    ///< camera target x y z (empty: default framing)
@@ -44,8 +44,10 @@ struct RenderOptions {
     ShadingParams shading;         ///< shading (size and samples are set from the options)
     SplashParams splash;           ///< splash particles (Sec. 5)
     SkyParams sky;                 ///< procedural sky and sun
+    std::string heightsFormat = "png16"; ///< --heights-format: png16, exr-half, exr-float
     // Resolved by finish():
     bool exportHeights = false, exportMesh = false, exportSplashes = false;
+    HeightSequenceParams heights; ///< what heights/ holds (normals, displacement, format)
 
     /// Checks and resolves the string options; throws std::invalid_argument naming the option.
     void finish() {
@@ -66,18 +68,24 @@ struct RenderOptions {
         for (std::size_t start = 0; start < exports.size();) {
             const std::size_t end = std::min(exports.find(',', start), exports.size());
             const std::string item = exports.substr(start, end - start);
-            bool* flag = item == "heights"    ? &exportHeights
-                         : item == "mesh"     ? &exportMesh
-                         : item == "splashes" ? &exportSplashes
-                                              : nullptr;
+            bool* flag = item == "heights"        ? &exportHeights
+                         : item == "normals"      ? &heights.normals
+                         : item == "blender-disp" ? &heights.displacement
+                         : item == "mesh"         ? &exportMesh
+                         : item == "splashes"     ? &exportSplashes
+                                                  : nullptr;
             if (flag == nullptr && !item.empty()) {
-                throw std::invalid_argument(
-                    fmt::format("--export takes heights, mesh, splashes; got '{}'", item));
+                throw std::invalid_argument(fmt::format(
+                    "--export takes heights, normals, blender-disp, mesh, splashes; got '{}'",
+                    item));
             }
             if (flag != nullptr)
                 *flag = true;
             start = end + 1;
         }
+        // Normal maps and the displacement go into heights/ with the height maps they belong to.
+        exportHeights = exportHeights || heights.normals || heights.displacement;
+        heights.format = parseHeightFormat(heightsFormat, "--heights-format");
         if (eye.empty() != target.empty())
             throw std::invalid_argument("--camera and --target go together");
         if (!video.empty() && video.find(".mp4") == std::string::npos)
@@ -114,7 +122,8 @@ public:
           m_gpu(setup.set, o.params, o.modeParams, setup.samplers), m_camera(makeCamera()),
           m_renderer(m_gpu.grid(), setup.set.header.domain, r.shading, m_faces,
                      sunDirection(r.sky)),
-          m_scale(heightScale(setup.set.header.domain)) {
+          m_heights(m_out / "heights", r.heights, heightScale(setup.set.header.domain),
+                    m_gpu.grid(), displacementReference(setup)) {
         // The artificial splashes get their own stream per slice set (the ripple's directions),
         // derived from the run's seed; they follow the mode's layout (mode_splashes.h).
         for (int d = 0; d < static_cast<int>(setup.samplers.size()); ++d)
@@ -153,21 +162,9 @@ public:
         meta.update(timingRecord());
         meta["frames"] = m_frames;
         std::ofstream(m_out / "render.json") << meta.dump(2) << "\n";
-        if (m_r.exportHeights) {
-            // The sidecar `swell-play heights` writes, so tools read either folder the same way.
-            json heightFrames = json::array();
-            for (const json& f : m_frames) {
-                heightFrames.push_back(
-                    {{"file", fs::path(f["heights"].get<std::string>()).filename().string()},
-                     {"tau", f["tau"]},
-                     {"seconds", f["seconds"]}});
-            }
-            std::ofstream(m_out / "heights" / "heights.json")
-                << heightsSidecar(paramsJson(m_o, m_setup), m_scale, m_gpu.grid(),
-                                  m_context.renderer(), heightFrames)
-                       .dump(2)
-                << "\n";
-        }
+        // The sidecar `swell-play heights` writes, so tools read either folder the same way.
+        if (m_r.exportHeights)
+            m_heights.writeSidecar(paramsJson(m_o, m_setup), m_context.renderer());
         return meta;
     }
 
@@ -273,8 +270,13 @@ private:
         entry["flat_rows"] = flatRows(field);
         const std::string what = fmt::format("frame {}, t = {} s", i, seconds);
         if (m_r.exportHeights) {
-            entry["heights"] = fmt::format("heights/height_{:05d}.png", i);
-            writeHeightPng(m_out / entry["heights"].get<std::string>(), field, m_scale);
+            const json& written = m_heights.write(i, field, tau, seconds);
+            for (const auto& [key, name] :
+                 {std::pair{"file", "heights"}, std::pair{"normals", "normals"},
+                  std::pair{"disp", "disp"}}) {
+                if (written.contains(key))
+                    entry[name] = "heights/" + written[key].get<std::string>();
+            }
         }
         if (m_r.exportMesh) {
             entry["mesh"] = fmt::format("mesh/surface_{:05d}.ply", i);
@@ -367,14 +369,17 @@ private:
                   {"culled_under_water_mean", static_cast<double>(m_totals.culled) / n}}},
                 {"exports",
                  {{"heights", r.exportHeights},
+                  {"heights_format", heightFormatName(r.heights.format)},
+                  {"normals", r.heights.normals},
+                  {"blender_disp", r.heights.displacement},
                   {"mesh", r.exportMesh},
                   {"splashes", r.exportSplashes}}},
                 {"height_scale",
-                 {{"offset", m_scale.offset},
-                  {"scale", m_scale.scale},
+                 {{"offset", m_heights.scale().offset},
+                  {"scale", m_heights.scale().scale},
                   {"units", "m"},
-                  {"format", "16-bit greyscale PNG; height_m = offset + value * scale; "
-                             "column n = x cell (x = x0 + (n + 0.5) dx), row m = z cell"}}},
+                  {"format", m_heights.formatDescription() +
+                                 "; column n = x cell (x = x0 + (n + 0.5) dx), row m = z cell"}}},
                 {"x0", m_gpu.grid().x0},
                 {"dx", m_gpu.grid().dx},
                 {"dz", m_gpu.grid().dz},
@@ -417,7 +422,7 @@ private:
     ModeReplay m_gpu;
     Camera m_camera;
     WaterRenderer m_renderer;
-    HeightScale m_scale;
+    HeightSequence m_heights; ///< heights/ (written with --export heights)
     std::vector<SplashSystem> m_splashes;
     std::vector<Image> m_sheet;
     json m_frames = json::array();
@@ -473,8 +478,11 @@ private:
             ->capture_default_str();
         cmd->add_option("--video", r.video, "also encode FILE.mp4 with ffmpeg (when installed)");
         cmd->add_option("--export", r.exports,
-                        "per-frame exports, comma list of: heights (16-bit PNG + JSON), mesh "
-                        "(PLY), splashes (PLY)");
+                        "per-frame exports, comma list of: heights (heights/: 16-bit PNG or EXR, "
+                        "see --heights-format, + JSON), normals (heights/normal_NNNNN.exr), "
+                        "blender-disp (heights/disp_NNNN.exr, Blender's Ocean-cache layout), "
+                        "mesh (PLY), splashes (PLY)");
+        addHeightFormatOption(cmd, r.heightsFormat, "--heights-format");
         cmd->add_option("--samples", r.shading.samples, "multisampling (1: off)")
             ->capture_default_str();
         cmd->add_option("--camera", r.eye,

@@ -1,5 +1,6 @@
 #include "swell/runtime/io/height_png.h"
 
+#include "swell/runtime/io/atomic_write.h"
 #include "swell/runtime/io/image_io.h"
 
 #include <algorithm>
@@ -17,7 +18,9 @@ void writeHeightPng(const std::filesystem::path& path, const HeightField& field,
         samples[2 * i] = static_cast<std::uint8_t>(q >> 8); // PNG is big-endian
         samples[2 * i + 1] = static_cast<std::uint8_t>(q & 0xff);
     }
-    writePngRaw(path, field.cellsX, field.cellsZ, PngLayout::Gray16, samples.data());
+    writeAtomically(path, [&](const std::filesystem::path& temporary) {
+        writePngRaw(temporary, field.cellsX, field.cellsZ, PngLayout::Gray16, samples.data());
+    });
 }
 
 HeightField readHeightPng(const std::filesystem::path& path, const HeightScale& scale) {
@@ -30,21 +33,6 @@ HeightField readHeightPng(const std::filesystem::path& path, const HeightScale& 
         out.heights[i] = scale.offset + q * scale.scale;
     }
     return out;
-}
-
-nlohmann::json heightsSidecar(nlohmann::json params, const HeightScale& scale, const Grid& grid,
-                              const std::string& renderer, nlohmann::json frames) {
-    const std::size_t count = frames.size();
-    params.update({{"renderer", renderer},
-                   {"format", "16-bit greyscale PNG; height_m = offset + value * scale"},
-                   {"scale", {{"offset", scale.offset}, {"scale", scale.scale}, {"units", "m"}}},
-                   {"layout", "column n = x cell (x = x0 + (n + 0.5) dx), row m = z cell"},
-                   {"x0", grid.x0},
-                   {"dx", grid.dx},
-                   {"dz", grid.dz},
-                   {"count", count},
-                   {"frames", std::move(frames)}});
-    return params;
 }
 
 } // namespace swell::runtime

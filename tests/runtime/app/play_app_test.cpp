@@ -1,5 +1,7 @@
 // End to end: swell-play on a small cache written with swell::cache::Writer.
 #include "swell/cache/writer.h"
+#include "swell/runtime/io/height_exr.h"
+#include "swell/runtime/io/height_png.h"
 
 #include "app_runner.h"
 #include "synthetic_frames.h"
@@ -208,6 +210,89 @@ TEST_F(PlayApp, HeightsSpanTheWaterAndStartInTheSteadyWindow) {
     EXPECT_GT(meta["timeline"]["loop"]["out_frame"].get<int>(), in);
     EXPECT_TRUE(meta["bake_record"]["recorded"].get<bool>());
     EXPECT_EQ(meta["params"]["reconstruction"], "envelope");
+}
+
+TEST_F(PlayApp, HeightsAsOpenExrMatchThePng16ExportWithNormalsAndBlenderDisplacement) {
+    // The same replay written twice: 16-bit PNG, and float EXR with normals and displacement.
+    const fs::path c = recordedCache(s_dir, "exr.swell", 1.0); // still water at 0.5 m
+    const fs::path png = s_dir / "exr_png16", exr = s_dir / "exr_float";
+    const std::string common = " --res 40x24 --slices 64 --time-unit 1 --seconds 0.2 --fps 20 "
+                               "--seed 4 --json";
+    ASSERT_EQ(run("heights " + c.string() + " --out " + png.string() + common).code, 0);
+    const Result r = run("heights " + c.string() + " --out " + exr.string() + common +
+                         " --format exr-float --normals --blender-disp");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_EQ(nlohmann::json::parse(r.out)["format"], "exr-float");
+    const nlohmann::json pngMeta = nlohmann::json::parse(slurp(png / "heights.json"));
+    const nlohmann::json meta = nlohmann::json::parse(slurp(exr / "heights.json"));
+    const HeightScale scale{pngMeta["scale"]["offset"].get<double>(),
+                            pngMeta["scale"]["scale"].get<double>()};
+    EXPECT_EQ(meta["height_format"], "exr-float");
+    EXPECT_EQ(meta["exr"]["channel"], "Y");
+    EXPECT_EQ(meta["scale"]["scale"], 1.0);
+    EXPECT_EQ(meta["cells"], nlohmann::json({40, 24}));
+    EXPECT_EQ(meta["count"], 4);
+    EXPECT_EQ(meta["displacement"]["reference_level_m"], test::kSyntheticDepth);
+    EXPECT_NE(meta["displacement"]["reference"].get<std::string>().find("still_water_level"),
+              std::string::npos);
+    for (int i = 0; i < 4; ++i) {
+        const std::string n = std::to_string(i);
+        const HeightField p = readHeightPng(png / ("height_0000" + n + ".png"), scale);
+        const HeightField e = readHeightExr(exr / ("height_0000" + n + ".exr"));
+        ASSERT_EQ(e.cellsX, 40);
+        ASSERT_EQ(e.cellsZ, 24);
+        // The PNG rounds to its step; the EXR holds the GPU's floats.
+        for (std::size_t k = 0; k < e.heights.size(); ++k)
+            ASSERT_NEAR(e.heights[k], p.heights[k], 0.5 * scale.scale + 1e-7) << i << ": " << k;
+        EXPECT_EQ(meta["frames"][i]["disp"], "disp_000" + std::to_string(i + 1) + ".exr");
+        // Blender's displacement: height above the still water in G, nothing in R and B.
+        const ExrImage d = readExr(exr / meta["frames"][i]["disp"].get<std::string>());
+        for (int m = 0; m < 24; m += 5) {
+            for (int x = 0; x < 40; x += 7) {
+                EXPECT_NEAR(d.at(x, m, d.channel("G")), e.at(x, m) - test::kSyntheticDepth, 1e-6);
+                EXPECT_EQ(d.at(x, m, d.channel("R")), 0.0f);
+                EXPECT_EQ(d.at(x, m, d.channel("B")), 0.0f);
+            }
+        }
+    }
+    EXPECT_FALSE(fs::exists(exr / "disp_0000.exr"));
+    EXPECT_FALSE(fs::exists(exr / "disp_0005.exr"));
+    // The normals are those of the written heights on the recorded grid.
+    const HeightField e = readHeightExr(exr / "height_00003.exr");
+    const std::vector<double> want =
+        surfaceNormals(e, meta["dx"].get<double>(), meta["dz"].get<double>());
+    const ExrImage normals = readExr(exr / meta["frames"][3]["normals"].get<std::string>());
+    for (std::size_t k = 0; k < want.size(); ++k) {
+        const int cell = static_cast<int>(k / 3);
+        const char* channel = k % 3 == 0 ? "R" : k % 3 == 1 ? "G" : "B";
+        ASSERT_NEAR(normals.at(cell % 40, cell / 40, normals.channel(channel)), want[k], 1e-6);
+    }
+    for (const auto& file : fs::directory_iterator(exr))
+        EXPECT_EQ(file.path().string().find(".tmp-"), std::string::npos) << file.path();
+}
+
+TEST_F(PlayApp, HeightsFormatErrorsNameTheOptionOrTheFileAndExitNonZero) {
+    // A bad --format lists the valid ones and writes nothing.
+    const fs::path none = s_dir / "bad_format";
+    Result r = run("heights " + cachePath() + " --out " + none.string() +
+                   " --res 16x16 --slices 8 --seconds 0.05 --format exr");
+    EXPECT_NE(r.code, 0);
+    EXPECT_NE(r.err.find("swell-play: --format takes png16, exr-half or exr-float; got 'exr'"),
+              std::string::npos)
+        << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_FALSE(fs::exists(none));
+    // A file that cannot be written (a folder stands in its place) is named.
+    const fs::path blocked = s_dir / "blocked";
+    fs::create_directories(blocked / "height_00000.exr");
+    r = run("heights " + cachePath() + " --out " + blocked.string() +
+            " --res 16x16 --slices 8 --seconds 0.05 --format exr-half");
+    EXPECT_NE(r.code, 0);
+    EXPECT_NE(r.err.find("swell-play: cannot write " + (blocked / "height_00000.exr").string()),
+              std::string::npos)
+        << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_FALSE(fs::exists(blocked / "heights.json"));
 }
 
 TEST_F(PlayApp, AutoResolutionIsOneCellPerParticleSpacing) {

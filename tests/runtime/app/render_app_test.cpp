@@ -2,6 +2,7 @@
 // frames, so the whole file runs in a few seconds on llvmpipe).
 #include "swell/cache/writer.h"
 #include "swell/runtime/io/exporters.h"
+#include "swell/runtime/io/height_exr.h"
 #include "swell/runtime/io/height_png.h"
 #include "swell/runtime/io/image_io.h"
 
@@ -111,6 +112,38 @@ TEST_F(RenderApp, WritesFramesContactSheetSidecarAndExports) {
     EXPECT_EQ(meta["frames"][1]["splash_sprites"].get<std::size_t>(), splashes.vertices.size() / 4);
 }
 
+TEST_F(RenderApp, ExportsHalfExrHeightsNormalsAndBlenderDisplacementIntoHeights) {
+    // normals and blender-disp bring the height maps along, in the --heights-format.
+    const fs::path out = s_dir / "exr";
+    const Result r = run("render " + cache() + " --out " + out.string() + kSmall +
+                         " --no-splashes --export mesh,normals,blender-disp --heights-format "
+                         "exr-half --json");
+    ASSERT_EQ(r.code, 0) << r.err;
+    const nlohmann::json meta = nlohmann::json::parse(slurp(out / "render.json"));
+    EXPECT_TRUE(meta["exports"]["heights"].get<bool>());
+    EXPECT_EQ(meta["exports"]["heights_format"], "exr-half");
+    EXPECT_TRUE(meta["exports"]["blender_disp"].get<bool>());
+    EXPECT_EQ(meta["height_scale"]["scale"], 1.0);
+    EXPECT_EQ(meta["frames"][1]["heights"], "heights/height_00001.exr");
+    EXPECT_EQ(meta["frames"][1]["normals"], "heights/normal_00001.exr");
+    EXPECT_EQ(meta["frames"][1]["disp"], "heights/disp_0002.exr");
+    const nlohmann::json heightsMeta =
+        nlohmann::json::parse(slurp(out / "heights" / "heights.json"));
+    EXPECT_EQ(heightsMeta["height_format"], "exr-half");
+    EXPECT_EQ(heightsMeta["frames"][1]["disp"], "disp_0002.exr");
+    EXPECT_EQ(heightsMeta["displacement"]["reference_level_m"], 0.0); // no record: y = 0
+    const ExrImage image = readExr(out / "heights" / "height_00001.exr");
+    EXPECT_EQ(image.types, std::vector<std::string>{"half"});
+    // The same surface as the mesh, within half precision (2^-11 relative).
+    const HeightField h = readHeightExr(out / "heights" / "height_00001.exr");
+    const PlyData mesh = readPly(out / "mesh" / "surface_00001.ply");
+    ASSERT_EQ(mesh.vertices.size(), h.heights.size() * 3);
+    for (std::size_t i = 0; i < h.heights.size(); ++i)
+        EXPECT_NEAR(mesh.vertices[3 * i + 1], h.heights[i], h.heights[i] / 2048.0 + 1e-7);
+    EXPECT_TRUE(fs::exists(out / "heights" / "disp_0004.exr"));
+    EXPECT_TRUE(fs::exists(out / "heights" / "normal_00003.exr"));
+}
+
 TEST_F(RenderApp, SameSeedSameFramesOtherSeedOtherFrames) {
     const std::string args = kSmall + std::string(" --json --splash-count 3");
     ASSERT_EQ(
@@ -204,6 +237,8 @@ TEST_F(RenderApp, BadInputGivesOneClearLineAndNonZeroExit) {
         {"render " + cache() + out + " --seconds 0 --size 32x32", "--seconds"},
         {"render " + cache() + out + rest + " --fov 0", "fov"},
         {"render " + cache() + out + rest + " --export heights,pictures", "pictures"},
+        {"render " + cache() + out + rest + " --heights-format tiff",
+         "png16, exr-half or exr-float"},
         {"render " + cache() + out + rest + " --splash-count -2", "splash count"},
         {"render " + cache() + out + rest + " --video clip.avi", ".mp4"},
         {"render " + cache() + out + rest + " --camera 1 2 3", "--target"},

@@ -2,7 +2,8 @@
 // Per-frame exports for other tools (docs/render.md): the surface as a triangle mesh and the splash
 // particles as a point cloud, both binary little-endian PLY (Blender, MeshLab, ParaView read
 // it), with a reader for the same subset so every format is tested by a round trip. Height
-// maps are written by height_png.h (16-bit PNG with a JSON scale).
+// maps are written by height_png.h (16-bit PNG with a JSON scale) and height_exr.h (OpenEXR
+// height, normal and displacement maps), a folder of them by height_sequence.h.
 
 #include "swell/runtime/render/splash_system.h"
 #include "swell/runtime/replay/height_field.h"
