@@ -123,13 +123,11 @@ public:
           m_renderer(m_gpu.grid(), setup.set.header.domain, r.shading, m_faces,
                      sunDirection(r.sky)),
           m_heights(m_out / "heights", r.heights, heightScale(setup.set.header.domain),
-                    m_gpu.grid(), displacementReference(setup)) {
-        // The artificial splashes get their own stream per slice set (the ripple's directions),
-        // derived from the run's seed; they follow the mode's layout (mode_splashes.h).
-        for (int d = 0; d < static_cast<int>(setup.samplers.size()); ++d)
-            m_splashes.emplace_back(setup.set, m_gpu.grid(), r.splash,
-                                    splashSeed(o.params.seed, d));
-    }
+                    m_gpu.grid(), displacementReference(setup)),
+          // The artificial splashes get their own stream per slice set (the ripple's
+          // directions), derived from the run's seed; they follow the mode's layout.
+          m_splashes(makeSplashSystems(setup.set, m_gpu.grid(), r.splash, o.params.seed,
+                                       setup.samplers.size())) {}
 
     /// Renders and writes every frame of `taus`, the contact sheet and the video.
     void renderAll(const std::vector<double>& taus) {
@@ -220,13 +218,8 @@ private:
         m_renderer.drawSurface(m_gpu.heightBuffer(), m_camera, splashes);
         // Each real slice shows its own frame's splashes, the same frame choice as the GPU.
         const auto spritesStart = Clock::now();
-        std::vector<SplashSprite> sprites;
-        for (std::size_t d = 0; d < m_splashes.size() && splashes; ++d) {
-            std::vector<SplashSprite> more =
-                m_splashes[d].sprites(m_setup.samplers[d].frames(tau), seconds);
-            placeSplashes(more, m_gpu.grid(), m_o.modeParams, static_cast<int>(d), tau);
-            sprites.insert(sprites.end(), more.begin(), more.end());
-        }
+        const std::vector<SplashSprite> sprites =
+            modeSplashes(m_splashes, m_setup.samplers, m_gpu.grid(), m_o.modeParams, tau, seconds);
         m_totals.spriteMs += msSince(spritesStart);
         m_totals.sprites += sprites.size();
         m_renderer.drawSplashes(sprites, m_r.splash.spriteRadius);

@@ -6,14 +6,12 @@
 #include "swell/cache/error.h"
 #include "swell/cache/reader.h"
 #include "swell/runtime/error.h"
-#include "swell/runtime/gl/egl_context.h"
 #include "swell/runtime/playback.h"
 #include "swell/runtime/replay/bake_record.h"
 
 #include <fmt/format.h>
 #include <new>
 #include <nlohmann/json.hpp>
-#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -22,8 +20,7 @@ struct swell_cache {
 };
 
 struct swell_replay {
-    std::optional<swell::runtime::EglContext> context; // SWELL_CONTEXT_HEADLESS only
-    std::unique_ptr<swell::runtime::Playback> playback;
+    swell::runtime::PlaybackSession session;
 };
 
 namespace {
@@ -92,63 +89,33 @@ ReplayMode modeOf(swell_mode mode) {
                     static_cast<int>(mode)));
 }
 
-/// The playback configuration of a C config: the mode's defaults, params_json over them, then
-/// the struct's fields.
+/// The playback configuration of a C config (playbackConfig: the mode's defaults, params_json
+/// over them, then the struct's fields).
 PlaybackConfig configOf(const swell_replay_config& c) {
-    using swell::runtime::playbackDefaults;
-    const ReplayMode mode = modeOf(c.mode);
-    PlaybackConfig config;
-    config.params = playbackDefaults(mode);
-    nlohmann::json extra = nlohmann::json::object();
+    swell::runtime::PlaybackChoice choice;
+    choice.mode = modeOf(c.mode);
     if (c.params_json != nullptr)
-        extra = nlohmann::json::parse(c.params_json);
-    if (!extra.is_object())
+        choice.named = nlohmann::json::parse(c.params_json);
+    if (!choice.named.is_object())
         throw std::invalid_argument("params_json: expected a JSON object");
-    nlohmann::json modeJson = {{"mode", swell::runtime::toString(mode)}};
-    for (const auto& [key, value] : extra.items()) {
-        if (key == "params") {
-            for (const char* own : {"cells_x", "cells_z", "slices", "fluctuation", "seed"}) {
-                if (value.is_object() && value.contains(own))
-                    throw std::invalid_argument(fmt::format(
-                        "params_json: set {} in swell_replay_config, not in params_json", own));
-            }
-            config.params = swell::runtime::replayParamsFromJson(value, config.params);
-        } else if (key == "ripple" || key == "whirlpool") {
-            modeJson[key] = value;
-        } else if (key == "splash") {
-            config.splash = swell::runtime::splashParamsFromJson(value);
-        } else {
-            throw std::invalid_argument(fmt::format(
-                "params_json: unknown key {} (params, ripple, whirlpool, splash)", key));
-        }
-    }
-    config.mode = swell::runtime::modeParamsFromJson(modeJson);
-    if (c.cells_x < 0 || c.cells_z < 0 || (c.cells_x == 0) != (c.cells_z == 0))
-        throw std::invalid_argument(
-            fmt::format("config.cells_x, cells_z: both > 0, or both 0 for auto; got {} x {}",
-                        c.cells_x, c.cells_z));
-    config.params.cellsX = c.cells_x;
-    config.params.cellsZ = c.cells_z;
+    choice.cellsX = c.cells_x;
+    choice.cellsZ = c.cells_z;
     if (c.slices < 0)
         throw std::invalid_argument(
             fmt::format("config.slices: > 0, or 0 for the mode's default; got {}", c.slices));
     if (c.slices > 0)
-        config.params.slices = c.slices;
-    if (c.fluctuation >= 0.0)
-        config.params.fluctuation = c.fluctuation;
-    else if (c.fluctuation != c.fluctuation)
+        choice.slices = c.slices;
+    if (c.fluctuation != c.fluctuation)
         throw std::invalid_argument("config.fluctuation is NaN");
-    config.params.seed = c.seed;
-    return config;
+    if (c.fluctuation >= 0.0)
+        choice.fluctuation = c.fluctuation;
+    choice.seed = c.seed;
+    return swell::runtime::playbackConfig(choice, "swell_replay_config");
 }
 
-/// The replay's playback, with its own context current (each headless replay has one, and
-/// the last one made is current until then).
 Playback& playbackOf(swell_replay* replay, const char* function) {
     need(replay, function, "replay");
-    if (replay->context)
-        replay->context->makeCurrent();
-    return *replay->playback;
+    return replay->session.playback();
 }
 
 } // namespace
@@ -234,30 +201,23 @@ swell_status swell_replay_create(const swell_cache* cache, const swell_replay_co
         if (config->context != SWELL_CONTEXT_HEADLESS && config->context != SWELL_CONTEXT_CURRENT)
             throw std::invalid_argument(fmt::format("config.context: {} is not a swell_context",
                                                     static_cast<int>(config->context)));
-        PlaybackConfig playback = configOf(*config);
-        auto replay = std::make_unique<swell_replay>();
-        if (config->context == SWELL_CONTEXT_HEADLESS)
-            replay->context.emplace();
-        else
-            swell::runtime::requireCurrentContext();
-        replay->playback = std::make_unique<Playback>(cache->reader, std::move(playback));
-        *out = replay.release();
+        const auto context = config->context == SWELL_CONTEXT_HEADLESS
+                                 ? swell::runtime::PlaybackSession::Context::Own
+                                 : swell::runtime::PlaybackSession::Context::Current;
+        *out = new swell_replay{
+            swell::runtime::PlaybackSession(cache->reader, configOf(*config), context)};
     });
 }
 
 void swell_replay_destroy(swell_replay* replay) {
-    if (replay == nullptr)
-        return;
-    if (replay->context)
-        replay->context->makeCurrent(); // the GL objects are deleted in their own context
-    delete replay;
+    delete replay; // the session deletes its GL objects in their own context
 }
 
 swell_status swell_replay_grid(const swell_replay* replay, swell_grid* out) {
     return guarded("swell_replay_grid", [&] {
         need(replay, "swell_replay_grid", "replay");
         need(out, "swell_replay_grid", "out");
-        const swell::runtime::Grid& g = replay->playback->grid();
+        const swell::runtime::Grid& g = replay->session.playback().grid();
         *out = swell_grid{g.cellsX, g.cellsZ, g.x0, g.dx, g.dz, g.extentZ};
     });
 }

@@ -74,16 +74,50 @@ TimelinePlan planOf(const cache::Reader& reader, const ReplayParams& params) {
 
 } // namespace
 
+PlaybackConfig playbackConfig(const PlaybackChoice& choice, std::string_view where) {
+    PlaybackConfig config;
+    config.params = playbackDefaults(choice.mode);
+    nlohmann::json modeJson = {{"mode", toString(choice.mode)}};
+    for (const auto& [key, value] : choice.named.items()) {
+        if (key == "params") {
+            for (const char* own : {"cells_x", "cells_z", "slices", "fluctuation", "seed"}) {
+                if (value.is_object() && value.contains(own))
+                    throw std::invalid_argument(
+                        fmt::format("set {} in {}, not in params", own, where));
+            }
+            config.params = replayParamsFromJson(value, config.params);
+        } else if (key == "ripple" || key == "whirlpool") {
+            modeJson[key] = value;
+        } else if (key == "splash") {
+            config.splash = splashParamsFromJson(value);
+        } else {
+            throw std::invalid_argument(
+                fmt::format("unknown key {} (params, ripple, whirlpool, splash)", key));
+        }
+    }
+    config.mode = modeParamsFromJson(modeJson);
+    if (choice.cellsX < 0 || choice.cellsZ < 0 || (choice.cellsX == 0) != (choice.cellsZ == 0))
+        throw std::invalid_argument(
+            fmt::format("cells_x, cells_z: both > 0, or both 0 for auto; got {} x {}",
+                        choice.cellsX, choice.cellsZ));
+    config.params.cellsX = choice.cellsX;
+    config.params.cellsZ = choice.cellsZ;
+    if (choice.slices)
+        config.params.slices = *choice.slices;
+    if (choice.fluctuation)
+        config.params.fluctuation = *choice.fluctuation;
+    config.params.seed = choice.seed;
+    return config;
+}
+
 Playback::Playback(const cache::Reader& reader, PlaybackConfig config)
     : m_config(resolved(reader, std::move(config))), m_plan(planOf(reader, m_config.params)),
-      m_A(framesPerTimeUnit(reader.header(), m_config.params)),
-      m_samplers(makeSamplers(m_config.params, m_config.mode, m_plan.timeline, m_A)),
+      m_samplers(makeSamplers(m_config.params, m_config.mode, m_plan.timeline,
+                              framesPerTimeUnit(reader.header(), m_config.params))),
       m_frames(readFrames(reader, timelineFrames(m_plan.timeline))),
-      m_gpu(std::make_unique<ModeReplay>(m_frames, m_config.params, m_config.mode, m_samplers)) {
-    for (std::size_t d = 0; d < m_samplers.size(); ++d)
-        m_splashes.emplace_back(m_frames, m_gpu->grid(), m_config.splash,
-                                splashSeed(m_config.params.seed, static_cast<int>(d)));
-}
+      m_gpu(std::make_unique<ModeReplay>(m_frames, m_config.params, m_config.mode, m_samplers)),
+      m_splashes(makeSplashSystems(m_frames, m_gpu->grid(), m_config.splash, m_config.params.seed,
+                                   m_samplers.size())) {}
 
 void Playback::advance(double seconds) {
     if (!std::isfinite(seconds))
@@ -113,17 +147,35 @@ void Playback::sample(std::span<const double> x, std::span<const double> z, std:
 }
 
 std::vector<SplashSprite> Playback::splashes() const {
-    std::vector<SplashSprite> sprites;
-    if (m_splashes.empty() || !m_splashes.front().active())
-        return sprites;
-    const double tau = m_seconds / m_config.params.timeUnitSeconds;
-    for (std::size_t d = 0; d < m_splashes.size(); ++d) {
-        std::vector<SplashSprite> more =
-            m_splashes[d].sprites(m_samplers[d].frames(tau), m_seconds);
-        placeSplashes(more, m_gpu->grid(), m_config.mode, static_cast<int>(d), tau);
-        sprites.insert(sprites.end(), more.begin(), more.end());
-    }
-    return sprites;
+    return modeSplashes(m_splashes, m_samplers, m_gpu->grid(), m_config.mode,
+                        m_seconds / m_config.params.timeUnitSeconds, m_seconds);
+}
+
+PlaybackSession::PlaybackSession(const cache::Reader& reader, PlaybackConfig config,
+                                 Context context) {
+    if (context == Context::Own)
+        m_context.emplace();
+    else
+        requireCurrentContext();
+    m_playback = std::make_unique<Playback>(reader, std::move(config));
+}
+
+PlaybackSession::~PlaybackSession() {
+    if (m_context)
+        m_context->makeCurrent(); // the GL objects are deleted in their own context
+    m_playback.reset();
+}
+
+Playback& PlaybackSession::playback() {
+    if (m_context)
+        m_context->makeCurrent();
+    return *m_playback;
+}
+
+const Playback& PlaybackSession::playback() const {
+    if (m_context)
+        m_context->makeCurrent();
+    return *m_playback;
 }
 
 } // namespace swell::runtime

@@ -55,49 +55,31 @@ struct Cache {
     cache::Reader reader;
 };
 
-py::dict frameDict(const cache::Frame& f) {
+/// Frame i of the cache (negative: from the end, as Python indexes) as a dict of arrays.
+py::dict frameAt(const Cache& c, long i) {
+    const long n = static_cast<long>(c.reader.frameCount());
+    if (i < -n || i >= n)
+        throw py::index_error(fmt::format("frame {} of a {}-frame cache", i, n));
+    const cache::Frame f = c.reader.readFrame(static_cast<std::size_t>(i < 0 ? i + n : i));
     py::dict d;
     d["surface"] = floats(f.surface, 2);
     d["splash"] = floats(f.splash, 4);
     return d;
 }
 
-/// One replay with its own headless context (made current for every call).
+/// One replay with its own headless context (PlaybackSession).
 class Replay {
 public:
     Replay(const Cache& c, const std::string& mode, std::optional<std::pair<int, int>> cells,
            std::uint64_t seed, std::optional<int> slices, std::optional<double> fluctuation,
            const py::dict& params, const py::dict& ripple, const py::dict& whirlpool,
-           const py::dict& splash) {
-        runtime::PlaybackConfig config;
-        json modeJson = {{"mode", mode}};
-        if (!ripple.empty())
-            modeJson["ripple"] = fromPython(ripple);
-        if (!whirlpool.empty())
-            modeJson["whirlpool"] = fromPython(whirlpool);
-        config.mode = runtime::modeParamsFromJson(modeJson);
-        config.params = runtime::replayParamsFromJson(fromPython(params),
-                                                      runtime::playbackDefaults(config.mode.mode));
-        if (!splash.empty())
-            config.splash = runtime::splashParamsFromJson(fromPython(splash));
-        config.params.cellsX = cells ? cells->first : 0;
-        config.params.cellsZ = cells ? cells->second : 0;
-        if (cells && (cells->first <= 0 || cells->second <= 0))
-            throw std::invalid_argument(fmt::format(
-                "cells must be (N, M) with N, M > 0, got ({}, {})", cells->first, cells->second));
-        if (slices)
-            config.params.slices = *slices;
-        if (fluctuation)
-            config.params.fluctuation = *fluctuation;
-        config.params.seed = seed;
-        m_context.emplace();
-        m_playback = std::make_unique<runtime::Playback>(c.reader, std::move(config));
-    }
+           const py::dict& splash)
+        : m_session(
+              c.reader,
+              configOf(mode, cells, seed, slices, fluctuation, params, ripple, whirlpool, splash),
+              runtime::PlaybackSession::Context::Own) {}
 
-    runtime::Playback& playback() {
-        m_context->makeCurrent();
-        return *m_playback;
-    }
+    runtime::Playback& playback() { return m_session.playback(); }
 
     py::array_t<float> heights() {
         const runtime::HeightField& h = playback().heights();
@@ -107,14 +89,15 @@ public:
     }
 
     py::array_t<float> run(const std::vector<double>& seconds) {
-        const runtime::Grid& g = playback().grid();
+        runtime::Playback& p = playback();
+        const runtime::Grid& g = p.grid();
         py::array_t<float> a({static_cast<py::ssize_t>(seconds.size()),
                               static_cast<py::ssize_t>(g.cellsZ),
                               static_cast<py::ssize_t>(g.cellsX)});
         float* out = a.mutable_data();
         for (double t : seconds) {
-            playback().advance(t);
-            for (double v : m_playback->heights().heights)
+            p.advance(t);
+            for (double v : p.heights().heights)
                 *out++ = static_cast<float>(v);
         }
         return a;
@@ -140,7 +123,7 @@ public:
     }
 
     py::dict grid() {
-        const runtime::Grid& g = m_playback->grid();
+        const runtime::Grid& g = playback().grid();
         py::dict d;
         d["cells_x"] = g.cellsX;
         d["cells_z"] = g.cellsZ;
@@ -153,23 +136,43 @@ public:
     }
 
     py::object params() {
-        const runtime::PlaybackConfig& c = m_playback->config();
+        const runtime::Playback& p = m_session.playback();
+        const runtime::PlaybackConfig& c = p.config();
         json j = {{"params", runtime::toJson(c.params)},
                   {"mode", runtime::toJson(c.mode)},
-                  {"timeline", runtime::toJson(m_playback->plan())},
-                  {"renderer", m_context->renderer()}};
+                  {"timeline", runtime::toJson(p.plan())},
+                  {"renderer", m_session.context()->renderer()}};
         return toPython(j);
     }
 
-    ~Replay() {
-        if (m_context)
-            m_context->makeCurrent(); // GL objects are deleted in their own context
-        m_playback.reset();
+private:
+    /// playbackConfig of the keyword arguments (None: the default; cells given must be > 0).
+    static runtime::PlaybackConfig
+    configOf(const std::string& mode, std::optional<std::pair<int, int>> cells, std::uint64_t seed,
+             std::optional<int> slices, std::optional<double> fluctuation, const py::dict& params,
+             const py::dict& ripple, const py::dict& whirlpool, const py::dict& splash) {
+        runtime::PlaybackChoice choice;
+        choice.mode = runtime::replayModeFromString(mode);
+        for (const auto& [key, dict] :
+             {std::pair{"params", &params}, std::pair{"ripple", &ripple},
+              std::pair{"whirlpool", &whirlpool}, std::pair{"splash", &splash}}) {
+            if (!dict->empty())
+                choice.named[key] = fromPython(*dict);
+        }
+        if (cells && (cells->first <= 0 || cells->second <= 0))
+            throw std::invalid_argument(fmt::format(
+                "cells must be (N, M) with N, M > 0, got ({}, {})", cells->first, cells->second));
+        if (cells) {
+            choice.cellsX = cells->first;
+            choice.cellsZ = cells->second;
+        }
+        choice.slices = slices;
+        choice.fluctuation = fluctuation;
+        choice.seed = seed;
+        return runtime::playbackConfig(choice, "the Replay keyword arguments");
     }
 
-private:
-    std::optional<runtime::EglContext> m_context;
-    std::unique_ptr<runtime::Playback> m_playback;
+    runtime::PlaybackSession m_session;
 };
 
 py::object bakeScene(const std::string& scene, const std::string& output,
@@ -255,23 +258,10 @@ PYBIND11_MODULE(swell, m) {
         .def_property_readonly(
             "metadata",
             [](const Cache& c) { return toPython(json::parse(c.reader.header().metadataJson)); })
-        .def(
-            "frame",
-            [](const Cache& c, long i) {
-                const long n = static_cast<long>(c.reader.frameCount());
-                if (i < -n || i >= n)
-                    throw py::index_error(fmt::format("frame {} of a {}-frame cache", i, n));
-                return frameDict(c.reader.readFrame(static_cast<std::size_t>(i < 0 ? i + n : i)));
-            },
-            py::arg("index"),
-            "Frame `index` as {'surface': (N, 2) float32 x, y; 'splash': (S, 4) float32 x, y, "
-            "vx, vy}.")
-        .def("__getitem__", [](const Cache& c, long i) {
-            const long n = static_cast<long>(c.reader.frameCount());
-            if (i < -n || i >= n)
-                throw py::index_error(fmt::format("frame {} of a {}-frame cache", i, n));
-            return frameDict(c.reader.readFrame(static_cast<std::size_t>(i < 0 ? i + n : i)));
-        });
+        .def("frame", &frameAt, py::arg("index"),
+             "Frame `index` (negative: from the end) as {'surface': (N, 2) float32 x, y; "
+             "'splash': (S, 4) float32 x, y, vx, vy}.")
+        .def("__getitem__", &frameAt);
 
     py::class_<Replay>(m, "Replay",
                        "The replay of a cache on a headless GL context: advance(seconds), then "

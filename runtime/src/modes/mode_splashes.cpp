@@ -52,8 +52,31 @@ void placeSplashes(std::vector<SplashSprite>& sprites, const Grid& grid, const M
     });
 }
 
-std::uint64_t splashSeed(std::uint64_t seed, int d) {
-    return sliceSetSeed(seed, d) ^ 0x5b1a54e5ULL;
+std::vector<SplashSystem> makeSplashSystems(const FrameSet& frames, const Grid& grid,
+                                            const SplashParams& params, std::uint64_t seed,
+                                            std::size_t sets) {
+    std::vector<SplashSystem> systems;
+    systems.reserve(sets);
+    for (std::size_t d = 0; d < sets; ++d)
+        systems.emplace_back(frames, grid, params,
+                             sliceSetSeed(seed, static_cast<int>(d)) ^ 0x5b1a54e5ULL);
+    return systems;
+}
+
+std::vector<SplashSprite> modeSplashes(std::span<const SplashSystem> systems,
+                                       std::span<const SliceSampler> samplers, const Grid& grid,
+                                       const ModeParams& mode, double tau, double seconds) {
+    if (systems.size() != samplers.size())
+        throw std::logic_error("modeSplashes: one splash system per slice sampler");
+    std::vector<SplashSprite> sprites;
+    if (systems.empty() || !systems.front().active())
+        return sprites;
+    for (std::size_t d = 0; d < systems.size(); ++d) {
+        std::vector<SplashSprite> more = systems[d].sprites(samplers[d].frames(tau), seconds);
+        placeSplashes(more, grid, mode, static_cast<int>(d), tau);
+        sprites.insert(sprites.end(), more.begin(), more.end());
+    }
+    return sprites;
 }
 
 } // namespace swell::runtime

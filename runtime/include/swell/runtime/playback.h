@@ -7,6 +7,7 @@
 // (they decode only the frames of the output times they know in advance).
 
 #include "swell/cache/reader.h"
+#include "swell/runtime/gl/egl_context.h"
 #include "swell/runtime/modes/mode_params.h"
 #include "swell/runtime/modes/mode_replay.h"
 #include "swell/runtime/render/splash_system.h"
@@ -17,7 +18,10 @@
 
 #include <cstdint>
 #include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
 #include <span>
+#include <string_view>
 #include <vector>
 
 namespace swell::runtime {
@@ -42,6 +46,25 @@ struct PlaybackConfig {
     ModeParams mode;     ///< layout (mode.mode must match the defaults chosen for params)
     SplashParams splash; ///< splash sprites (Sec. 5)
 };
+
+/// A replay chosen by name, as the C API (swell.h) and the Python module take it: the mode's
+/// playbackDefaults, then `named` = {"params": {...}, "ripple": {...}, "whirlpool": {...},
+/// "splash": {...}} (the keys of replayParamsFromJson, modeParamsFromJson, splashParamsFromJson),
+/// then the fields below.
+struct PlaybackChoice {
+    ReplayMode mode = ReplayMode::Surging;
+    int cellsX = 0, cellsZ = 0;        ///< the mesh; both 0: autoCells
+    std::optional<int> slices;         ///< K; unset: the mode's Table 4 value
+    std::optional<double> fluctuation; ///< F; unset: the mode's Table 4 value
+    std::uint64_t seed = 1;            ///< noise seed
+    nlohmann::json named = nlohmann::json::object();
+};
+
+/// The configuration `choice` names. Throws std::invalid_argument naming the key: an unknown or
+/// bad key, a mesh with a negative side or only one side 0, or one of the fields above given
+/// under "params" too ("set seed in WHERE, not in params": `where` names where the caller sets
+/// those fields, e.g. "swell_replay_config").
+PlaybackConfig playbackConfig(const PlaybackChoice& choice, std::string_view where);
 
 class Playback {
 public:
@@ -85,7 +108,6 @@ private:
 
     PlaybackConfig m_config;
     TimelinePlan m_plan;
-    double m_A = 0.0;
     std::vector<SliceSampler> m_samplers;
     FrameSet m_frames; // the splash systems keep a reference: never moved after construction
     std::unique_ptr<ModeReplay> m_gpu;
@@ -94,6 +116,30 @@ private:
     bool m_advanced = false;
     bool m_heightsRead = false;
     HeightField m_heights;
+};
+
+/// A Playback with the GL context it lives in: a headless one of its own (EglContext), or the
+/// caller's current one (requireCurrentContext checks it). playback() makes the own context
+/// current first, so several sessions can share a thread, and the session is destroyed in it.
+/// The replay of the C API and of the Python module.
+class PlaybackSession {
+public:
+    enum class Context { Own, Current };
+
+    /// Throws as Playback, and RuntimeError when Context::Current finds no usable context.
+    PlaybackSession(const cache::Reader& reader, PlaybackConfig config, Context context);
+    ~PlaybackSession();
+    PlaybackSession(const PlaybackSession&) = delete;
+    PlaybackSession& operator=(const PlaybackSession&) = delete;
+
+    Playback& playback();
+    const Playback& playback() const;
+    /// The own context, or null with the caller's.
+    const EglContext* context() const { return m_context ? &*m_context : nullptr; }
+
+private:
+    std::optional<EglContext> m_context;
+    std::unique_ptr<Playback> m_playback;
 };
 
 } // namespace swell::runtime

@@ -14,8 +14,10 @@
 #include "swell/runtime/modes/mode_params.h"
 #include "swell/runtime/render/splash_system.h"
 #include "swell/runtime/replay/replay_params.h"
+#include "swell/runtime/replay/slice_sampler.h"
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 namespace swell::runtime {
@@ -27,8 +29,19 @@ namespace swell::runtime {
 void placeSplashes(std::vector<SplashSprite>& sprites, const Grid& grid, const ModeParams& mode,
                    int direction, double tau);
 
-/// Seed of the artificial splashes of slice set d: a stream of its own, apart from the set's
-/// noise seed (sliceSetSeed), so the same run seed gives the same sprites everywhere.
-std::uint64_t splashSeed(std::uint64_t seed, int d);
+/// One SplashSystem per slice set (`sets` of them) over `frames`, slice set d's artificial
+/// splashes seeded by a stream of their own derived from the run's `seed` (apart from the set's
+/// noise seed, sliceSetSeed), so the same run seed gives the same sprites in every program.
+std::vector<SplashSystem> makeSplashSystems(const FrameSet& frames, const Grid& grid,
+                                            const SplashParams& params, std::uint64_t seed,
+                                            std::size_t sets);
+
+/// The sprites of every slice set at animation time tau (`seconds` of simulated time): each
+/// real slice shows the splashes of the cache frame its sampler chooses (the GPU's choice),
+/// placed in `mode`'s layout. `systems` and `samplers` have one entry per slice set; nothing
+/// when the systems are not active().
+std::vector<SplashSprite> modeSplashes(std::span<const SplashSystem> systems,
+                                       std::span<const SliceSampler> samplers, const Grid& grid,
+                                       const ModeParams& mode, double tau, double seconds);
 
 } // namespace swell::runtime
