@@ -21,9 +21,7 @@ namespace swell::runtime {
 namespace {
 
 void checkField(const HeightField& field, const char* what) {
-    if (field.cellsX < 1 || field.cellsZ < 1 ||
-        field.heights.size() !=
-            static_cast<std::size_t>(field.cellsX) * static_cast<std::size_t>(field.cellsZ)) {
+    if (!field.wellFormed()) {
         throw std::invalid_argument(fmt::format("{}: the field has {} heights for {} x {} cells",
                                                 what, field.heights.size(), field.cellsX,
                                                 field.cellsZ));

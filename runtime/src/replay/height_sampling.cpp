@@ -9,10 +9,7 @@ namespace swell::runtime {
 namespace {
 
 void checkSize(const HeightField& field, const Grid& grid) {
-    if (field.cellsX != grid.cellsX || field.cellsZ != grid.cellsZ || grid.cellsX < 1 ||
-        grid.cellsZ < 1 ||
-        field.heights.size() !=
-            static_cast<std::size_t>(grid.cellsX) * static_cast<std::size_t>(grid.cellsZ))
+    if (!field.wellFormed() || field.cellsX != grid.cellsX || field.cellsZ != grid.cellsZ)
         throw std::invalid_argument("height sampling: the height field does not match the grid");
 }
 

@@ -13,6 +13,13 @@ struct HeightField {
     int cellsZ = 0;              ///< M
     std::vector<double> heights; ///< metres (cache y); cell (n, m) at [m * N + n]
 
+    /// At least one cell each way and one height per cell.
+    bool wellFormed() const {
+        return cellsX >= 1 && cellsZ >= 1 &&
+               heights.size() ==
+                   static_cast<std::size_t>(cellsX) * static_cast<std::size_t>(cellsZ);
+    }
+
     double at(int n, int m) const {
         return heights[static_cast<std::size_t>(m) * static_cast<std::size_t>(cellsX) +
                        static_cast<std::size_t>(n)];
