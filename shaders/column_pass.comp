@@ -17,6 +17,7 @@ layout(std430, binding = 2) writeonly buffer Columns { float columns[]; };
 uniform int u_N;             // columns
 uniform int u_Nq;            // column quads, ceil(N / 4)
 uniform int u_slots;         // resident frames
+uniform int u_slotBase;      // slot of work-group row 0 (dispatches run in batches of rows)
 uniform float u_sigma;       // Gaussian sigma in cells
 uniform float u_emptyHeight; // height (relative) of a frame with no surface particle
 
@@ -34,7 +35,7 @@ void addBin(int slot, int b, inout float sum, inout uint count) {
 
 void main() {
     int n = int(gl_GlobalInvocationID.x);
-    int slot = int(gl_GlobalInvocationID.y);
+    int slot = u_slotBase + int(gl_GlobalInvocationID.y);
     if (n >= u_N || slot >= u_slots) return;
 
     float centre = float(n) + 0.5;

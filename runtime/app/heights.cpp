@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <fmt/format.h>
 #include <iostream>
+#include <optional>
 
 namespace swell::play {
 namespace {
@@ -47,25 +48,44 @@ public:
         const cache::Reader reader(m_o.cache);
         resolveAutoRes(m_o, reader.header());
         const std::vector<double> taus = outputTaus(m_o, m_seconds);
-        const ReplaySetup setup = prepareReplay(m_o, reader, taus);
+        const TimelinePlan plan = planReplay(m_o, reader);
+        // More output than the memory budget holds at once is replayed in chunks of output
+        // frames, each with only its own frames decoded and uploaded: the same heights.
+        const std::vector<Chunk> chunks = streamChunks(m_o, reader, plan, taus);
         std::filesystem::create_directories(m_outDir);
         const EglContext context;
-        ModeReplay gpu(setup.set, m_o.params, m_o.modeParams, setup.samplers);
-        HeightSequence sequence(m_outDir, m_sequence, heightScale(setup.set.header.domain),
-                                gpu.grid(), displacementReference(setup));
+        std::optional<HeightSequence> sequence;
+        json params;
+        std::size_t decoded = 0;
         Progress progress("swell-play heights", taus.size(), !m_o.json);
-        for (std::size_t i = 0; i < taus.size(); ++i) {
-            gpu.update(taus[i]);
-            sequence.write(i, gpu.readHeights(), taus[i], secondsOf(m_o, i));
-            progress.step(i);
+        for (const Chunk& chunk : chunks) {
+            const std::vector<double> part(taus.begin() + static_cast<std::ptrdiff_t>(chunk.first),
+                                           taus.begin() + static_cast<std::ptrdiff_t>(chunk.last));
+            const ReplaySetup setup = replayOn(m_o, reader, plan, part);
+            ModeReplay gpu(setup.set, m_o.params, m_o.modeParams, setup.samplers);
+            if (!sequence) {
+                sequence.emplace(m_outDir, m_sequence, heightScale(setup.set.header.domain),
+                                 gpu.grid(), displacementReference(setup));
+                params = paramsJson(m_o, setup);
+            }
+            decoded += setup.set.ids.size();
+            for (std::size_t i = chunk.first; i < chunk.last; ++i) {
+                gpu.update(taus[i]);
+                sequence->write(i, gpu.readHeights(), taus[i], secondsOf(m_o, i));
+                progress.step(i);
+            }
         }
         progress.done();
-        const auto metaPath = sequence.writeSidecar(paramsJson(m_o, setup), context.renderer());
+        params["frames_decoded"] = decoded;
+        params["memory_budget_gib"] = m_o.memoryBudgetGiB;
+        params["stream_chunks"] = chunks.size();
+        const auto metaPath = sequence->writeSidecar(params, context.renderer());
         if (m_o.json) {
             std::cout << json{{"out", m_outDir},
                               {"format", heightFormatName(m_sequence.format)},
                               {"count", taus.size()},
-                              {"frames_decoded", setup.set.ids.size()},
+                              {"frames_decoded", decoded},
+                              {"stream_chunks", chunks.size()},
                               {"renderer", context.renderer()},
                               {"mode", m_o.mode},
                               {"seed", m_o.params.seed}}

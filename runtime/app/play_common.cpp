@@ -110,6 +110,11 @@ void addCommon(CLI::App* cmd, Options& o) {
                     "simulated second of the first frame, counted from the steady start (the "
                     "loop's in-frame with --policy seamless)")
         ->capture_default_str();
+    cmd->add_option("--memory-budget", o.memoryBudgetGiB,
+                    "GiB the replay may hold (decoded frames + GPU buffers, estimated before "
+                    "anything is decoded): more is an error up front; heights streams its "
+                    "frames in chunks that fit instead")
+        ->capture_default_str();
     cmd->add_flag("--json", o.json, "print one JSON object on stdout");
 }
 
@@ -169,6 +174,7 @@ void finishOptions(Options& o) {
     }
     if (!std::isfinite(o.start))
         throw std::invalid_argument("--start must be finite");
+    (void)budgetBytes(o.memoryBudgetGiB, "--memory-budget");
     o.params.validate();
     o.modeParams.validate();
 }
@@ -259,14 +265,69 @@ void Progress::done() {
         std::cerr << "\n";
 }
 
+ReplayMemory replayMemory(const Options& o, const cache::Reader& reader, const TimelinePlan& plan,
+                          std::size_t sliceSets, std::span<const std::uint32_t> ids) {
+    const auto& loop = plan.timeline.loop();
+    return estimateReplayMemory(reader, ids, o.params, sliceSets,
+                                loop ? static_cast<std::size_t>(loop->crossfade) : 0);
+}
+
+namespace {
+
+void checkBudget(const Options& o, const ReplayMemory& m, const std::string& what) {
+    checkMemoryBudget(m, budgetBytes(o.memoryBudgetGiB, "--memory-budget"),
+                      fmt::format("{}: {}", o.cache, what), "--memory-budget",
+                      "raise it, lower --res, or replay fewer --seconds / --frames");
+}
+
+} // namespace
+
 ReplaySetup replayOn(const Options& o, const cache::Reader& reader, const TimelinePlan& plan,
                      const std::vector<double>& taus) {
     ReplaySetup s;
     s.plan = plan;
     s.A = framesPerTimeUnit(reader.header(), o.params);
     s.samplers = makeSamplers(o.params, o.modeParams, plan.timeline, s.A);
-    s.set = loadUsed(reader, s.samplers, taus);
+    const std::vector<std::uint32_t> ids = framesUsed(s.samplers, taus);
+    checkBudget(o, replayMemory(o, reader, plan, s.samplers.size(), ids), "this replay");
+    s.set = readFrames(reader, ids);
     return s;
+}
+
+std::vector<Chunk> streamChunks(const Options& o, const cache::Reader& reader,
+                                const TimelinePlan& plan, const std::vector<double>& taus) {
+    const std::vector<SliceSampler> samplers = makeSamplers(
+        o.params, o.modeParams, plan.timeline, framesPerTimeUnit(reader.header(), o.params));
+    const std::size_t budget = budgetBytes(o.memoryBudgetGiB, "--memory-budget");
+    auto fits = [&](std::size_t first, std::size_t last) {
+        const std::vector<double> part(taus.begin() + static_cast<std::ptrdiff_t>(first),
+                                       taus.begin() + static_cast<std::ptrdiff_t>(last));
+        return replayMemory(o, reader, plan, samplers.size(), framesUsed(samplers, part)).total() <=
+               budget;
+    };
+    for (std::size_t count = 1;; count *= 2) {
+        const std::size_t length = (taus.size() + count - 1) / count;
+        std::vector<Chunk> chunks;
+        bool ok = true;
+        for (std::size_t first = 0; first < taus.size() && ok; first += length) {
+            chunks.push_back({first, std::min(first + length, taus.size())});
+            ok = fits(chunks.back().first, chunks.back().last);
+        }
+        if (ok)
+            return chunks;
+        if (length == 1)
+            break;
+    }
+    // Not even one output frame fits: the error names what the worst one needs.
+    ReplayMemory worst;
+    for (std::size_t i = 0; i < taus.size(); ++i) {
+        const ReplayMemory m = replayMemory(o, reader, plan, samplers.size(),
+                                            framesUsed(samplers, std::span(taus).subspan(i, 1)));
+        if (m.total() > worst.total())
+            worst = m;
+    }
+    checkBudget(o, worst, "one output frame alone");
+    return {{0, taus.size()}}; // unreachable: the check above throws
 }
 
 TimelinePlan planReplay(const Options& o, const cache::Reader& reader) {

@@ -7,6 +7,7 @@
 #include "swell/runtime/io/height_sequence.h"
 #include "swell/runtime/modes/mode_params.h"
 #include "swell/runtime/replay/frame_set.h"
+#include "swell/runtime/replay/replay_memory.h"
 #include "swell/runtime/replay/replay_params.h"
 #include "swell/runtime/replay/slice_sampler.h"
 #include "swell/runtime/replay/timeline.h"
@@ -42,8 +43,11 @@ struct Options {
     double playbackFps = 30.0;               ///< output frames per simulated second
     double start = 0.0;                      ///< simulated second of the first frame, from tau = 0
     bool json = false;                       ///< one JSON object on stdout
-    runtime::ReplayParams params;            ///< the replay itself (paper defaults)
-    runtime::ModeParams modeParams;          ///< ripple directions, whirlpool spirals
+    /// GiB a replay may hold (decoded frames + GPU buffers, replay_memory.h): more fails up
+    /// front, or, in heights, is streamed in chunks that fit.
+    double memoryBudgetGiB = runtime::kDefaultMemoryBudgetGiB;
+    runtime::ReplayParams params;   ///< the replay itself (paper defaults)
+    runtime::ModeParams modeParams; ///< ripple directions, whirlpool spirals
     /// Options whose default depends on --mode (Table 4): given explicitly when count() > 0.
     std::vector<
         std::pair<CLI::Option*, void (*)(runtime::ReplayParams&, const runtime::ReplayParams&)>>
@@ -109,6 +113,21 @@ runtime::TimelinePlan planReplay(const Options& o, const cache::Reader& reader);
 /// A replay over an already planned timeline (the samplers and the frames `taus` select).
 ReplaySetup replayOn(const Options& o, const cache::Reader& reader,
                      const runtime::TimelinePlan& plan, const std::vector<double>& taus);
+/// What a replay of frames `ids` over `plan` would hold (replay_memory.h).
+runtime::ReplayMemory replayMemory(const Options& o, const cache::Reader& reader,
+                                   const runtime::TimelinePlan& plan, std::size_t sliceSets,
+                                   std::span<const std::uint32_t> ids);
+/// Output frames [first, last) replayed together.
+struct Chunk {
+    std::size_t first = 0;
+    std::size_t last = 0;
+};
+/// Splits output frames 0 .. taus.size() - 1 into as few consecutive chunks of equal length as
+/// keep each chunk's replay within --memory-budget (one chunk when the whole replay fits).
+/// Throws the budget error (naming the cache and the budget) when one output frame alone does
+/// not fit.
+std::vector<Chunk> streamChunks(const Options& o, const cache::Reader& reader,
+                                const runtime::TimelinePlan& plan, const std::vector<double>& taus);
 /// The frames `taus` select from `reader`, for `samplers`.
 runtime::FrameSet loadUsed(const cache::Reader& reader,
                            std::span<const runtime::SliceSampler> samplers,

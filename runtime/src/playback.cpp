@@ -72,6 +72,20 @@ TimelinePlan planOf(const cache::Reader& reader, const ReplayParams& params) {
     }
 }
 
+/// The frames the timeline can show, once the replay holding them is known to fit the budget.
+std::vector<std::uint32_t> budgeted(const cache::Reader& reader, const PlaybackConfig& config,
+                                    const TimelinePlan& plan, std::size_t sliceSets) {
+    std::vector<std::uint32_t> ids = timelineFrames(plan.timeline);
+    const auto& loop = plan.timeline.loop();
+    checkMemoryBudget(
+        estimateReplayMemory(reader, ids, config.params, sliceSets,
+                             loop ? static_cast<std::size_t>(loop->crossfade) : 0),
+        budgetBytes(config.memoryBudgetGiB, "memory_budget_gib"),
+        fmt::format("{}: a replay holding every frame of its timeline", reader.path().string()),
+        "memory_budget_gib", "raise it, lower the mesh, or replay a shorter cache");
+    return ids;
+}
+
 } // namespace
 
 PlaybackConfig playbackConfig(const PlaybackChoice& choice, std::string_view where) {
@@ -90,9 +104,14 @@ PlaybackConfig playbackConfig(const PlaybackChoice& choice, std::string_view whe
             modeJson[key] = value;
         } else if (key == "splash") {
             config.splash = splashParamsFromJson(value);
+        } else if (key == "memory_budget_gib") {
+            if (!value.is_number())
+                throw std::invalid_argument("memory_budget_gib: a number of GiB");
+            config.memoryBudgetGiB = value.get<double>();
+            (void)budgetBytes(config.memoryBudgetGiB, "memory_budget_gib");
         } else {
-            throw std::invalid_argument(
-                fmt::format("unknown key {} (params, ripple, whirlpool, splash)", key));
+            throw std::invalid_argument(fmt::format(
+                "unknown key {} (params, ripple, whirlpool, splash, memory_budget_gib)", key));
         }
     }
     config.mode = modeParamsFromJson(modeJson);
@@ -114,7 +133,7 @@ Playback::Playback(const cache::Reader& reader, PlaybackConfig config)
     : m_config(resolved(reader, std::move(config))), m_plan(planOf(reader, m_config.params)),
       m_samplers(makeSamplers(m_config.params, m_config.mode, m_plan.timeline,
                               framesPerTimeUnit(reader.header(), m_config.params))),
-      m_frames(readFrames(reader, timelineFrames(m_plan.timeline))),
+      m_frames(readFrames(reader, budgeted(reader, m_config, m_plan, m_samplers.size()))),
       m_gpu(std::make_unique<ModeReplay>(m_frames, m_config.params, m_config.mode, m_samplers)),
       m_splashes(makeSplashSystems(m_frames, m_gpu->grid(), m_config.splash, m_config.params.seed,
                                    m_samplers.size())) {}

@@ -160,5 +160,31 @@ TEST_F(PlaybackTest, ErrorsNameTheProblem) {
     }
 }
 
+TEST_F(PlaybackTest, ATimelineBeyondTheMemoryBudgetIsRefusedBeforeDecoding) {
+    const cache::Reader reader(*s_dir / "wave.swell");
+    PlaybackChoice choice;
+    choice.cellsX = choice.cellsZ = 16;
+    choice.slices = 8;
+    choice.named = {{"memory_budget_gib", 1e-5}}; // about 10 KiB
+    const PlaybackConfig config = playbackConfig(choice, "test");
+    EXPECT_EQ(config.memoryBudgetGiB, 1e-5);
+    try {
+        Playback p(reader, config);
+        FAIL() << "10 KiB cannot hold the timeline's frames";
+    } catch (const std::invalid_argument& e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find("wave.swell"), std::string::npos) << what;
+        EXPECT_NE(what.find("above the memory budget"), std::string::npos) << what;
+        EXPECT_NE(what.find("memory_budget_gib"), std::string::npos) << what;
+    }
+    choice.named = {{"memory_budget_gib", 1.0}};
+    EXPECT_NO_THROW(Playback(reader, playbackConfig(choice, "test")));
+    for (const nlohmann::json& bad :
+         {nlohmann::json(0.0), nlohmann::json("2"), nlohmann::json(-1)}) {
+        choice.named = {{"memory_budget_gib", bad}};
+        EXPECT_THROW((void)playbackConfig(choice, "test"), std::invalid_argument) << bad;
+    }
+}
+
 } // namespace
 } // namespace swell::runtime

@@ -133,11 +133,9 @@ GpuReplay::GpuReplay(const FrameSet& frames, const ReplayParams& params,
         packParticles(frames, m_grid, reference, particles, binStart);
     if (m_heldFrames == 0 || envelope)
         binStart.assign(static_cast<std::size_t>(N + 3), 0);
-    // Driver limits: one shader-storage block per buffer, one work group row per held frame.
+    // Driver limit: one shader-storage block per buffer.
     GLint64 maxBlock = 0;
     glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &maxBlock);
-    GLint maxGroupsY = 0;
-    glGetIntegeri_v(GL_MAX_COMPUTE_WORK_GROUP_COUNT, 1, &maxGroupsY);
     const std::size_t columnBytes = S * static_cast<std::size_t>((N + 3) / 4) * 8 * sizeof(float);
     for (const std::size_t bytes : {particles.size() * sizeof(float), columnBytes}) {
         if (static_cast<GLint64>(bytes) > maxBlock) {
@@ -147,11 +145,6 @@ GpuReplay::GpuReplay(const FrameSet& frames, const ReplayParams& params,
                 static_cast<double>(bytes) / 1e6, m_heldFrames, N,
                 static_cast<double>(maxBlock) / 1e6));
         }
-    }
-    if (m_heldFrames > static_cast<std::size_t>(maxGroupsY)) {
-        throw RuntimeError(
-            fmt::format("{} held frames exceed this driver's {} work groups per axis", m_heldFrames,
-                        maxGroupsY));
     }
     const int Nq = (N + 3) / 4; // columns in quads of four (column_pass.comp)
     std::vector<float> zeros(S * static_cast<std::size_t>(Nq) * 8, 0.0f);
@@ -229,6 +222,7 @@ void GpuReplay::runColumnPass(const std::vector<float>& particles,
     glProgramUniform1i(column.get(), uniformLocation(column, "u_Nq"), Nq);
     glProgramUniform1i(column.get(), uniformLocation(column, "u_slots"),
                        static_cast<GLint>(m_heldFrames));
+    const GLint slotBase = uniformLocation(column, "u_slotBase");
     glProgramUniform1f(column.get(), uniformLocation(column, "u_sigma"), static_cast<float>(sigma));
     glProgramUniform1f(column.get(), uniformLocation(column, "u_emptyHeight"), m_missing);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, particleBuffer.get());
@@ -237,7 +231,16 @@ void GpuReplay::runColumnPass(const std::vector<float>& particles,
     if (m_heldFrames > 0) {
         glUseProgram(column.get());
         glQueryCounter(m_queries[0].get(), GL_TIMESTAMP);
-        glDispatchCompute(groups(N, kGroup1D), static_cast<GLuint>(m_heldFrames), 1);
+        // One work-group row per held frame, in batches of the driver's rows per dispatch
+        // (65,535 at least): long caches can hold more frames than that.
+        GLint maxRows = 0;
+        glGetIntegeri_v(GL_MAX_COMPUTE_WORK_GROUP_COUNT, 1, &maxRows);
+        const auto batch = static_cast<std::size_t>(std::max(maxRows, 1));
+        for (std::size_t first = 0; first < m_heldFrames; first += batch) {
+            glProgramUniform1i(column.get(), slotBase, static_cast<GLint>(first));
+            glDispatchCompute(groups(N, kGroup1D),
+                              static_cast<GLuint>(std::min(batch, m_heldFrames - first)), 1);
+        }
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
         glQueryCounter(m_queries[1].get(), GL_TIMESTAMP);
         m_columnPassMs = elapsedMs(m_queries[0], m_queries[1]);

@@ -78,20 +78,32 @@ std::uint32_t Timeline::maxFrame() const {
     return m;
 }
 
-LoopPoints findLoop(std::span<const std::vector<double>> profiles, std::uint32_t first,
-                    int crossfade) {
-    const long long W = static_cast<long long>(profiles.size());
+LoopSearch loopSearch(std::size_t windowFrames, int crossfade) {
+    const auto W = static_cast<long long>(windowFrames);
     const long long L = crossfade;
-    const long long inLo = L, inHi = std::min(W - 1, L + W / 4);
-    const long long outLo = std::max(0LL, W - 1 - W / 4), outHi = W - 1;
-    if (L < 0 || inLo > inHi || outHi - inLo < 2 * L + 1) {
+    const long long span = std::min(W / 4, kMaxLoopCandidates);
+    LoopSearch s{L, std::min(W - 1, L + span), std::max(0LL, W - 1 - span), W - 1, L};
+    if (L < 0 || s.inLo > s.inHi || s.outHi - s.inLo < 2 * L + 1) {
         throw std::invalid_argument(fmt::format(
             "a window of {} frames is too short for a seamless loop with a {}-frame cross-fade", W,
             crossfade));
     }
-    const std::size_t Q = profiles.front().size();
-    for (const auto& p : profiles) {
-        if (p.size() != Q)
+    return s;
+}
+
+bool LoopSearch::reads(long long i) const {
+    return (i >= inLo - crossfade && i <= inHi) || (i >= outLo - crossfade && i <= outHi);
+}
+
+LoopPoints findLoop(std::span<const std::vector<double>> profiles, std::uint32_t first,
+                    int crossfade) {
+    const LoopSearch search = loopSearch(profiles.size(), crossfade);
+    const long long L = crossfade;
+    const long long inLo = search.inLo, inHi = search.inHi;
+    const long long outLo = search.outLo, outHi = search.outHi;
+    const std::size_t Q = profiles[static_cast<std::size_t>(inLo - L)].size();
+    for (std::size_t i = 0; i < profiles.size(); ++i) {
+        if (search.reads(static_cast<long long>(i)) && profiles[i].size() != Q)
             throw std::invalid_argument("findLoop: profiles of different lengths");
     }
     // D^2 between frames i in [inLo - L, inHi] and j in [outLo - L, outHi], computed once.
@@ -198,17 +210,20 @@ TimelinePlan planTimeline(const cache::Header& header, std::size_t frameCount,
     const Grid grid = makeGrid(header, params);
     constexpr int kSamples = 256;
     const double step = grid.dx * grid.cellsX / kSamples;
-    std::vector<std::vector<double>> profiles(count);
+    const int L = std::min(static_cast<int>(std::lround(params.crossfadeSeconds / plan.frameTime)),
+                           static_cast<int>(count / 8));
+    const LoopSearch search = loopSearch(count, L);
+    std::vector<std::vector<double>> profiles(count); // only the frames the search compares
     const double binWidth = envelopeBinWidth(header, grid);
     for (std::size_t i = 0; i < count; ++i) {
+        if (!search.reads(static_cast<long long>(i)))
+            continue;
         profiles[i] = sampleEnvelope(
             SurfaceEnvelope(readFrame(static_cast<std::uint32_t>(first + i)), binWidth), grid.x0,
             step, kSamples);
         if (profiles[i].empty()) // no surface particle: the empty-frame height
             profiles[i].assign(kSamples, header.domain.yMin);
     }
-    const int L = std::min(static_cast<int>(std::lround(params.crossfadeSeconds / plan.frameTime)),
-                           static_cast<int>(count / 8));
     plan.timeline = Timeline::seamless(findLoop(profiles, plan.windowFirst, L));
     plan.searchMs =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();

@@ -7,6 +7,7 @@
 #include "synthetic_frames.h"
 #include "temp_dir.h"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -136,8 +137,48 @@ TEST_F(PlayApp, HeightsAreByteIdenticalForTheSameSeedAndDifferForAnother) {
     EXPECT_EQ(meta["frames"].size(), 4u);
 }
 
+TEST_F(PlayApp, HeightsBeyondTheMemoryBudgetStreamInChunksWithTheSameHeights) {
+    // Halve the budget until the replay no longer fits at once: it must then run in chunks and
+    // write the same files; below what one output frame needs it must stop before writing.
+    const std::string common =
+        " --res 40x24 --slices 64 --seconds 4 --fps 10 --policy loop --window all --json";
+    const fs::path whole = s_dir / "budget-whole";
+    const Result w = run("heights " + cachePath() + " --out " + whole.string() + common);
+    ASSERT_EQ(w.code, 0) << w.err;
+    ASSERT_EQ(nlohmann::json::parse(w.out)["stream_chunks"], 1);
+    bool streamed = false, refused = false;
+    for (double budget = 0.01; budget > 1e-7 && !refused; budget /= 2) {
+        const fs::path out = s_dir / ("budget-" + std::to_string(budget));
+        const Result r = run("heights " + cachePath() + " --out " + out.string() + common +
+                             " --memory-budget " + std::to_string(budget));
+        if (r.code != 0) {
+            refused = true;
+            EXPECT_NE(r.err.find("--memory-budget"), std::string::npos) << r.err;
+            EXPECT_NE(r.err.find("one output frame alone needs about"), std::string::npos) << r.err;
+            EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+            EXPECT_FALSE(fs::exists(out)) << "nothing is written when the budget is too small";
+            break;
+        }
+        const nlohmann::json j = nlohmann::json::parse(r.out);
+        if (j["stream_chunks"].get<int>() == 1)
+            continue;
+        streamed = true;
+        EXPECT_GT(j["frames_decoded"].get<int>(), 0);
+        for (int i = 0; i < 40; ++i) {
+            const std::string name = fmt::format("height_{:05}.png", i);
+            const std::string a = slurp(whole / name);
+            ASSERT_FALSE(a.empty()) << name;
+            EXPECT_EQ(a, slurp(out / name)) << name << " with a budget of " << budget << " GiB";
+        }
+        const nlohmann::json meta = nlohmann::json::parse(slurp(out / "heights.json"));
+        EXPECT_EQ(meta["stream_chunks"], j["stream_chunks"]);
+    }
+    EXPECT_TRUE(streamed);
+    EXPECT_TRUE(refused);
+}
+
 TEST_F(PlayApp, BadInputGivesOneClearLineAndNonZeroExit) {
-    const std::array<std::pair<std::string, std::string>, 9> cases = {{
+    const std::array<std::pair<std::string, std::string>, 11> cases = {{
         {"bench " + cachePath() + " --mode tsunami", "--mode"},
         {"bench " + cachePath() + " --mode ripple --angles 0 30 --weights 1", "ripple.weights"},
         {"bench " + cachePath() + " --mode whirlpool --spiral-b 25", "whirlpool.growth"},
@@ -148,6 +189,8 @@ TEST_F(PlayApp, BadInputGivesOneClearLineAndNonZeroExit) {
         {"bench " + cachePath() + " -F 1.5", "eq. (6)"},
         {"heights " + cachePath() + " --out " + (s_dir / "x").string() + " --policy bounce",
          "policy"},
+        {"bench " + cachePath() + " --memory-budget 0", "--memory-budget"},
+        {"bench " + cachePath() + " --memory-budget 1e-6", "above the memory budget"},
     }};
     for (const auto& [args, needle] : cases) {
         const Result r = run(args);

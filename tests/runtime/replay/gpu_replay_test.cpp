@@ -126,6 +126,42 @@ TEST_F(GpuReconstruction, HoldingOnlyTheUsedFramesGivesTheSameResult) {
     }
 }
 
+TEST_F(GpuReconstruction, HoldsMoreFramesThanOneDispatchHasWorkGroupRows) {
+    // The column pass runs one work-group row per held frame; drivers guarantee 65,535 rows per
+    // dispatch, and a long cache's seamless loop can hold more frames (the whole loop). Frame f
+    // is a flat surface at a height unique to f, so each slot's columns show whether its row ran.
+    GLint maxRows = 0;
+    glGetIntegeri_v(GL_MAX_COMPUTE_WORK_GROUP_COUNT, 1, &maxRows);
+    const std::size_t count = static_cast<std::size_t>(maxRows) + 1000;
+    cache::Header h;
+    h.domain = {0.0f, 0.0f, 8.0f, 2.0f};
+    h.dt = 0.001;
+    h.frameInterval = 10;
+    auto level = [](std::size_t f) { return 0.5 + 1e-5 * static_cast<double>(f % 100000); };
+    std::vector<cache::Frame> frames(count);
+    for (std::size_t f = 0; f < count; ++f) {
+        for (float x : {0.5f, 2.5f, 4.5f, 6.5f}) {
+            frames[f].surface.push_back(x);
+            frames[f].surface.push_back(static_cast<float>(level(f)));
+        }
+    }
+    const FrameSet set = FrameSet::whole(h, std::move(frames));
+    ReplayParams p = test::sized(8, 4, 4, ReplayParams{});
+    p.fluctuation = 0.0; // every slice shows frame s = A tau
+    p.policy = FramePolicy::Clamp;
+    const SliceSampler sampler = test::samplerOf(set, p);
+    GpuReplay gpu(set, p, sampler);
+    const double A = framesPerTimeUnit(h, p);
+    for (std::size_t f : {std::size_t{0}, static_cast<std::size_t>(maxRows) - 1,
+                          static_cast<std::size_t>(maxRows), count - 1}) {
+        gpu.update(static_cast<double>(f) / A);
+        const HeightField g = gpu.readHeights();
+        ASSERT_EQ(gpu.readSliceFrames().front(), f);
+        for (double v : g.heights)
+            ASSERT_NEAR(v, level(f), 1e-5) << "frame " << f;
+    }
+}
+
 TEST_F(GpuReconstruction, WithoutNoiseEveryRowIsTheSame) {
     // F = 0 (eq. 5): every slice shows the same frame, so the surface is uniform along z
     // (the "plain duplication" of the paper's Fig. 8a).

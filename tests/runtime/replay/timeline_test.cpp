@@ -20,6 +20,18 @@ namespace {
 using json = nlohmann::json;
 
 /// A header whose metadata carries the bake's "replay" record.
+/// Frame f of a wave travelling at one period per 100 frames, 400 surface particles over 4 m.
+cache::Frame periodicFrame(std::size_t f) {
+    cache::Frame frame;
+    for (int p = 0; p < 400; ++p) {
+        const double x = (p + 0.5) / 100.0;
+        frame.surface.push_back(static_cast<float>(x));
+        frame.surface.push_back(static_cast<float>(
+            0.5 + 0.05 * std::sin(2.0 * std::numbers::pi * (x - static_cast<double>(f) / 100.0))));
+    }
+    return frame;
+}
+
 cache::Header recordedHeader(double steadyStart, double xMin = 0.5, double xMax = 3.5) {
     cache::Header h = test::syntheticHeader(); // frames every 0.01 s
     h.metadataJson = json{{"replay",
@@ -155,14 +167,8 @@ TEST(Timeline, SeamlessPlanLoopsBetweenTheMostAlikeFrames) {
     // periods, so the seam repeats a frame exactly.
     cache::Header h = recordedHeader(0.5, 0.0, 4.0);
     std::vector<cache::Frame> frames(450);
-    for (std::size_t f = 0; f < frames.size(); ++f) {
-        for (int p = 0; p < 400; ++p) {
-            const double x = (p + 0.5) / 100.0;
-            frames[f].surface.push_back(static_cast<float>(x));
-            frames[f].surface.push_back(static_cast<float>(
-                0.5 + 0.05 * std::sin(2.0 * std::numbers::pi * (x - f / 100.0))));
-        }
-    }
+    for (std::size_t f = 0; f < frames.size(); ++f)
+        frames[f] = periodicFrame(f);
     ReplayParams p;
     p.policy = FramePolicy::Seamless;
     p.timeUnitSeconds = 1.0;
@@ -172,7 +178,10 @@ TEST(Timeline, SeamlessPlanLoopsBetweenTheMostAlikeFrames) {
         ++reads;
         return frames[id];
     });
-    EXPECT_EQ(reads, 400); // every window frame once
+    // Only the frames the search compares, once each: in-points 10 .. 110 of the window (its
+    // first quarter after the 10 cross-fade frames) with their lead-in 0 .. 9, and out-points
+    // 299 .. 399 with theirs, 289 .. 298.
+    EXPECT_EQ(reads, 111 + 111);
     const auto& loop = plan.timeline.loop();
     ASSERT_TRUE(loop.has_value());
     EXPECT_EQ(loop->crossfade, 10);
@@ -182,6 +191,43 @@ TEST(Timeline, SeamlessPlanLoopsBetweenTheMostAlikeFrames) {
     const json j = toJson(plan);
     EXPECT_EQ(j["policy"], "seamless");
     EXPECT_EQ(j["loop"]["in_frame"], loop->in);
+}
+
+TEST(Timeline, LoopSearchCostDoesNotGrowWithTheCache) {
+    // 400 frames: the quarters (100 candidates each side); 100,000 frames: the cap.
+    const LoopSearch small = loopSearch(400, 10);
+    EXPECT_EQ(small.inLo, 10);
+    EXPECT_EQ(small.inHi, 110);
+    EXPECT_EQ(small.outLo, 299);
+    EXPECT_EQ(small.outHi, 399);
+    const LoopSearch big = loopSearch(100000, 20);
+    EXPECT_EQ(big.inHi - big.inLo, kMaxLoopCandidates);
+    EXPECT_EQ(big.outHi - big.outLo, kMaxLoopCandidates);
+    EXPECT_EQ(big.outHi, 99999);
+    long long reads = 0;
+    for (long long i = 0; i < 100000; ++i)
+        reads += big.reads(i) ? 1 : 0;
+    EXPECT_EQ(reads, 2 * (kMaxLoopCandidates + 21));
+    EXPECT_THROW((void)loopSearch(20, 10), std::invalid_argument);
+
+    // A plan over a 20,000-frame window reads only the compared frames, and the loop it finds
+    // is a whole number of the wave's periods (100 frames), as with a short window.
+    const cache::Header h = recordedHeader(0.0, 0.0, 4.0);
+    const std::size_t n = 20000;
+    ReplayParams p;
+    p.policy = FramePolicy::Seamless;
+    p.timeUnitSeconds = 1.0;
+    p.crossfadeSeconds = 0.1; // 10 frames
+    std::size_t reads20k = 0;
+    const TimelinePlan plan = planTimeline(h, n, p, [&](std::uint32_t id) {
+        ++reads20k;
+        return periodicFrame(id);
+    });
+    EXPECT_EQ(reads20k, static_cast<std::size_t>(2 * (kMaxLoopCandidates + 1 + 10)));
+    const auto& loop = plan.timeline.loop();
+    ASSERT_TRUE(loop.has_value());
+    EXPECT_EQ((loop->out - loop->in) % 100, 0u) << loop->in << " -> " << loop->out;
+    EXPECT_GE(loop->out, n - 1 - kMaxLoopCandidates);
 }
 
 TEST(BakeRecord, ReadsTheRecordOrFallsBackToTheDomain) {

@@ -12,6 +12,7 @@
 #include "swell/runtime/modes/mode_replay.h"
 #include "swell/runtime/render/splash_system.h"
 #include "swell/runtime/replay/height_field.h"
+#include "swell/runtime/replay/replay_memory.h"
 #include "swell/runtime/replay/replay_params.h"
 #include "swell/runtime/replay/slice_sampler.h"
 #include "swell/runtime/replay/timeline.h"
@@ -45,12 +46,15 @@ struct PlaybackConfig {
     ReplayParams params = playbackDefaults(ReplayMode::Surging);
     ModeParams mode;     ///< layout (mode.mode must match the defaults chosen for params)
     SplashParams splash; ///< splash sprites (Sec. 5)
+    /// GiB the replay may hold (replay_memory.h; JSON key "memory_budget_gib"): a cache whose
+    /// timeline needs more is refused at construction, before anything is decoded.
+    double memoryBudgetGiB = kDefaultMemoryBudgetGiB;
 };
 
 /// A replay chosen by name, as the C API (swell.h) and the Python module take it: the mode's
 /// playbackDefaults, then `named` = {"params": {...}, "ripple": {...}, "whirlpool": {...},
 /// "splash": {...}} (the keys of replayParamsFromJson, modeParamsFromJson, splashParamsFromJson),
-/// then the fields below.
+/// then the fields below; "memory_budget_gib" sets PlaybackConfig::memoryBudgetGiB.
 struct PlaybackChoice {
     ReplayMode mode = ReplayMode::Surging;
     int cellsX = 0, cellsZ = 0;        ///< the mesh; both 0: autoCells

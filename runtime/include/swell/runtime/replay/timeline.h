@@ -82,11 +82,28 @@ private:
     std::optional<LoopPoints> m_loop;
 };
 
+/// The loop search compares at most this many in-points and as many out-points, so its cost
+/// (time, memory, frames decoded) does not grow with the length of the cache: a 100,000-frame
+/// window would otherwise compare 25,000 x 25,000 frame pairs (5 GB of distances).
+inline constexpr long long kMaxLoopCandidates = 1024;
+
+/// Which frames of a window of W frames the loop search compares (window-relative indices):
+/// `in` in [inLo, inHi], the first quarter after the first L frames, and `out` in
+/// [outLo, outHi], the last quarter, each at most kMaxLoopCandidates + 1 frames long.
+struct LoopSearch {
+    long long inLo = 0, inHi = 0, outLo = 0, outHi = 0;
+    long long crossfade = 0; ///< L
+    /// Frames whose profiles the search reads: [inLo - L, inHi] and [outLo - L, outHi].
+    bool reads(long long i) const;
+};
+/// Throws std::invalid_argument when W frames are too short for a loop with this cross-fade.
+LoopSearch loopSearch(std::size_t windowFrames, int crossfade);
+
 /// Loop search over the sampled surface profiles of frames first .. first + W - 1
-/// (profiles[i] is frame first + i, all of one length): the pair minimising
-/// LoopPoints::residual with `in` in the window's first quarter after its first L frames
-/// and `out` in its last quarter (ties: the longer loop, then the earlier in). Throws
-/// std::invalid_argument when the window is too short for a loop with this cross-fade.
+/// (profiles[i] is frame first + i; those LoopSearch::reads, all of one length; the others may
+/// be empty): the pair minimising LoopPoints::residual with `in` and `out` in loopSearch()'s
+/// ranges (ties: the longer loop, then the earlier in). Throws std::invalid_argument when the
+/// window is too short for a loop with this cross-fade.
 LoopPoints findLoop(std::span<const std::vector<double>> profiles, std::uint32_t first,
                     int crossfade);
 
@@ -105,9 +122,9 @@ struct TimelinePlan {
 ///  * the window: frames from the recorded steady start (rounded up to a frame) to the last,
 ///    when params.steadyWindow and the cache records it; else every frame;
 ///  * clamp / loop: Timeline::range over the window; seamless: findLoop over the envelopes of
-///    every window frame, sampled at 256 points over the grid's x range (each frame is read
-///    once through `readFrame`), cross-fade params.crossfadeSeconds (fewer frames when the
-///    window is short).
+///    the window frames loopSearch() compares, sampled at 256 points over the grid's x range
+///    (each such frame is read once through `readFrame`, no other), cross-fade
+///    params.crossfadeSeconds (fewer frames when the window is short).
 /// Throws std::invalid_argument with a message that says how long the bake must be when the
 /// steady window is empty or, with F > 0, shorter than the slice spread 2 F x time unit.
 TimelinePlan planTimeline(const cache::Header& header, std::size_t frameCount,
