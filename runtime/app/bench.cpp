@@ -105,9 +105,12 @@ public:
         const ReplaySetup setup = prepareReplay(m_o, reader, taus);
         const double decodeMs = msSince(t0);
         const EglContext context;
+        const long long freeBefore = freeVideoMemoryKiB();
         t0 = Clock::now();
         ModeReplay gpu(setup.set, m_o.params, m_o.modeParams, setup.samplers);
         const double uploadMs = msSince(t0);
+        gpu.finish();
+        const long long freeAfter = freeVideoMemoryKiB();
 
         const std::vector<double> frameMs = syncedFrameMs(gpu, taus, m_warmup);
         const std::span<const double> timedTaus =
@@ -133,6 +136,9 @@ public:
         out.update(
             report(context, gpu, setup, frameMs, stage, stageFrames, check, cpuCount, cpuMs));
         out.update({{"decode_ms", decodeMs}, {"upload_ms", uploadMs}});
+        // Device memory the replay took, where the driver reports it (NVIDIA); null on Mesa.
+        out["memory"]["gpu_used_kib_measured"] =
+            freeBefore >= 0 && freeAfter >= 0 ? json(freeBefore - freeAfter) : json(nullptr);
         if (m_o.json)
             std::cout << out.dump() << "\n";
         else

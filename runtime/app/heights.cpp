@@ -77,8 +77,7 @@ public:
         }
         progress.done();
         params["frames_decoded"] = decoded;
-        params["memory_budget_gib"] = m_o.memoryBudgetGiB;
-        params["stream_chunks"] = chunks.size();
+        params["memory"]["stream_chunks"] = chunks.size();
         const auto metaPath = sequence->writeSidecar(params, context.renderer());
         if (m_o.json) {
             std::cout << json{{"out", m_outDir},
@@ -86,6 +85,7 @@ public:
                               {"count", taus.size()},
                               {"frames_decoded", decoded},
                               {"stream_chunks", chunks.size()},
+                              {"memory", params["memory"]},
                               {"renderer", context.renderer()},
                               {"mode", m_o.mode},
                               {"seed", m_o.params.seed}}

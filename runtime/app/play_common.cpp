@@ -289,7 +289,8 @@ ReplaySetup replayOn(const Options& o, const cache::Reader& reader, const Timeli
     s.A = framesPerTimeUnit(reader.header(), o.params);
     s.samplers = makeSamplers(o.params, o.modeParams, plan.timeline, s.A);
     const std::vector<std::uint32_t> ids = framesUsed(s.samplers, taus);
-    checkBudget(o, replayMemory(o, reader, plan, s.samplers.size(), ids), "this replay");
+    s.memory = replayMemory(o, reader, plan, s.samplers.size(), ids);
+    checkBudget(o, s.memory, "this replay");
     s.set = readFrames(reader, ids);
     return s;
 }
@@ -393,7 +394,13 @@ json paramsJson(const Options& o, const ReplaySetup& setup) {
               {"particle_spacing", rec.particleSpacing},
               {"steady_start_s", rec.steadyStartSeconds},
               {"note", rec.note}}},
-            {"timeline", toJson(setup.plan)}};
+            {"timeline", toJson(setup.plan)},
+            {"memory",
+             {{"budget_gib", o.memoryBudgetGiB},
+              {"estimate_bytes", setup.memory.total()},
+              {"decoded_bytes", setup.memory.decodedBytes},
+              {"gpu_bytes", setup.memory.gpuBytes},
+              {"upload_copy_bytes", setup.memory.stagingBytes}}}};
 }
 
 double percentile(std::vector<double> v, double q) {

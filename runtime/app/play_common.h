@@ -97,6 +97,7 @@ struct ReplaySetup {
     double A = 0.0; ///< cache frames per animation time unit
     std::vector<runtime::SliceSampler> samplers;
     runtime::FrameSet set;
+    runtime::ReplayMemory memory; ///< what holding `set` costs, estimated before decoding it
 };
 
 /// Plans the timeline over `reader`'s cache (a pending note when the cache records no water

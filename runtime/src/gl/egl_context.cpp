@@ -136,6 +136,22 @@ void EglContext::makeCurrent() const {
 
 namespace swell::runtime {
 
+long long freeVideoMemoryKiB() {
+    GLint count = 0;
+    glGetIntegerv(GL_NUM_EXTENSIONS, &count);
+    for (GLint i = 0; i < count; ++i) {
+        const auto* name =
+            reinterpret_cast<const char*>(glGetStringi(GL_EXTENSIONS, static_cast<GLuint>(i)));
+        if (name != nullptr && std::strcmp(name, "GL_NVX_gpu_memory_info") == 0) {
+            constexpr GLenum kCurrentAvailableVidmemNvx = 0x9049; // GL_NVX_gpu_memory_info
+            GLint kib = 0;
+            glGetIntegerv(kCurrentAvailableVidmemNvx, &kib);
+            return kib;
+        }
+    }
+    return -1;
+}
+
 std::string requireCurrentContext() {
     // Without a current context a GL call does nothing (libglvnd) and glGetString gives null.
     const auto* version = reinterpret_cast<const char*>(glGetString(GL_VERSION));

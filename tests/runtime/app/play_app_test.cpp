@@ -148,9 +148,9 @@ TEST_F(PlayApp, HeightsBeyondTheMemoryBudgetStreamInChunksWithTheSameHeights) {
     ASSERT_EQ(nlohmann::json::parse(w.out)["stream_chunks"], 1);
     bool streamed = false, refused = false;
     for (double budget = 0.01; budget > 1e-7 && !refused; budget /= 2) {
-        const fs::path out = s_dir / ("budget-" + std::to_string(budget));
+        const fs::path out = s_dir / fmt::format("budget-{}", budget);
         const Result r = run("heights " + cachePath() + " --out " + out.string() + common +
-                             " --memory-budget " + std::to_string(budget));
+                             " --memory-budget " + fmt::format("{}", budget));
         if (r.code != 0) {
             refused = true;
             EXPECT_NE(r.err.find("--memory-budget"), std::string::npos) << r.err;
@@ -171,7 +171,8 @@ TEST_F(PlayApp, HeightsBeyondTheMemoryBudgetStreamInChunksWithTheSameHeights) {
             EXPECT_EQ(a, slurp(out / name)) << name << " with a budget of " << budget << " GiB";
         }
         const nlohmann::json meta = nlohmann::json::parse(slurp(out / "heights.json"));
-        EXPECT_EQ(meta["stream_chunks"], j["stream_chunks"]);
+        EXPECT_EQ(meta["memory"]["stream_chunks"], j["stream_chunks"]);
+        EXPECT_EQ(meta["memory"]["budget_gib"], budget);
     }
     EXPECT_TRUE(streamed);
     EXPECT_TRUE(refused);

@@ -37,6 +37,11 @@ private:
     int m_llvmpipeThreads = 0;
 };
 
+/// Free video memory of the current context's GPU in KiB (GL_NVX_gpu_memory_info, NVIDIA
+/// drivers), or -1 where the driver does not report it (Mesa). Differences before and after
+/// an allocation measure what it took on the device.
+long long freeVideoMemoryKiB();
+
 /// Checks that the calling thread has a current GL 4.5 (or later) context, e.g. an
 /// application's own; returns its GL_VERSION. Throws RuntimeError saying what is missing.
 std::string requireCurrentContext();
