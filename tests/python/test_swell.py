@@ -114,6 +114,8 @@ class ReplayTest(unittest.TestCase):
             swell.Replay(c, fluctuation=2.0)
         with self.assertRaisesRegex(ValueError, "unknown key bogus"):
             swell.Replay(c, params={"bogus": 1})
+        with self.assertRaisesRegex(ValueError, "above the memory budget"):
+            swell.Replay(c, memory_budget_gib=1e-6)
         with self.assertRaisesRegex(ValueError, "set seed in the Replay keyword arguments"):
             swell.Replay(c, params={"seed": 3})
         with self.assertRaisesRegex(ValueError, "cells"):

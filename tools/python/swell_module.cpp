@@ -73,11 +73,11 @@ public:
     Replay(const Cache& c, const std::string& mode, std::optional<std::pair<int, int>> cells,
            std::uint64_t seed, std::optional<int> slices, std::optional<double> fluctuation,
            const py::dict& params, const py::dict& ripple, const py::dict& whirlpool,
-           const py::dict& splash)
-        : m_session(
-              c.reader,
-              configOf(mode, cells, seed, slices, fluctuation, params, ripple, whirlpool, splash),
-              runtime::PlaybackSession::Context::Own) {}
+           const py::dict& splash, std::optional<double> memoryBudgetGiB)
+        : m_session(c.reader,
+                    configOf(mode, cells, seed, slices, fluctuation, params, ripple, whirlpool,
+                             splash, memoryBudgetGiB),
+                    runtime::PlaybackSession::Context::Own) {}
 
     runtime::Playback& playback() { return m_session.playback(); }
 
@@ -150,9 +150,12 @@ private:
     static runtime::PlaybackConfig
     configOf(const std::string& mode, std::optional<std::pair<int, int>> cells, std::uint64_t seed,
              std::optional<int> slices, std::optional<double> fluctuation, const py::dict& params,
-             const py::dict& ripple, const py::dict& whirlpool, const py::dict& splash) {
+             const py::dict& ripple, const py::dict& whirlpool, const py::dict& splash,
+             std::optional<double> memoryBudgetGiB) {
         runtime::PlaybackChoice choice;
         choice.mode = runtime::replayModeFromString(mode);
+        if (memoryBudgetGiB)
+            choice.named["memory_budget_gib"] = *memoryBudgetGiB;
         for (const auto& [key, dict] :
              {std::pair{"params", &params}, std::pair{"ripple", &ripple},
               std::pair{"whirlpool", &whirlpool}, std::pair{"splash", &splash}}) {
@@ -268,12 +271,13 @@ PYBIND11_MODULE(swell, m) {
                        "heights(), sample(x, z), splashes().")
         .def(py::init<const Cache&, const std::string&, std::optional<std::pair<int, int>>,
                       std::uint64_t, std::optional<int>, std::optional<double>, const py::dict&,
-                      const py::dict&, const py::dict&, const py::dict&>(),
+                      const py::dict&, const py::dict&, const py::dict&, std::optional<double>>(),
              py::arg("cache"), py::kw_only(), py::arg("mode") = "surging",
              py::arg("cells") = py::none(), py::arg("seed") = 1, py::arg("slices") = py::none(),
              py::arg("fluctuation") = py::none(), py::arg("params") = py::dict(),
              py::arg("ripple") = py::dict(), py::arg("whirlpool") = py::dict(),
-             py::arg("splash") = py::dict(), py::keep_alive<1, 2>())
+             py::arg("splash") = py::dict(), py::arg("memory_budget_gib") = py::none(),
+             py::keep_alive<1, 2>())
         .def(
             "advance", [](Replay& r, double t) { r.playback().advance(t); }, py::arg("seconds"))
         .def("heights", &Replay::heights,

@@ -86,7 +86,8 @@ typedef struct swell_replay_config {
     /* Anything else, as JSON (NULL: none), keys as in swell-play's parameter record:
      * {"params": {"sigma": 2, "policy": "loop", "noise": {"beta": 2.5}, ...},
      *  "ripple": {"angles_degrees": [0, 30]}, "whirlpool": {...},
-     *  "splash": {"enabled": true, "artificial_per_real": 6}}.
+     *  "splash": {"enabled": true, "artificial_per_real": 6},
+     *  "memory_budget_gib": 2}  (a replay whose frames need more is refused up front).
      * Unknown keys are errors. */
     const char* params_json;
 } swell_replay_config;

@@ -109,6 +109,9 @@ static void test_bad_parameters(const swell_cache* cache) {
                  "unknown key colour");
     c.params_json = "{\"splash\": {\"artificial_per_real\": -1}}";
     EXPECT_ERROR(swell_replay_create(cache, &c, &r), SWELL_ERROR_INVALID_ARGUMENT, "artificial");
+    c.params_json = "{\"memory_budget_gib\": 1e-6}";
+    EXPECT_ERROR(swell_replay_create(cache, &c, &r), SWELL_ERROR_INVALID_ARGUMENT,
+                 "above the memory budget");
     c.params_json = "[1, 2]";
     EXPECT_ERROR(swell_replay_create(cache, &c, &r), SWELL_ERROR_INVALID_ARGUMENT, "JSON object");
     /* The caller's context was asked for, and none is current on this thread. */
