@@ -1,6 +1,7 @@
 #include "swell/runtime/playback.h"
 
 #include "swell/runtime/modes/mode_splashes.h"
+#include "swell/runtime/parallel_chunks.h"
 #include "swell/runtime/replay/bake_record.h"
 #include "swell/runtime/replay/height_sampling.h"
 
@@ -46,9 +47,14 @@ FrameSet readFrames(const cache::Reader& reader, std::vector<std::uint32_t> ids)
     set.header = reader.header();
     set.frameCount = reader.frameCount();
     set.ids = std::move(ids);
-    set.frames.reserve(set.ids.size());
-    for (std::uint32_t id : set.ids)
-        set.frames.push_back(reader.readFrame(id));
+    // Decoded on every core (Reader::readFrame is safe to call concurrently); a damaged frame
+    // is reported as in a serial read: the first one, in cache order.
+    set.frames.resize(set.ids.size());
+    forEachChunk(set.ids.size(), chunkCount(set.ids.size(), 64),
+                 [&](std::size_t, std::size_t begin, std::size_t end) {
+                     for (std::size_t i = begin; i < end; ++i)
+                         set.frames[i] = reader.readFrame(set.ids[i]);
+                 });
     return set;
 }
 

@@ -1,5 +1,7 @@
 #include "swell/runtime/replay/gpu_replay.h"
 
+#include "swell/runtime/parallel_chunks.h"
+
 #include "swell/runtime/error.h"
 #include "swell/runtime/replay/cpu_reconstruction.h"
 #include "swell/runtime/replay/surface_envelope.h"
@@ -160,16 +162,22 @@ GpuReplay::GpuReplay(const FrameSet& frames, const ReplayParams& params,
         // Envelope columns (eta(P_x), 1), or (empty-frame height, 0), on the CPU in double.
         const auto t0 = std::chrono::steady_clock::now();
         const double binWidth = envelopeBinWidth(frames.header, m_grid);
-        for (std::size_t slot = 0; slot < m_heldFrames; ++slot) {
-            const std::vector<double> eta = sampleEnvelope(
-                SurfaceEnvelope(frames.frames[slot], binWidth), m_grid.x0, m_grid.dx, N);
-            for (int n = 0; n < N; ++n) {
-                zeros[at(slot, n, 0)] =
-                    eta.empty() ? m_missing
+        // Each slot writes only its own columns: split over the cores.
+        forEachChunk(
+            m_heldFrames, chunkCount(m_heldFrames, 64),
+            [&](std::size_t, std::size_t begin, std::size_t end) {
+                for (std::size_t slot = begin; slot < end; ++slot) {
+                    const std::vector<double> eta = sampleEnvelope(
+                        SurfaceEnvelope(frames.frames[slot], binWidth), m_grid.x0, m_grid.dx, N);
+                    for (int n = 0; n < N; ++n) {
+                        zeros[at(slot, n, 0)] =
+                            eta.empty()
+                                ? m_missing
                                 : static_cast<float>(eta[static_cast<std::size_t>(n)] - reference);
-                zeros[at(slot, n, 1)] = eta.empty() ? 0.0f : 1.0f;
-            }
-        }
+                        zeros[at(slot, n, 1)] = eta.empty() ? 0.0f : 1.0f;
+                    }
+                }
+            });
         m_columnPassMs =
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
                 .count();
