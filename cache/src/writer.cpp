@@ -1,6 +1,7 @@
 #include "swell/cache/writer.h"
 
 #include "format.h"
+#include "swell/cache/checked_write.h"
 #include "swell/cache/error.h"
 
 #include <cerrno>
@@ -121,8 +122,9 @@ Writer::~Writer() {
 }
 
 void Writer::writeBytes(const void* data, std::size_t size) {
-    if (size && std::fwrite(data, 1, size, m_file) != size)
-        throw CacheError(describe(m_path, std::string("write failed: ") + std::strerror(errno)));
+    if (const int err = size ? writeAll(m_file, data, size, m_tmpPath) : 0; err != 0)
+        throw CacheError(describe(m_path, "cannot write " + m_tmpPath.filename().string() + ": " +
+                                              std::strerror(err) + "; no cache written"));
     m_offset += size;
 }
 
@@ -184,21 +186,26 @@ void Writer::finish() {
     put<std::uint64_t>(patch, m_index.size());
     put<std::uint64_t>(patch + 8, indexOffset);
     std::vector<std::uint8_t> head(kFixedHeaderSize + m_header.metadataJson.size());
+    int err = 0;
     auto fail = [&](const char* what) {
-        throw CacheError(describe(m_path, std::string(what) + ": " + std::strerror(errno)));
+        throw CacheError(describe(m_path, std::string(what) + ": " +
+                                              std::strerror(err ? err : errno) +
+                                              "; no cache written"));
     };
     if (std::fflush(m_file) != 0 || std::fseek(m_file, kOffFrameCount, SEEK_SET) != 0 ||
-        std::fwrite(patch, 1, sizeof patch, m_file) != sizeof patch || std::fflush(m_file) != 0 ||
+        (err = writeAll(m_file, patch, sizeof patch, m_tmpPath)) != 0 || std::fflush(m_file) != 0 ||
         std::fseek(m_file, 0, SEEK_SET) != 0 ||
         std::fread(head.data(), 1, head.size(), m_file) != head.size())
         fail("cannot patch header");
     const std::uint64_t headSum = headerChecksum(head);
     if (std::fseek(m_file, kOffHeaderChecksum, SEEK_SET) != 0 ||
-        std::fwrite(&headSum, 1, sizeof headSum, m_file) != sizeof headSum ||
+        (err = writeAll(m_file, &headSum, sizeof headSum, m_tmpPath)) != 0 ||
         std::fflush(m_file) != 0 || ::fsync(::fileno(m_file)) != 0)
         fail("cannot finish header");
-    std::fclose(m_file);
+    const int closed = std::fclose(m_file);
     m_file = nullptr;
+    if (closed != 0)
+        fail("cannot close the temporary file");
 
     std::error_code ec;
     fs::rename(m_tmpPath, m_path, ec); // atomic: readers see the old file or the whole new one
