@@ -79,8 +79,12 @@ Writer::Writer(fs::path path, Header header)
         throw CacheError(describe(m_path, std::string("cannot create temporary file ") +
                                               m_tmpPath.string() + ": " + std::strerror(errno)));
     m_cctx = ZSTD_createCCtx();
-    if (!m_cctx)
+    if (!m_cctx) {
+        std::fclose(m_file);
+        std::error_code ec;
+        fs::remove(m_tmpPath, ec);
         throw CacheError(describe(m_path, "cannot create zstd context"));
+    }
     ZSTD_CCtx_setParameter(static_cast<ZSTD_CCtx*>(m_cctx), ZSTD_c_compressionLevel,
                            m_header.compressionLevel);
     ZSTD_CCtx_setParameter(static_cast<ZSTD_CCtx*>(m_cctx), ZSTD_c_contentSizeFlag, 1);
@@ -106,8 +110,18 @@ Writer::Writer(fs::path path, Header header)
     put<float>(&head[kOffMaxError], m_header.maxPositionError());
     put<std::uint32_t>(&head[kOffMetadataLength],
                        static_cast<std::uint32_t>(m_header.metadataJson.size()));
-    writeBytes(head.data(), head.size());
-    writeBytes(m_header.metadataJson.data(), m_header.metadataJson.size());
+    try {
+        writeBytes(head.data(), head.size());
+        writeBytes(m_header.metadataJson.data(), m_header.metadataJson.size());
+    } catch (...) {
+        // No destructor runs for a constructor that throws: clean up here (a full disk
+        // already at the header must not leave the temporary behind).
+        ZSTD_freeCCtx(static_cast<ZSTD_CCtx*>(m_cctx));
+        std::fclose(m_file);
+        std::error_code ec;
+        fs::remove(m_tmpPath, ec);
+        throw;
+    }
 }
 
 Writer::~Writer() {
