@@ -44,26 +44,39 @@ public:
         if (!path.empty())
             m_text = probeCsvHeader(gauges) + '\n';
     }
+    ~ProbeFile() {
+        if (!m_tmp.empty()) {
+            std::error_code ec;
+            std::filesystem::remove(m_tmp, ec);
+        }
+    }
     bool enabled() const { return !m_path.empty(); }
     void add(const std::string& row) { m_text += row + '\n'; }
-    void finish() {
+    /// Writes the temporary file (before the cache is renamed into place, so a failure here
+    /// leaves neither new file).
+    void write() {
         if (!enabled())
             return;
-        std::filesystem::path tmp = m_path;
-        tmp += ".tmp-" + std::to_string(::getpid());
-        int err = cache::writeFile(tmp, m_text.data(), m_text.size());
-        if (err == 0 && std::rename(tmp.c_str(), m_path.c_str()) != 0)
-            err = errno;
-        if (err != 0) {
-            std::error_code ec;
-            std::filesystem::remove(tmp, ec);
-            throw std::runtime_error(fmt::format("cannot write probes file {}: {}", m_path.string(),
-                                                 std::strerror(err)));
-        }
+        m_tmp = m_path;
+        m_tmp += ".tmp-" + std::to_string(::getpid());
+        if (const int err = cache::writeFile(m_tmp, m_text.data(), m_text.size()); err != 0)
+            fail(err, "; no cache written");
+    }
+    /// Renames it into place (after the cache).
+    void commit() {
+        if (!enabled())
+            return;
+        if (std::rename(m_tmp.c_str(), m_path.c_str()) != 0)
+            fail(errno, "");
+        m_tmp.clear();
     }
 
 private:
-    std::filesystem::path m_path;
+    [[noreturn]] void fail(int err, const char* also) const {
+        throw std::runtime_error(fmt::format("cannot write probes file {}: {}{}", m_path.string(),
+                                             std::strerror(err), also));
+    }
+    std::filesystem::path m_path, m_tmp;
     std::string m_text;
 };
 
@@ -456,8 +469,9 @@ BakeSummary runBake(const Scene& scene, const BakeOptions& opt) {
     }
     sum.end = measureConservation(solver, scene, bed);
     sum.frames = writer.frameCount();
+    probes.write();
     writer.finish();
-    probes.finish();
+    probes.commit();
     if (every > 0 || opt.resume) {
         std::error_code ec;
         std::filesystem::remove(ckptPath, ec); // the cache is complete: nothing left to resume
