@@ -6,6 +6,7 @@
 #include "play_common.h"
 
 #include "swell/runtime/gl/egl_context.h"
+#include "swell/runtime/io/atomic_write.h"
 #include "swell/runtime/io/height_sequence.h"
 #include "swell/runtime/modes/mode_replay.h"
 
@@ -54,6 +55,9 @@ public:
         HeightSequence sequence(m_outDir, m_sequence, heightScale(setup.set.header.domain),
                                 gpu.grid(), displacementReference(setup));
         Progress progress("swell-play heights", taus.size(), !m_o.json);
+        // The frames and the sidecar go under temporary names until all are complete
+        // (atomic_write.h): a failed run leaves the folder as it was.
+        DeferredRenames staged;
         for (std::size_t i = 0; i < taus.size(); ++i) {
             gpu.update(taus[i]);
             sequence.write(i, gpu.readHeights(), taus[i], secondsOf(m_o, i));
@@ -61,6 +65,8 @@ public:
         }
         progress.done();
         const auto metaPath = sequence.writeSidecar(paramsJson(m_o, setup), context.renderer());
+        std::filesystem::remove(metaPath); // the old sidecar first: the folder is not whole
+        staged.commit();                   // until the new one, renamed last
         if (m_o.json) {
             std::cout << json{{"out", m_outDir},
                               {"format", heightFormatName(m_sequence.format)},
