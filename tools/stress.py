@@ -176,7 +176,8 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--long-steps", type=int, default=100000, help="steps of the long runs")
     ap.add_argument("--timeout", type=int, default=600, help="per-run limit (s), long runs get 5x")
-    ap.add_argument("--only", default="", help="bake,replay")
+    ap.add_argument("--only", default="", help="bake,replay,durability")
+    ap.add_argument("--lock-trials", type=int, default=20, help="durability: lock trials")
     ap.add_argument("--no-docs", action="store_true")
     args = ap.parse_args()
     only = set(filter(None, args.only.split(",")))
@@ -229,6 +230,10 @@ def main():
                                                                               else c for c in cmd)})
             print("  %-44s %s" % (label, replay_rows[-1]["outcome"]), flush=True)
         bl.write_csv(os.path.join(OUT, "replay.csv"), replay_rows)
+    dur_ok = True
+    if not only or "durability" in only:
+        print("tools/stress: durability (locks, ENOSPC/EIO at every write site, resume)", flush=True)
+        dur_ok = durability_section(args, log, not args.no_docs)
     loads.append(("end", bl.load_average(), time.strftime("%H:%M:%S")))
     minutes = (time.monotonic() - t0) / 60
     m = bl.machine()
@@ -236,13 +241,15 @@ def main():
     with open(os.path.join(OUT, "machine.json"), "w") as f:
         json.dump(m, f, indent=1)
     fails = [r for r in bake_rows + replay_rows if not r["ok"]]
-    if not args.no_docs:
+    if not args.no_docs and (bake_rows or replay_rows):
         docs(bake_rows, replay_rows, m, args.long_steps)
     print("tools/stress: %d cases, %d failed, %.1f min; out/stress/" % (
         len(bake_rows) + len(replay_rows), len(fails), minutes), flush=True)
     for r in fails:
         print("  FAILED: %s: %s" % (r["case"], r["outcome"]))
-    sys.exit(1 if fails else 0)
+    if not dur_ok:
+        print("  FAILED: durability (see the lines above)")
+    sys.exit(1 if fails or not dur_ok else 0)
 
 
 def docs(bake_rows, replay_rows, m, long_steps):
@@ -282,6 +289,278 @@ def docs(bake_rows, replay_rows, m, long_steps):
                   ("max error (m)", lambda r: r.get("max_abs_error")), ("fps", lambda r: r.get("fps")),
                   ("wall s", "wall_s"), ("command", lambda r: "`%s`" % r["command"])])]
     bl.replace_section(DOC, "stress", "\n".join(t))
+
+
+# ---------------------------------------------------------------- durability (issue 17)
+# Self-contained: durability_section() runs it and writes its own table (section "durability"
+# of docs/validation.md). Lock trials between two real swell-bake processes, ENOSPC and EIO at
+# every write site (SWELL_FAULT_INJECT, cache/include/swell/cache/checked_write.h), and resume
+# across a rebuild.
+
+DUR = os.path.join(OUT, "durability")
+
+
+def _dur_files(d):
+    """Every file under d: relative name -> bytes."""
+    files = {}
+    for root, _, names in os.walk(d):
+        for n in names:
+            p = os.path.join(root, n)
+            with open(p, "rb") as f:
+                files[os.path.relpath(p, d)] = f.read()
+    return files
+
+
+def _dur_error_lines(err):
+    return [l for l in err.splitlines() if l.strip() and ": warning: " not in l]
+
+
+def dur_lock_trials(trials, log):
+    """A long bake holds the output; a second one must be refused naming its PID; after the first
+    is killed with SIGKILL a third must run (the kernel released the lock)."""
+    import signal
+    import subprocess
+    d = os.path.join(DUR, "lock")
+    os.makedirs(d, exist_ok=True)
+    out = os.path.join(d, "k.swell")
+    refused = released = 0
+    messages = []
+    env = dict(os.environ, OMP_WAIT_POLICY="PASSIVE")
+    for t in range(trials):
+        a = subprocess.Popen([bl.exe("swell-bake"), scene("surging_small.json"), "-o", out, "--set",
+                              "solver.end_time=100", "--threads", "1", "-q"],
+                             stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, env=env)
+        tmp = "%s.tmp-%d" % (out, a.pid)
+        deadline = time.monotonic() + 60
+        while not os.path.exists(tmp) and time.monotonic() < deadline and a.poll() is None:
+            time.sleep(0.01)  # the temporary cache exists once the lock is held
+        b = bl.run([bl.exe("swell-bake"), scene("surging_small.json"), "-o", out, "--set",
+                    "solver.end_time=0.1", "-q"], timeout=120, log=log)
+        lines = _dur_error_lines(b.err)
+        if b.rc == 6 and len(lines) == 1 and ("in use by process %d " % a.pid) in lines[0]:
+            refused += 1
+            messages.append(lines[0])
+        a.send_signal(signal.SIGKILL)
+        a.wait()
+        c = bl.run([bl.exe("swell-bake"), scene("surging_small.json"), "-o", out, "--set",
+                    "solver.end_time=0.1", "-q"], timeout=120, log=log)
+        if c.rc == 0 and not any(".tmp-" in n for n in os.listdir(d)):
+            released += 1
+    return {"trials": trials, "refused": refused, "released": released,
+            "message": messages[0] if messages else "-"}
+
+
+def _dur_sites():
+    """(group, site, make-good-command, faulted-command, file named) per write site."""
+    bake = [bl.exe("swell-bake"), scene("surging_small.json"), "--threads", "1", "-q"]
+    bdir = os.path.join(DUR, "bake")
+    bake_good = bake + ["-o", os.path.join(bdir, "s.swell"), "--probes", os.path.join(bdir, "s.csv"),
+                        "--set", "solver.end_time=0.4"]
+    # The faulted bakes are shorter (a cache or probes they wrote would differ from the good ones);
+    # only the checkpoint's writes checkpoints (which a bake rightly replaces as it goes).
+    bake_bad = bake + ["-o", os.path.join(bdir, "s.swell"), "--probes", os.path.join(bdir, "s.csv"),
+                       "--set", "solver.end_time=0.3"]
+    synth = os.path.join(DUR, "synth.swell")
+    small = ["--res", "48x32", "--slices", "16", "--seconds", "0.2", "--fps", "20", "--window", "all"]
+    play = lambda cmd, d, extra: [bl.exe("swell-play"), cmd, synth, "--out", os.path.join(DUR, d)] + \
+        small + extra
+    h_png = play("heights", "heights_png", [])
+    h_exr = play("heights", "heights_exr", ["--format", "exr-half", "--normals", "--blender-disp"])
+    render = play("render", "render", ["--size", "160x90", "--export", "heights,mesh,splashes",
+                                       "--splash-count", "2"])
+    sites = [("bake", "cache", bake_good, bake_bad, ".swell.tmp", bdir),
+             ("bake", "checkpoint", bake_good, bake_bad + ["--checkpoint-every", "50"], ".ckpt.tmp",
+              bdir),
+             ("bake", "probes CSV", bake_good, bake_bad, ".csv.tmp", bdir)]
+    for name, cmd, d, files in [
+            ("heights png16", h_png, "heights_png", ["height_00002.png", "heights.json"]),
+            ("heights exr-half", h_exr, "heights_exr",
+             ["height_00001.exr", "normal_00003.exr", "disp_0001.exr", "heights.json"]),
+            ("render", render, "render",
+             ["frame_00002.png", "contact_sheet.png", "render.json", "heights/height_00001.png",
+              "heights/heights.json", "mesh/surface_00003.ply", "splashes/splashes_00000.ply"])]:
+        for f in files:
+            sites.append((name, f, cmd + ["--seed", "1"], cmd + ["--seed", "2"], f,
+                          os.path.join(DUR, d)))
+    return sites
+
+
+def dur_faults(log):
+    """ENOSPC and EIO at every write site, at the file's first byte, after 100 bytes and halfway
+    through it: one clear line naming the file, non-zero exit, the previous files unchanged, no
+    temporary left."""
+    import shutil
+    shutil.rmtree(DUR, ignore_errors=True)
+    os.makedirs(os.path.join(DUR, "bake"), exist_ok=True)
+    bl.run([bl.exe("swell-cache"), "synth", os.path.join(DUR, "synth.swell"), "--frames", 40],
+           timeout=60, log=log)
+    rows = []
+    made = set()
+    for group, site, good, bad, match, d in _dur_sites():
+        if (group, d) not in made or group == "bake":
+            g = bl.run(good, timeout=600, log=log)
+            if g.rc != 0:
+                raise SystemExit("tools/stress: durability: %s failed: %s" % (" ".join(good),
+                                                                               g.last_err_line()))
+            made.add((group, d))
+        before = _dur_files(d)
+        size = max([len(b) for n, b in before.items() if match in n] or [0])
+        if group == "bake":  # the good bake removed its checkpoint: put one back
+            ckpt = os.path.join(d, "s.swell.ckpt")
+            with open(ckpt, "wb") as f:
+                f.write(b"previous checkpoint")
+            before = _dur_files(d)
+            size = {"cache": len(before["s.swell"]), "probes CSV": len(before["s.csv"])}.get(
+                site, 20000)
+        row = {"group": group, "site": site, "runs": 0, "clear": 0, "damaged": 0, "left": 0,
+               "example": "-"}
+        for kind in ("enospc", "eio"):
+            for after in sorted({0, min(100, size // 2), size // 2}):
+                env = {"SWELL_FAULT_INJECT": "%s:after=%d:match=%s" % (kind, after, match)}
+                r = bl.run(bad, timeout=600, env=env, log=log)
+                lines = _dur_error_lines(r.err)
+                reason = "Input/output error" if kind == "eio" else "No space left on device"
+                named = os.path.basename(match.strip(".")) if group == "bake" else match
+                clear = (r.rc not in (0, None) and len(lines) == 1 and reason in lines[0] and
+                         (named.split(".")[0] in lines[0]))
+                now = _dur_files(d)
+                damaged = sum(1 for n, b in before.items() if now.get(n) != b)
+                left = sum(1 for n in now if ".tmp-" in n) + len(set(now) - set(before))
+                row["runs"] += 1
+                row["clear"] += clear
+                row["damaged"] += damaged
+                row["left"] += left
+                if clear and row["example"] == "-":
+                    row["example"] = lines[0].replace(DUR + "/", "")
+        rows.append(row)
+        print("  %-18s %-28s %d/%d clear, %d damaged, %d left" % (
+            group, site, row["clear"], row["runs"], row["damaged"], row["left"]), flush=True)
+    return rows
+
+
+def _dur_patch_numerics(path, version):
+    """Rewrites a checkpoint as a swell-bake of another numerics version would have written it
+    (the fingerprint's numerics_version; sizes and checksums redone)."""
+    import struct
+    import xxhash
+    import zstandard
+    with open(path, "rb") as f:
+        data = f.read()
+    raw = zstandard.ZstdDecompressor().decompress(data[48:], max_output_size=1 << 34)
+    n = struct.unpack_from("<Q", raw, 0)[0]
+    fp = json.loads(raw[8:8 + n])
+    fp["numerics_version"] = version
+    text = json.dumps(fp, separators=(",", ":")).encode()
+    raw = struct.pack("<Q", len(text)) + text + raw[8 + n:]
+    packed = zstandard.ZstdCompressor(level=3).compress(raw)
+    head = bytearray(data[:48])
+    struct.pack_into("<QQQ", head, 16, len(packed), len(raw), xxhash.xxh3_64_intdigest(packed))
+    struct.pack_into("<Q", head, 40, xxhash.xxh3_64_intdigest(bytes(head[:40])))
+    with open(path, "wb") as f:
+        f.write(bytes(head) + packed)
+
+
+def dur_resume(log):
+    """A bake killed after a checkpoint, resumed by another executable (the same build with one
+    byte of its help text changed, so its file digest differs), with another thread count; and
+    resumes that must be refused with the reason."""
+    import shutil
+    import signal
+    import subprocess
+    d = os.path.join(DUR, "resume")
+    os.makedirs(d, exist_ok=True)
+    rebuilt = os.path.join(d, "swell-bake-rebuilt")
+    with open(bl.exe("swell-bake"), "rb") as f:
+        binary = f.read()
+    old = b"continue from CACHE.ckpt"
+    assert binary.count(old) == 1, "help text to change not found in swell-bake"
+    with open(rebuilt, "wb") as f:
+        f.write(binary.replace(old, b"Continue from CACHE.ckpt"))
+    os.chmod(rebuilt, 0o755)
+    base = [scene("surging_small.json"), "--set", "solver.end_time=1.5", "-q"]
+    ref = os.path.join(d, "ref.swell")
+    bl.run([bl.exe("swell-bake")] + base + ["-o", ref, "--threads", "2"], timeout=600, log=log)
+    rows = []
+
+    def interrupted(out):
+        for p in (out, out + ".ckpt"):
+            if os.path.exists(p):
+                os.remove(p)
+        a = subprocess.Popen([bl.exe("swell-bake")] + base + ["-o", out, "--threads", "1",
+                                                               "--checkpoint-every", "100"],
+                             stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        deadline = time.monotonic() + 120
+        while not os.path.exists(out + ".ckpt") and time.monotonic() < deadline and a.poll() is None:
+            time.sleep(0.005)
+        a.send_signal(signal.SIGKILL)
+        a.wait()
+        return os.path.exists(out + ".ckpt") and not os.path.exists(out)
+
+    out = os.path.join(d, "s.swell")
+    cases = [("another executable (help text changed), 2 threads instead of 1", [rebuilt, "--threads", "2"],
+              None, "accepted"),
+             ("same build, another --set", [bl.exe("swell-bake"), "--threads", "1", "--set",
+                                            "physics.kinematic_viscosity=1e-6"], None, "refused"),
+             ("checkpoint of another numerics version", [rebuilt, "--threads", "1"], 0, "refused")]
+    for label, cmd, numerics, expect in cases:
+        ok_kill = interrupted(out)
+        if numerics is not None:
+            _dur_patch_numerics(out + ".ckpt", numerics)
+        r = bl.run([cmd[0]] + base + ["-o", out, "--resume", "--json"] + cmd[1:], timeout=600, log=log)
+        lines = _dur_error_lines(r.err)
+        if expect == "accepted":
+            same = r.rc == 0 and open(out, "rb").read() == open(ref, "rb").read()
+            resumed = r.json.get("resumed_from_step") if r.json else None
+            outcome = ("resumed from step %s; cache byte-identical to the uninterrupted bake" % resumed
+                       if same else "FAIL: exit %s: %s" % (r.rc, r.last_err_line()))
+            ok = same and ok_kill
+        else:
+            ok = ok_kill and r.rc == 5 and len(lines) == 1 and os.path.exists(out + ".ckpt")
+            outcome = ("refused (exit 5): " + lines[0].split(".ckpt: ", 1)[-1]) if ok else \
+                "FAIL: exit %s: %s" % (r.rc, r.last_err_line())
+        rows.append({"case": label, "expect": expect, "outcome": outcome, "ok": ok})
+        print("  %-66s %s" % (label, outcome[:100]), flush=True)
+    shutil.rmtree(d, ignore_errors=True)
+    return rows
+
+
+def durability_section(args, log, docs_too):
+    t0 = time.monotonic()
+    lock = dur_lock_trials(args.lock_trials, log)
+    print("  lock: %d/%d second writers refused, %d/%d bakes ran after SIGKILL of the holder" % (
+        lock["refused"], lock["trials"], lock["released"], lock["trials"]), flush=True)
+    faults = dur_faults(log)
+    resume = dur_resume(log)
+    minutes = (time.monotonic() - t0) / 60
+    ok = (lock["refused"] == lock["trials"] and lock["released"] == lock["trials"] and
+          all(r["clear"] == r["runs"] and r["damaged"] == 0 and r["left"] == 0 for r in faults) and
+          all(r["ok"] for r in resume))
+    if docs_too:
+        m = bl.machine()
+        runs = sum(r["runs"] for r in faults)
+        t = ["Generated by `tools/stress --only durability` on %s: %s, %d cores; commit %s. %.1f min." % (
+                 m["date"], m["cpu"], m["cores"], m["commit"], minutes), "",
+             "**Lock** (`swell-bake` to an output a running `swell-bake` holds; then SIGKILL of the "
+             "holder and a third bake): %d of %d second writers refused (exit 6, one line naming the "
+             "holder's PID), %d of %d bakes ran at once after the holder was killed. Message: `%s`" % (
+                 lock["refused"], lock["trials"], lock["released"], lock["trials"],
+                 lock["message"].replace(DUR + "/", "")), "",
+             "**ENOSPC and EIO at every write site** (`SWELL_FAULT_INJECT=enospc|eio:after=N:match=FILE`, "
+             "N = 0, 100 and half the file's size; after a good run, the faulted run writes other "
+             "content). Clear = non-zero exit and one stderr line naming the file and the reason; "
+             "damaged = files of the previous good run changed or gone; left = temporaries or new "
+             "files left: %d runs, %d clear, %d damaged, %d left." % (
+                 runs, sum(r["clear"] for r in faults), sum(r["damaged"] for r in faults),
+                 sum(r["left"] for r in faults)), "",
+             bl.md_table(faults, [("program", "group"), ("write site", "site"), ("runs", "runs"),
+                                  ("clear errors", "clear"), ("damaged", "damaged"),
+                                  ("left behind", "left"),
+                                  ("first message", lambda r: "`%s`" % r["example"])]), "",
+             "**Resume across a rebuild** (`swell-bake scenes/surging_small.json --set solver.end_time=1.5` "
+             "killed with SIGKILL after a checkpoint (`--checkpoint-every 100`), then `--resume`):", "",
+             bl.md_table(resume, [("case", "case"), ("expected", "expect"), ("outcome", "outcome")])]
+        bl.replace_section(DOC, "durability", "\n".join(t))
+    return ok
 
 
 if __name__ == "__main__":

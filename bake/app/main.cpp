@@ -20,6 +20,7 @@
 #include "swell/bake/error.h"
 #include "swell/bake/scene.h"
 #include "swell/cache/error.h"
+#include "swell/cache/output_lock.h"
 
 using namespace swell::bake;
 using nlohmann::json;
@@ -105,7 +106,8 @@ void printSummary(const Scene& scene, const BakeSummary& s, const std::string& o
 }
 
 /// Exit code and stderr line of a failed bake (README "Programs"): 130 cancelled, 3 diverged
-/// (no cache), 2 bad scene, 5 checkpoint, 4 cache, 1 anything else.
+/// (no cache), 2 bad scene, 5 checkpoint, 6 output in use by another process, 4 cache, 1
+/// anything else.
 int reportFailure(const std::exception& e, const std::string& scenePath,
                   ProgressReporter& progress) {
     if (dynamic_cast<const SceneError*>(&e) != nullptr) {
@@ -122,6 +124,8 @@ int reportFailure(const std::exception& e, const std::string& scenePath,
         suffix = "; no cache written";
     } else if (dynamic_cast<const CheckpointError*>(&e) != nullptr) {
         code = 5;
+    } else if (dynamic_cast<const swell::cache::OutputBusy*>(&e) != nullptr) {
+        code = 6;
     } else if (dynamic_cast<const swell::cache::CacheError*>(&e) != nullptr) {
         code = 4;
     }
@@ -154,8 +158,8 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(1L, 1000000000L));
     app.add_flag("--resume", resume,
                  "continue from CACHE.ckpt; the cache is byte-identical to an uninterrupted bake "
-                 "(same scene, "
-                 "--set, --threads and build)");
+                 "(same scene and --set; same --threads from 4096 particles; any build of the "
+                 "same numerics version)");
     app.add_flag("--json", asJson, "print the summary as one JSON object on stdout");
     app.add_flag("-q,--quiet", quiet, "no progress lines");
     try {
@@ -187,8 +191,6 @@ int main(int argc, char** argv) {
         opt.programVersion = SWELL_VERSION;
         opt.checkpointEvery = checkpointEvery;
         opt.resume = resume;
-        if (checkpointEvery > 0 || resume)
-            opt.buildId = fileDigest("/proc/self/exe");
         opt.onProgress = [&](const BakeProgress& p) { progress(p); };
         opt.cancelled = [] { return g_stop != 0; };
         const BakeSummary s = runBake(scene, opt);

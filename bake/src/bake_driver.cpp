@@ -4,6 +4,8 @@
 #include <chrono>
 #include <cmath>
 #include <csignal>
+#include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <limits>
 #include <optional>
@@ -16,9 +18,12 @@
 #include "swell/bake/checkpoint.h"
 #include "swell/bake/classification.h"
 #include "swell/bake/error.h"
+#include "swell/bake/numerics_version.h"
 #include "swell/bake/probes.h"
 #include "swell/bake/replay_window.h"
 #include "swell/bake/wave_theory.h"
+#include "swell/cache/checked_write.h"
+#include "swell/cache/output_lock.h"
 #include "swell/cache/writer.h"
 
 namespace swell::bake {
@@ -31,40 +36,48 @@ double secondsSince(Clock::time_point t0) {
     return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-/// Probes CSV written to a temporary name and renamed when the bake completes.
+/// Probes CSV, kept in memory and written (to a temporary name, renamed) when the bake
+/// completes: a probes file is there only whole.
 class ProbeFile {
 public:
     ProbeFile(const std::filesystem::path& path, std::span<const double> gauges) : m_path(path) {
-        if (path.empty())
-            return;
-        m_tmp = path;
-        m_tmp += ".tmp";
-        m_out.open(m_tmp);
-        if (!m_out)
-            throw std::runtime_error(fmt::format("cannot write probes file {}", m_tmp.string()));
-        m_out << probeCsvHeader(gauges) << '\n';
+        if (!path.empty())
+            m_text = probeCsvHeader(gauges) + '\n';
     }
     ~ProbeFile() {
-        if (m_out.is_open()) {
-            m_out.close();
+        if (!m_tmp.empty()) {
             std::error_code ec;
             std::filesystem::remove(m_tmp, ec);
         }
     }
     bool enabled() const { return !m_path.empty(); }
-    void add(const std::string& row) { m_out << row << '\n'; }
-    void finish() {
+    void add(const std::string& row) { m_text += row + '\n'; }
+    /// Writes the temporary file (before the cache is renamed into place, so a failure here
+    /// leaves neither new file).
+    void write() {
         if (!enabled())
             return;
-        m_out.close();
-        if (m_out.fail())
-            throw std::runtime_error(fmt::format("error writing probes file {}", m_tmp.string()));
-        std::filesystem::rename(m_tmp, m_path);
+        m_tmp = m_path;
+        m_tmp += ".tmp-" + std::to_string(::getpid());
+        if (const int err = cache::writeFile(m_tmp, m_text.data(), m_text.size()); err != 0)
+            fail(err, "; no cache written");
+    }
+    /// Renames it into place (after the cache).
+    void commit() {
+        if (!enabled())
+            return;
+        if (std::rename(m_tmp.c_str(), m_path.c_str()) != 0)
+            fail(errno, "");
+        m_tmp.clear();
     }
 
 private:
+    [[noreturn]] void fail(int err, const char* also) const {
+        throw std::runtime_error(fmt::format("cannot write probes file {}: {}{}", m_path.string(),
+                                             std::strerror(err), also));
+    }
     std::filesystem::path m_path, m_tmp;
-    std::ofstream m_out;
+    std::string m_text;
 };
 
 /// Paper Sec. 3.3.2, particle recycling (Algorithm 1 step 8, "Delete particles", and step 3,
@@ -110,34 +123,35 @@ std::size_t recycle(MpsSolver& solver, const Scene& scene) {
     return moved;
 }
 
-/// A bake killed with SIGKILL leaves its temporary cache (CACHE.tmp-<pid>) and maybe a
-/// half-written checkpoint (CACHE.ckpt.tmp-<pid>) behind; remove those of processes that are
-/// gone (a resumed run that was itself killed may have left some too).
-void removeStaleTemporaries(const std::filesystem::path& output) {
+/// A bake killed with SIGKILL leaves its temporary cache (CACHE.tmp-<pid>), maybe a
+/// half-written checkpoint (CACHE.ckpt.tmp-<pid>) and probes file (PROBES.tmp-<pid>) behind;
+/// remove those of processes that are gone, never those of a live one. Called with the
+/// output's lock held, so no other swell-bake is writing them.
+void removeStaleTemporaries(const std::filesystem::path& output,
+                            const std::filesystem::path& probes) {
     namespace fs = std::filesystem;
-    const fs::path dir = output.has_parent_path() ? output.parent_path() : fs::path(".");
-    const std::string name = output.filename().string();
-    std::error_code ec;
     std::vector<fs::path> stale;
-    for (const auto& e : fs::directory_iterator(dir, ec)) {
-        const std::string f = e.path().filename().string();
-        std::string rest;
-        for (const std::string& prefix : {name + ".tmp-", name + ".ckpt.tmp-"}) {
-            if (f.size() > prefix.size() && f.compare(0, prefix.size(), prefix) == 0)
-                rest = f.substr(prefix.size());
+    for (const fs::path& file : {output, checkpointPath(output), probes}) {
+        if (file.empty())
+            continue;
+        const fs::path dir = file.has_parent_path() ? file.parent_path() : fs::path(".");
+        const std::string prefix = file.filename().string() + ".tmp-";
+        std::error_code ec;
+        for (const auto& e : fs::directory_iterator(dir, ec)) {
+            const std::string f = e.path().filename().string();
+            if (f.compare(0, prefix.size(), prefix) != 0 || f.size() == prefix.size())
+                continue;
+            const long pid = cache::temporaryFileWriter(e.path());
+            if (pid > 0 && pid != ::getpid() &&
+                f.size() == prefix.size() + std::to_string(pid).size() &&
+                !cache::processExists(pid))
+                stale.push_back(e.path());
         }
-        if (rest.empty() || rest.size() > 9 ||
-            rest.find_first_not_of("0123456789") != std::string::npos)
-            continue;
-        const long pid = std::stol(rest);
-        if (pid <= 0 || pid == ::getpid())
-            continue;
-        if (::kill(static_cast<pid_t>(pid), 0) == 0 || errno != ESRCH)
-            continue; // still running (or not ours)
-        stale.push_back(e.path());
     }
-    for (const fs::path& p : stale)
+    for (const fs::path& p : stale) {
+        std::error_code ec;
         fs::remove(p, ec);
+    }
 }
 
 } // namespace
@@ -308,6 +322,7 @@ BakeSummary runBake(const Scene& scene, const BakeOptions& opt) {
     const json meta{
         {"program", "swell-bake"},
         {"version", opt.programVersion},
+        {"numerics_version", kNumericsVersion},
         {"scene_file", opt.sceneFile},
         {"overrides", opt.overrides},
         {"scene", toJson(scene)},
@@ -324,10 +339,22 @@ BakeSummary runBake(const Scene& scene, const BakeOptions& opt) {
         {"replay", toJson(sum.replay)}};
     header.metadataJson = meta.dump();
 
-    // Checkpoints (docs/scenes.md "Checkpoints"): what a resume must match is everything the cache
-    // records, plus the build of the program (a different build may step differently).
+    // One writer per output (cache, checkpoint, temporaries), from before the checkpoint is
+    // read until the cache is complete; then the leftovers of killed bakes can go.
+    const cache::OutputLock lock(opt.output);
+    removeStaleTemporaries(opt.output, opt.probes);
+
+    // Checkpoints (docs/scenes.md "Checkpoints"): a resume must match what decides the
+    // numbers: the numerics version, the scene, the overrides and, where it matters, the
+    // thread count; not the program version or build (a rebuild keeps a long bake).
     const std::filesystem::path ckptPath = checkpointPath(opt.output);
-    const std::string fingerprint = json{{"cache_metadata", meta}, {"build", opt.buildId}}.dump();
+    const std::string fingerprint = json{
+        {"numerics_version", kNumericsVersion},
+        {"scene", toJson(scene)},
+        {"overrides", opt.overrides},
+        {"threads", threadCountAffectsResults(P.size())
+                        ? json(opt.threads)
+                        : json("any")}}.dump();
     std::optional<Checkpoint> resumed;
     long first = 0; // steps already done
     BakeTotals tot;
@@ -350,7 +377,6 @@ BakeSummary runBake(const Scene& scene, const BakeOptions& opt) {
         }
         tot = resumed->totals;
         sum.resumedFromStep = first;
-        removeStaleTemporaries(opt.output);
     }
     const long every =
         opt.checkpointEvery > 0 ? opt.checkpointEvery : (resumed ? resumed->checkpointEvery : 0);
@@ -443,8 +469,9 @@ BakeSummary runBake(const Scene& scene, const BakeOptions& opt) {
     }
     sum.end = measureConservation(solver, scene, bed);
     sum.frames = writer.frameCount();
+    probes.write();
     writer.finish();
-    probes.finish();
+    probes.commit();
     if (every > 0 || opt.resume) {
         std::error_code ec;
         std::filesystem::remove(ckptPath, ec); // the cache is complete: nothing left to resume

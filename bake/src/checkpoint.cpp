@@ -16,6 +16,8 @@
 #include <xxhash.h>
 #include <zstd.h>
 
+#include "swell/cache/checked_write.h"
+
 namespace swell::bake {
 namespace {
 
@@ -262,22 +264,17 @@ std::uint64_t writeCheckpoint(const fs::path& path, const Checkpoint& c) {
 
     fs::path tmp = path;
     tmp += ".tmp-" + std::to_string(::getpid());
-    const auto fail = [&](const std::string& what) {
-        const std::string reason = std::strerror(errno);
+    const auto fail = [&](const std::string& what, int err) {
         std::error_code ec;
         fs::remove(tmp, ec);
-        throw CheckpointError(fmt::format("{}: cannot write the checkpoint ({} {}): {}",
-                                          where(path), what, tmp.string(), reason));
+        throw CheckpointError(fmt::format("{}: cannot write the checkpoint ({} {}): {}; the "
+                                          "previous checkpoint, if any, is unchanged",
+                                          where(path), what, tmp.string(), std::strerror(err)));
     };
-    std::FILE* f = std::fopen(tmp.c_str(), "wb");
-    if (!f)
-        fail("create");
-    const bool ok = std::fwrite(file.data(), 1, file.size(), f) == file.size() &&
-                    std::fflush(f) == 0 && ::fsync(::fileno(f)) == 0;
-    if (std::fclose(f) != 0 || !ok)
-        fail("write");
+    if (const int err = cache::writeFile(tmp, file.data(), file.size()); err != 0)
+        fail("write", err);
     if (std::rename(tmp.c_str(), path.c_str()) != 0)
-        fail("rename");
+        fail("rename", errno);
     const fs::path dir = path.has_parent_path() ? path.parent_path() : fs::path(".");
     if (int dfd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY); dfd >= 0) {
         ::fsync(dfd); // the rename itself survives a power cut
@@ -348,35 +345,36 @@ void checkFingerprint(const fs::path& path, const std::string& stored, const std
     std::string what = "its fingerprint differs";
     if (!a.is_discarded() && !b.is_discarded()) {
         const json patch = json::diff(a, b);
+        const json::json_pointer version("/numerics_version");
+        if (!a.contains(version) || !b.contains(version) || a.at(version) != b.at(version)) {
+            throw CheckpointError(fmt::format(
+                "{}: checkpoint written with numerics version {}, this swell-bake has {}: the "
+                "solver's results changed in between, so the resumed cache would not match; bake "
+                "without --resume to start over",
+                where(path),
+                a.contains(version) ? a.at(version).dump() : "none (an older swell-bake)",
+                b.contains(version) ? b.at(version).dump() : "none"));
+        }
         if (!patch.empty()) {
-            const json::json_pointer ptr(patch[0].at("path").get<std::string>());
+            json::json_pointer ptr(patch[0].at("path").get<std::string>());
+            // A difference inside an array (the --set list) is shown as the whole arrays.
+            const auto inArray = [&](const json::json_pointer& p) {
+                const json::json_pointer up = p.parent_pointer();
+                return !p.empty() && ((a.contains(up) && a.at(up).is_array()) ||
+                                      (b.contains(up) && b.at(up).is_array()));
+            };
+            while (inArray(ptr))
+                ptr = ptr.parent_pointer();
             what = fmt::format("{} is {} there, {} now", ptr.to_string(),
                                a.contains(ptr) ? shorten(a.at(ptr)) : "absent",
                                b.contains(ptr) ? shorten(b.at(ptr)) : "absent");
         }
     }
-    throw CheckpointError(
-        fmt::format("{}: checkpoint of a different bake ({}); resume with the same scene, "
-                    "--set overrides, --threads and swell-bake build, or bake without --resume "
-                    "to start over",
-                    where(path), what));
-}
-
-std::string fileDigest(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in)
-        throw CheckpointError(
-            fmt::format("{}: cannot read: {}", path.string(), std::strerror(errno)));
-    XXH3_state_t* st = XXH3_createState();
-    XXH3_64bits_reset(st);
-    std::vector<char> buf(1 << 16);
-    while (in) {
-        in.read(buf.data(), static_cast<std::streamsize>(buf.size()));
-        XXH3_64bits_update(st, buf.data(), static_cast<std::size_t>(in.gcount()));
-    }
-    const std::uint64_t d = XXH3_64bits_digest(st);
-    XXH3_freeState(st);
-    return fmt::format("{:016x}", d);
+    throw CheckpointError(fmt::format(
+        "{}: checkpoint of a different bake ({}); resume with the same scene and --set "
+        "overrides (and, for scenes of 4096 particles or more, the same --threads), or bake "
+        "without --resume to start over",
+        where(path), what));
 }
 
 } // namespace swell::bake

@@ -2,6 +2,7 @@
 
 #include "format.h"
 #include "swell/cache/error.h"
+#include "swell/cache/output_lock.h"
 
 #include <cerrno>
 #include <cmath>
@@ -91,6 +92,13 @@ Frame decodeFrame(const fs::path& path, const Header& h, const FrameInfo& e, std
 
 Reader::Reader(fs::path path) : m_path(std::move(path)) {
     auto fail = [&](const std::string& what) { return CacheError(m_path.string() + ": " + what); };
+    if (const long pid = temporaryFileWriter(m_path); pid > 0) {
+        throw fail("a temporary file of an unfinished write by process " + std::to_string(pid) +
+                   (processExists(pid) ? " (still running)"
+                                       : " (no longer running: the next bake to that output "
+                                         "removes it)") +
+                   ", not a cache; a cache appears under its own name only when complete");
+    }
     auto file = std::make_shared<const File>(m_path);
     const File& fd = *file;
     if (fd.get() < 0)

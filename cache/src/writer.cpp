@@ -1,6 +1,7 @@
 #include "swell/cache/writer.h"
 
 #include "format.h"
+#include "swell/cache/checked_write.h"
 #include "swell/cache/error.h"
 
 #include <cerrno>
@@ -78,8 +79,12 @@ Writer::Writer(fs::path path, Header header)
         throw CacheError(describe(m_path, std::string("cannot create temporary file ") +
                                               m_tmpPath.string() + ": " + std::strerror(errno)));
     m_cctx = ZSTD_createCCtx();
-    if (!m_cctx)
+    if (!m_cctx) {
+        std::fclose(m_file);
+        std::error_code ec;
+        fs::remove(m_tmpPath, ec);
         throw CacheError(describe(m_path, "cannot create zstd context"));
+    }
     ZSTD_CCtx_setParameter(static_cast<ZSTD_CCtx*>(m_cctx), ZSTD_c_compressionLevel,
                            m_header.compressionLevel);
     ZSTD_CCtx_setParameter(static_cast<ZSTD_CCtx*>(m_cctx), ZSTD_c_contentSizeFlag, 1);
@@ -105,8 +110,18 @@ Writer::Writer(fs::path path, Header header)
     put<float>(&head[kOffMaxError], m_header.maxPositionError());
     put<std::uint32_t>(&head[kOffMetadataLength],
                        static_cast<std::uint32_t>(m_header.metadataJson.size()));
-    writeBytes(head.data(), head.size());
-    writeBytes(m_header.metadataJson.data(), m_header.metadataJson.size());
+    try {
+        writeBytes(head.data(), head.size());
+        writeBytes(m_header.metadataJson.data(), m_header.metadataJson.size());
+    } catch (...) {
+        // No destructor runs for a constructor that throws: clean up here (a full disk
+        // already at the header must not leave the temporary behind).
+        ZSTD_freeCCtx(static_cast<ZSTD_CCtx*>(m_cctx));
+        std::fclose(m_file);
+        std::error_code ec;
+        fs::remove(m_tmpPath, ec);
+        throw;
+    }
 }
 
 Writer::~Writer() {
@@ -121,8 +136,9 @@ Writer::~Writer() {
 }
 
 void Writer::writeBytes(const void* data, std::size_t size) {
-    if (size && std::fwrite(data, 1, size, m_file) != size)
-        throw CacheError(describe(m_path, std::string("write failed: ") + std::strerror(errno)));
+    if (const int err = size ? writeAll(m_file, data, size, m_tmpPath) : 0; err != 0)
+        throw CacheError(describe(m_path, "cannot write " + m_tmpPath.filename().string() + ": " +
+                                              std::strerror(err) + "; no cache written"));
     m_offset += size;
 }
 
@@ -184,21 +200,26 @@ void Writer::finish() {
     put<std::uint64_t>(patch, m_index.size());
     put<std::uint64_t>(patch + 8, indexOffset);
     std::vector<std::uint8_t> head(kFixedHeaderSize + m_header.metadataJson.size());
+    int err = 0;
     auto fail = [&](const char* what) {
-        throw CacheError(describe(m_path, std::string(what) + ": " + std::strerror(errno)));
+        throw CacheError(describe(m_path, std::string(what) + ": " +
+                                              std::strerror(err ? err : errno) +
+                                              "; no cache written"));
     };
     if (std::fflush(m_file) != 0 || std::fseek(m_file, kOffFrameCount, SEEK_SET) != 0 ||
-        std::fwrite(patch, 1, sizeof patch, m_file) != sizeof patch || std::fflush(m_file) != 0 ||
+        (err = writeAll(m_file, patch, sizeof patch, m_tmpPath)) != 0 || std::fflush(m_file) != 0 ||
         std::fseek(m_file, 0, SEEK_SET) != 0 ||
         std::fread(head.data(), 1, head.size(), m_file) != head.size())
         fail("cannot patch header");
     const std::uint64_t headSum = headerChecksum(head);
     if (std::fseek(m_file, kOffHeaderChecksum, SEEK_SET) != 0 ||
-        std::fwrite(&headSum, 1, sizeof headSum, m_file) != sizeof headSum ||
+        (err = writeAll(m_file, &headSum, sizeof headSum, m_tmpPath)) != 0 ||
         std::fflush(m_file) != 0 || ::fsync(::fileno(m_file)) != 0)
         fail("cannot finish header");
-    std::fclose(m_file);
+    const int closed = std::fclose(m_file);
     m_file = nullptr;
+    if (closed != 0)
+        fail("cannot close the temporary file");
 
     std::error_code ec;
     fs::rename(m_tmpPath, m_path, ec); // atomic: readers see the old file or the whole new one

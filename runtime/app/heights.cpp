@@ -6,6 +6,7 @@
 #include "play_common.h"
 
 #include "swell/runtime/gl/egl_context.h"
+#include "swell/runtime/io/atomic_write.h"
 #include "swell/runtime/io/height_sequence.h"
 #include "swell/runtime/modes/mode_replay.h"
 
@@ -58,6 +59,9 @@ public:
         json params;
         std::size_t decoded = 0;
         Progress progress("swell-play heights", taus.size(), !m_o.json);
+        // The frames and the sidecar go under temporary names until all are complete
+        // (atomic_write.h): a failed run leaves the folder as it was.
+        DeferredRenames staged;
         for (const Chunk& chunk : chunks) {
             const std::vector<double> part(taus.begin() + static_cast<std::ptrdiff_t>(chunk.first),
                                            taus.begin() + static_cast<std::ptrdiff_t>(chunk.last));
@@ -79,6 +83,8 @@ public:
         params["frames_decoded"] = decoded;
         params["memory"]["stream_chunks"] = chunks.size();
         const auto metaPath = sequence->writeSidecar(params, context.renderer());
+        std::filesystem::remove(metaPath); // the old sidecar first: the folder is not whole
+        staged.commit();                   // until the new one, renamed last
         if (m_o.json) {
             std::cout << json{{"out", m_outDir},
                               {"format", heightFormatName(m_sequence.format)},

@@ -8,6 +8,7 @@
 
 #include "swell/runtime/error.h"
 #include "swell/runtime/gl/egl_context.h"
+#include "swell/runtime/io/atomic_write.h"
 #include "swell/runtime/io/exporters.h"
 #include "swell/runtime/io/height_sequence.h"
 #include "swell/runtime/modes/mode_replay.h"
@@ -130,7 +131,7 @@ public:
                                        setup.samplers.size())) {}
 
     /// Renders and writes every frame of `taus`, the contact sheet and the video.
-    void renderAll(const std::vector<double>& taus) {
+    void renderAll(const std::vector<double>& taus, DeferredRenames& staged) {
         const std::size_t count = taus.size();
         const std::size_t sheetCount =
             std::min<std::size_t>(static_cast<std::size_t>(std::max(m_r.sheetFrames, 1)), count);
@@ -150,7 +151,20 @@ public:
         progress.done();
         m_totals.totalMs = msSince(t0);
         writePng(m_out / "contact_sheet.png", contactSheet(m_sheet, 3), 6);
+        if (!m_r.video.empty())
+            commit(staged); // ffmpeg reads the frames under their own names
         m_videoStatus = encodeVideo();
+    }
+
+    /// Every new file is complete: they replace the old ones now. render.json (and
+    /// heights.json) say the folder is whole: the old ones go first, the new ones come last.
+    void commit(DeferredRenames& staged) const {
+        if (!staged.deferring())
+            return;
+        fs::remove(m_out / "render.json");
+        if (m_r.exportHeights)
+            fs::remove(m_out / "heights" / "heights.json");
+        staged.commit();
     }
 
     /// render.json (and heights/heights.json with --export heights); returns render.json's object.
@@ -159,7 +173,8 @@ public:
         meta.update(renderRecord());
         meta.update(timingRecord());
         meta["frames"] = m_frames;
-        std::ofstream(m_out / "render.json") << meta.dump(2) << "\n";
+        writeTextAtomically(m_out / "render.json",
+                            meta.dump(2) + "\n"); // last: the folder is whole
         // The sidecar `swell-play heights` writes, so tools read either folder the same way.
         if (m_r.exportHeights)
             m_heights.writeSidecar(paramsJson(m_o, m_setup), m_context.renderer());
@@ -450,8 +465,12 @@ public:
         }
         const EglContext context;
         RenderRun run(m_o, m_r, setup, context);
-        run.renderAll(taus);
-        json meta = run.writeRecords();
+        // Until every frame, the contact sheet and the exports are complete, they are written
+        // under temporary names (atomic_write.h): a failed render leaves the folder as it was.
+        DeferredRenames staged;
+        run.renderAll(taus, staged);
+        json meta = run.writeRecords(); // still staged unless --video committed the frames
+        run.commit(staged);
         if (m_o.json) {
             meta.erase("frames");
             meta["out"] = m_r.outDir;

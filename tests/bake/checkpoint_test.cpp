@@ -20,8 +20,7 @@ namespace {
 
 Checkpoint sample() {
     Checkpoint c;
-    c.fingerprint =
-        R"({"build":"abc","cache_metadata":{"scene":{"solver":{"dt":0.002}},"threads":2}})";
+    c.fingerprint = R"({"numerics_version":1,"scene":{"solver":{"dt":0.002}},"threads":"any"})";
     c.checkpointEvery = 50;
     c.writerPid = 4242;
     MpsState& s = c.solver;
@@ -183,26 +182,29 @@ TEST_F(CheckpointFile, FingerprintOfADifferentBakeNamesTheValue) {
         }
         return "";
     };
-    const std::string dt = message(
-        R"({"build":"abc","cache_metadata":{"scene":{"solver":{"dt":0.001}},"threads":2}})");
+    const std::string dt =
+        message(R"({"numerics_version":1,"scene":{"solver":{"dt":0.001}},"threads":"any"})");
     EXPECT_EQ(dt.rfind(m_path.string() + ": ", 0), 0u) << dt;
-    EXPECT_NE(dt.find("/cache_metadata/scene/solver/dt is 0.002 there, 0.001 now"),
-              std::string::npos)
-        << dt;
-    const std::string threads = message(
-        R"({"build":"abc","cache_metadata":{"scene":{"solver":{"dt":0.002}},"threads":1}})");
-    EXPECT_NE(threads.find("/cache_metadata/threads is 2 there, 1 now"), std::string::npos)
-        << threads;
-    const std::string build = message(
-        R"({"build":"abd","cache_metadata":{"scene":{"solver":{"dt":0.002}},"threads":2}})");
-    EXPECT_NE(build.find("/build"), std::string::npos) << build;
-}
-
-TEST_F(CheckpointFile, FileDigestTellsFilesApart) {
-    writeBytes(m_dir / "a", "hello");
-    writeBytes(m_dir / "b", "hellp");
-    EXPECT_EQ(fileDigest(m_dir / "a").size(), 16u);
-    EXPECT_EQ(fileDigest(m_dir / "a"), fileDigest(m_dir / "a"));
-    EXPECT_NE(fileDigest(m_dir / "a"), fileDigest(m_dir / "b"));
-    EXPECT_THROW(fileDigest(m_dir / "missing"), CheckpointError);
+    EXPECT_NE(dt.find("/scene/solver/dt is 0.002 there, 0.001 now"), std::string::npos) << dt;
+    const std::string threads =
+        message(R"({"numerics_version":1,"scene":{"solver":{"dt":0.002}},"threads":1})");
+    EXPECT_NE(threads.find("/threads is \"any\" there, 1 now"), std::string::npos) << threads;
+    const std::string overrides = message(
+        R"({"numerics_version":1,"overrides":["a=1"],"scene":{"solver":{"dt":0.002}},"threads":"any"})");
+    EXPECT_NE(overrides.find("/overrides is absent there, [\"a=1\"] now"), std::string::npos)
+        << overrides;
+    // Another numerics version is refused with that reason, whatever else differs.
+    const std::string numerics =
+        message(R"({"numerics_version":2,"scene":{"solver":{"dt":0.001}},"threads":"any"})");
+    EXPECT_NE(numerics.find("numerics version 1, this swell-bake has 2"), std::string::npos)
+        << numerics;
+    // A checkpoint of a swell-bake from before numerics versions: refused with that reason.
+    try {
+        checkFingerprint(m_path, R"({"build":"abc","cache_metadata":{}})", stored);
+        ADD_FAILURE() << "an old checkpoint was accepted";
+    } catch (const CheckpointError& e) {
+        EXPECT_NE(std::string(e.what()).find("numerics version none (an older swell-bake)"),
+                  std::string::npos)
+            << e.what();
+    }
 }

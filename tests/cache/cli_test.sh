@@ -56,4 +56,14 @@ grep -q "missing.swell: cannot open" "$dir/err" || fail "missing-file message"
 if "$bin/swell-cache" dump "$dir/a.swell" --frame 20 2> "$dir/err"; then fail "frame 20 accepted"; fi
 if "$bin/swell-cache" synth "$dir/x.swell" --frames 0 2>/dev/null; then fail "--frames 0 accepted"; fi
 [[ ! -e "$dir/x.swell" ]] || fail "a refused synth left a file"
+# A temporary file (what a writer killed with SIGKILL leaves, even a complete one that was
+# never renamed) is refused, naming the writer's PID, whether it is still running or not.
+cp "$dir/a.swell" "$dir/a.swell.tmp-999999999"
+if "$bin/swell-cache" verify "$dir/a.swell.tmp-999999999" 2> "$dir/err"; then fail "verify passed a temporary file"; fi
+[[ $(wc -l < "$dir/err") -eq 1 ]] || fail "error is not one line: $(cat "$dir/err")"
+grep -q "a.swell.tmp-999999999: a temporary file of an unfinished write by process 999999999 (no longer running" "$dir/err" ||
+    fail "temporary-file message: $(cat "$dir/err")"
+cp "$dir/a.swell" "$dir/a.swell.tmp-$$"
+if "$bin/swell-cache" verify "$dir/a.swell.tmp-$$" 2> "$dir/err"; then fail "verify passed a live writer's temporary"; fi
+grep -q "by process $$ (still running)" "$dir/err" || fail "live temporary message: $(cat "$dir/err")"
 echo "swell-cache CLI OK"

@@ -196,8 +196,6 @@ py::object bakeScene(const std::string& scene, const std::string& output,
     opt.programVersion = SWELL_VERSION;
     opt.resume = resume;
     opt.checkpointEvery = checkpointEvery;
-    if (resume || checkpointEvery > 0)
-        opt.buildId = std::string("python module ") + SWELL_VERSION + " " + __DATE__ " " __TIME__;
     // Ctrl-C in Python stops the bake cleanly (no cache is left); checked every 64 steps.
     long polls = 0;
     opt.cancelled = [&polls] {

@@ -1,13 +1,47 @@
 #include "swell/runtime/io/atomic_write.h"
 
+#include "swell/cache/checked_write.h"
 #include "swell/runtime/error.h"
 
+#include <cstring>
 #include <fmt/format.h>
-#include <fstream>
+#include <stdexcept>
 #include <system_error>
 #include <unistd.h>
 
 namespace swell::runtime {
+namespace {
+thread_local DeferredRenames* t_deferred = nullptr;
+}
+
+DeferredRenames::DeferredRenames() {
+    if (t_deferred != nullptr)
+        throw std::logic_error("DeferredRenames: one is already active on this thread");
+    t_deferred = this;
+}
+
+DeferredRenames::~DeferredRenames() {
+    if (t_deferred == this)
+        t_deferred = nullptr;
+    for (const auto& [temporary, path] : m_pending) {
+        std::error_code ec;
+        std::filesystem::remove(temporary, ec);
+    }
+}
+
+void DeferredRenames::commit() {
+    if (t_deferred == this)
+        t_deferred = nullptr;
+    m_active = false;
+    while (!m_pending.empty()) {
+        const auto [temporary, path] = m_pending.front();
+        std::error_code ec;
+        std::filesystem::rename(temporary, path, ec);
+        if (ec)
+            throw RuntimeError(fmt::format("cannot write {}: {}", path.string(), ec.message()));
+        m_pending.erase(m_pending.begin());
+    }
+}
 
 void writeAtomically(const std::filesystem::path& path,
                      const std::function<void(const std::filesystem::path&)>& write) {
@@ -20,6 +54,14 @@ void writeAtomically(const std::filesystem::path& path,
         std::filesystem::remove(temporary, ec);
         throw;
     }
+    if (t_deferred != nullptr) {
+        for (const auto& pending : t_deferred->m_pending) {
+            if (pending.first == temporary)
+                return; // written again: the newer content is in the same temporary
+        }
+        t_deferred->m_pending.emplace_back(temporary, path);
+        return;
+    }
     std::filesystem::rename(temporary, path, ec);
     if (ec) {
         std::error_code ignored;
@@ -28,14 +70,17 @@ void writeAtomically(const std::filesystem::path& path,
     }
 }
 
-void writeTextAtomically(const std::filesystem::path& path, const std::string& text) {
+void writeBytesAtomically(const std::filesystem::path& path, std::string_view bytes) {
     writeAtomically(path, [&](const std::filesystem::path& temporary) {
-        std::ofstream out(temporary, std::ios::binary);
-        out << text;
-        out.close();
-        if (!out)
-            throw RuntimeError(fmt::format("cannot write {}", path.string()));
+        if (const int err = cache::writeFile(temporary, bytes.data(), bytes.size()); err != 0) {
+            throw RuntimeError(fmt::format("cannot write {}: {}; no file was replaced",
+                                           path.string(), std::strerror(err)));
+        }
     });
+}
+
+void writeTextAtomically(const std::filesystem::path& path, const std::string& text) {
+    writeBytesAtomically(path, text);
 }
 
 } // namespace swell::runtime

@@ -1,6 +1,7 @@
 #include "swell/runtime/io/exporters.h"
 
 #include "swell/runtime/error.h"
+#include "swell/runtime/io/atomic_write.h"
 
 #include <bit>
 #include <cstring>
@@ -15,17 +16,10 @@ namespace {
 static_assert(std::endian::native == std::endian::little,
               "PLY writers assume a little-endian host");
 
-std::ofstream openOut(const std::filesystem::path& path) {
-    std::ofstream f(path, std::ios::binary);
-    if (!f)
-        throw RuntimeError(fmt::format("cannot write {}", path.string()));
-    return f;
-}
-
-void finish(std::ofstream& f, const std::filesystem::path& path) {
-    f.flush();
-    if (!f)
-        throw RuntimeError(fmt::format("cannot write {}", path.string()));
+/// Exports are built in memory and written atomically (writeBytesAtomically): a failed write
+/// leaves no partial file.
+void finish(const std::ostringstream& f, const std::filesystem::path& path) {
+    writeBytesAtomically(path, f.view());
 }
 
 std::string commentLine(const std::string& comment) {
@@ -74,7 +68,7 @@ SurfaceMesh makeSurfaceMesh(const HeightField& field, const Grid& grid) {
 void writeSurfacePly(const std::filesystem::path& path, const SurfaceMesh& mesh,
                      const std::string& comment) {
     const std::size_t vertices = mesh.positions.size() / 3, faces = mesh.triangles.size() / 3;
-    std::ofstream f = openOut(path);
+    std::ostringstream f;
     f << "ply\nformat binary_little_endian 1.0\n"
       << commentLine(comment) << "element vertex " << vertices
       << "\nproperty float x\nproperty float y\nproperty float z\n"
@@ -92,7 +86,7 @@ void writeSurfacePly(const std::filesystem::path& path, const SurfaceMesh& mesh,
 void writeSplashPly(const std::filesystem::path& path, std::span<const SplashSprite> sprites,
                     const std::string& comment) {
     static_assert(sizeof(SplashSprite) == 4 * sizeof(float));
-    std::ofstream f = openOut(path);
+    std::ostringstream f;
     f << "ply\nformat binary_little_endian 1.0\n"
       << commentLine(comment) << "element vertex " << sprites.size()
       << "\nproperty float x\nproperty float y\nproperty float z\nproperty float "

@@ -10,11 +10,13 @@
 #include <ImfInputFile.h>
 #include <ImfOutputFile.h>
 #include <ImfStandardAttributes.h>
+#include <ImfStdIO.h>
 #include <half.h>
 
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
+#include <sstream>
 #include <stdexcept>
 
 namespace swell::runtime {
@@ -49,30 +51,30 @@ void writeExr(const std::filesystem::path& path, int width, int height,
     char* base = half ? reinterpret_cast<char*>(halves.data())
                       : const_cast<char*>(reinterpret_cast<const char*>(samples.data()));
     const std::size_t size = half ? sizeof(Imath::half) : sizeof(float);
-    writeAtomically(path, [&](const std::filesystem::path& temporary) {
-        try {
-            Imf::Header header(width, height);
-            header.compression() = Imf::ZIP_COMPRESSION;
-            Imf::addComments(header, comments);
-            Imf::FrameBuffer frame;
-            for (std::size_t c = 0; c < count; ++c) {
-                header.channels().insert(channels[c], Imf::Channel(pixelType));
-                frame.insert(channels[c],
-                             Imf::Slice(pixelType, base + c * size, size * count,
-                                        size * count * static_cast<std::size_t>(width)));
-            }
-            {
-                Imf::OutputFile file(temporary.c_str(), header);
-                file.setFrameBuffer(frame);
-                file.writePixels(height);
-            } // the destructor writes the scan-line offsets and closes the file
-            // The destructor cannot report a failure (disk full): read the offsets back.
-            if (!Imf::InputFile(temporary.c_str()).isComplete())
-                throw std::runtime_error("the file is incomplete after writing");
-        } catch (const std::exception& e) {
-            throw RuntimeError(fmt::format("cannot write EXR {}: {}", path.string(), e.what()));
+    // Encoded in memory (the OutputFile destructor, which writes the offsets, cannot report a
+    // full disk), then written atomically through writeBytesAtomically, which can.
+    std::ostringstream encoded;
+    try {
+        Imf::Header header(width, height);
+        header.compression() = Imf::ZIP_COMPRESSION;
+        Imf::addComments(header, comments);
+        Imf::FrameBuffer frame;
+        for (std::size_t c = 0; c < count; ++c) {
+            header.channels().insert(channels[c], Imf::Channel(pixelType));
+            frame.insert(channels[c], Imf::Slice(pixelType, base + c * size, size * count,
+                                                 size * count * static_cast<std::size_t>(width)));
         }
-    });
+        Imf::StdOSStream stream;
+        {
+            Imf::OutputFile file(stream, header);
+            file.setFrameBuffer(frame);
+            file.writePixels(height);
+        }
+        encoded << stream.str();
+    } catch (const std::exception& e) {
+        throw RuntimeError(fmt::format("cannot encode EXR {}: {}", path.string(), e.what()));
+    }
+    writeBytesAtomically(path, encoded.view());
 }
 
 const char* compressionName(Imf::Compression c) {

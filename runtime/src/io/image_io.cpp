@@ -1,6 +1,7 @@
 #include "swell/runtime/io/image_io.h"
 
 #include "swell/runtime/error.h"
+#include "swell/runtime/io/atomic_write.h"
 
 #include <png.h>
 
@@ -11,6 +12,7 @@
 #include <limits>
 #include <memory>
 #include <stdexcept>
+#include <string>
 #include <unordered_set>
 
 namespace swell::runtime {
@@ -26,6 +28,10 @@ struct FileCloser {
     png_longjmp(png, 1);
 }
 void pngWarning(png_structp, png_const_charp) {}
+void appendPng(png_structp png, png_bytep data, png_size_t size) {
+    static_cast<std::string*>(png_get_io_ptr(png))
+        ->append(reinterpret_cast<const char*>(data), size);
+}
 
 } // namespace
 
@@ -35,9 +41,8 @@ void writePngRaw(const std::filesystem::path& path, int width, int height, PngLa
         throw std::logic_error("writePngRaw: malformed image");
     const bool rgb = layout == PngLayout::Rgb8;
     const std::size_t rowBytes = static_cast<std::size_t>(width) * (rgb ? 3 : 2);
-    std::unique_ptr<std::FILE, FileCloser> file(std::fopen(path.c_str(), "wb"));
-    if (!file)
-        throw RuntimeError(fmt::format("cannot write {}", path.string()));
+    // Encoded in memory, then written atomically: a failed write leaves no PNG behind.
+    std::string bytes;
     png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, pngError, pngWarning);
     png_infop info = png ? png_create_info_struct(png) : nullptr;
     if (png == nullptr || info == nullptr) {
@@ -46,9 +51,9 @@ void writePngRaw(const std::filesystem::path& path, int width, int height, PngLa
     }
     if (setjmp(png_jmpbuf(png))) {
         png_destroy_write_struct(&png, &info);
-        throw RuntimeError(fmt::format("cannot write PNG {}", path.string()));
+        throw RuntimeError(fmt::format("cannot encode PNG {}", path.string()));
     }
-    png_init_io(png, file.get());
+    png_set_write_fn(png, &bytes, appendPng, nullptr);
     png_set_compression_level(png, std::clamp(compression, 0, 9));
     png_set_IHDR(png, info, static_cast<png_uint_32>(width), static_cast<png_uint_32>(height),
                  rgb ? 8 : 16, rgb ? PNG_COLOR_TYPE_RGB : PNG_COLOR_TYPE_GRAY, PNG_INTERLACE_NONE,
@@ -58,8 +63,7 @@ void writePngRaw(const std::filesystem::path& path, int width, int height, PngLa
         png_write_row(png, const_cast<png_bytep>(samples + static_cast<std::size_t>(y) * rowBytes));
     png_write_end(png, nullptr);
     png_destroy_write_struct(&png, &info);
-    if (std::fflush(file.get()) != 0)
-        throw RuntimeError(fmt::format("cannot write {}", path.string()));
+    writeBytesAtomically(path, bytes);
 }
 
 std::vector<std::uint8_t> readPngRaw(const std::filesystem::path& path, PngLayout layout,

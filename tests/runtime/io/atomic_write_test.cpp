@@ -72,3 +72,35 @@ TEST(AtomicWrite, AnUnwritableFolderIsAnErrorNamingTheFile) {
 }
 
 } // namespace swell::runtime
+
+namespace swell::runtime {
+
+// A folder written under DeferredRenames: nothing replaces an old file before commit(); a run
+// that ends without commit leaves the folder exactly as it was.
+TEST(DeferredRenames, OldFilesStayUntilCommitAndAFailedRunLeavesThemAlone) {
+    const swell::test::TempDir temp("swell_atomic_");
+    writeTextAtomically(temp / "a", "old a");
+    {
+        DeferredRenames staged;
+        writeTextAtomically(temp / "a", "new a");
+        writeTextAtomically(temp / "b", "new b");
+        EXPECT_EQ(swell::test::slurp(temp / "a"), "old a");
+        EXPECT_FALSE(fs::exists(temp / "b"));
+        EXPECT_THROW(DeferredRenames(), std::logic_error); // one per thread
+    }                                                      // no commit: a failed run
+    EXPECT_EQ(swell::test::slurp(temp / "a"), "old a");
+    EXPECT_EQ(filesIn(temp.path()), 1u) << "the temporaries are gone";
+    DeferredRenames staged;
+    writeTextAtomically(temp / "a", "new a");
+    writeTextAtomically(temp / "b", "new b");
+    EXPECT_TRUE(staged.deferring());
+    staged.commit();
+    EXPECT_FALSE(staged.deferring());
+    EXPECT_EQ(swell::test::slurp(temp / "a"), "new a");
+    EXPECT_EQ(swell::test::slurp(temp / "b"), "new b");
+    EXPECT_EQ(filesIn(temp.path()), 2u);
+    writeTextAtomically(temp / "c", "direct"); // after commit: written at once again
+    EXPECT_EQ(swell::test::slurp(temp / "c"), "direct");
+}
+
+} // namespace swell::runtime

@@ -49,12 +49,9 @@ struct BakeOptions {
     /// bake without its own value keeps the interval of the checkpoint it resumed from.
     long checkpointEvery = 0;
     /// Continue from the checkpoint at checkpointPath(output) (CheckpointError when it is
-    /// missing, damaged or from a different bake); the cache is byte-identical to that of an
-    /// uninterrupted bake.
+    /// missing, damaged, from a different bake or of another numerics version); the cache is
+    /// byte-identical to that of an uninterrupted bake by the same program.
     bool resume = false;
-    /// Identifies the program build (e.g. fileDigest of the executable): a checkpoint is only
-    /// resumed by the same build. Not stored in the cache.
-    std::string buildId;
 };
 
 /// Conservation figures of the water particles at one instant (per metre of the 2D section).
@@ -112,8 +109,10 @@ long totalSteps(const Scene& scene);
 /// (Biesel transfer, dispersion) is steeper than the Miche breaking limit.
 std::vector<std::string> sceneWarnings(const Scene& scene);
 
-/// Runs the bake. Throws SceneError (scene unusable for a bake), DivergenceError (the
-/// simulation diverged), BakeCancelled, CheckpointError, cache::CacheError or
+/// Runs the bake, holding the output's lock (cache::OutputLock) throughout; first removes the
+/// temporaries (output, checkpoint, probes) of killed bakes. Throws cache::OutputBusy when
+/// another process is writing the same output, SceneError (scene unusable for a bake),
+/// DivergenceError (the simulation diverged), BakeCancelled, CheckpointError, cache::CacheError or
 /// std::runtime_error (I/O). On any throw nothing is left at options.output (the cache writer
 /// renames only when done); the last checkpoint, if any, stays. After a successful bake
 /// with checkpoints (or resumed) the checkpoint is removed.

@@ -38,9 +38,9 @@ struct BakeTotals {
 
 /// What a checkpoint holds.
 struct Checkpoint {
-    /// What must be equal for a resume (JSON text): the cache metadata of the bake (program
-    /// version, scene file, overrides, every resolved scene value, seed, threads) and the
-    /// build of the program.
+    /// What must be equal for a resume (JSON text): the numerics version (numerics_version.h),
+    /// every resolved scene value, the --set overrides and the thread count when it changes
+    /// the results ("any" otherwise). Nothing that changes with a rebuild alone.
     std::string fingerprint;
     long checkpointEvery = 0;           ///< steps between checkpoints of the bake that wrote it
     MpsState solver;                    ///< solver state after step solver.step
@@ -66,9 +66,5 @@ Checkpoint readCheckpoint(const std::filesystem::path& path);
 /// fingerprint stored in a checkpoint is not `current`.
 void checkFingerprint(const std::filesystem::path& path, const std::string& stored,
                       const std::string& current);
-
-/// XXH3-64 of a file's bytes as 16 hex digits (a build id: the digest of the executable).
-/// Throws CheckpointError when it cannot be read.
-std::string fileDigest(const std::filesystem::path& path);
 
 } // namespace swell::bake

@@ -7,16 +7,48 @@
 #include <filesystem>
 #include <functional>
 #include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
 
 namespace swell::runtime {
 
-/// Calls `write(temporary)` with `<path>.tmp-<pid>` and renames it onto `path`. Whatever
+/// Defers the renames of writeAtomically on this thread until commit(), for a run that writes
+/// a folder of files (swell-play render, heights): the previous files stay untouched until
+/// every new one is complete, and a run that fails (no commit, an exception) removes its
+/// temporaries in the destructor, so the folder is exactly as before. One at a time per thread.
+class DeferredRenames {
+public:
+    DeferredRenames();
+    ~DeferredRenames();
+    DeferredRenames(const DeferredRenames&) = delete;
+    DeferredRenames& operator=(const DeferredRenames&) = delete;
+    /// Renames every temporary onto its name, in the order they were written, and ends the
+    /// deferral. Throws RuntimeError naming the file when a rename fails.
+    void commit();
+    /// True until commit().
+    bool deferring() const { return m_active; }
+
+private:
+    friend void writeAtomically(const std::filesystem::path&,
+                                const std::function<void(const std::filesystem::path&)>&);
+    std::vector<std::pair<std::filesystem::path, std::filesystem::path>> m_pending; // tmp, path
+    bool m_active = true;
+};
+
+/// Calls `write(temporary)` with `<path>.tmp-<pid>` and renames it onto `path` (at once, or
+/// at DeferredRenames::commit() while one is active on this thread). Whatever
 /// `write` throws propagates after the temporary is removed; a failed rename throws
 /// RuntimeError naming `path`.
 void writeAtomically(const std::filesystem::path& path,
                      const std::function<void(const std::filesystem::path&)>& write);
 
-/// Writes `text` to `path` atomically. Throws RuntimeError naming `path` on I/O failure.
+/// Writes `bytes` to `path` atomically, through cache::writeFile (so a full disk, an I/O error
+/// or an injected fault, SWELL_FAULT_INJECT, is reported). Throws RuntimeError naming `path`
+/// and the reason; `path` then keeps what it held before and no temporary is left.
+void writeBytesAtomically(const std::filesystem::path& path, std::string_view bytes);
+
+/// Writes `text` to `path` atomically (writeBytesAtomically).
 void writeTextAtomically(const std::filesystem::path& path, const std::string& text);
 
 } // namespace swell::runtime
