@@ -6,7 +6,9 @@ tank and surging scenes); replay at extreme parameters and on degenerate caches.
 Every bake must end either stable (cache verified, no NaN, conservation figures reported) or
 stopped by the divergence detector with a clear message and no cache; every replay must give a
 finite result that matches the CPU reference or one clear error line. A timeout is a hang.
-Writes out/stress/*.csv and the outcome table in docs/validation.md; exits 1 on any failure."""
+Writes out/stress/*.csv and the outcome table in docs/validation.md; exits 1 on any failure.
+--only fuzz (not part of the default run) builds the libFuzzer targets of tests/fuzz in
+build-fuzz/ and runs each for --fuzz-seconds (docs/validation.md section 6a)."""
 
 import argparse
 import json
@@ -238,7 +240,7 @@ def fuzz_finish(run):
     execs = None
     for line in text.splitlines():
         if line.startswith("stat::number_of_executed_units:"):
-            execs = int(line.split(":")[1])
+            execs = int(line.split(":")[-1])
     artifacts = sorted(os.listdir(os.path.join(run["work"], "artifacts")))
     kinds = {k: [a for a in artifacts if a.startswith(k + "-")] for k in ["crash", "timeout", "oom", "leak"]}
     corpus = len(os.listdir(os.path.join(run["work"], "corpus")))

@@ -1,29 +1,10 @@
 #include "bake_cli.h"
 
-#include <CLI/CLI.hpp>
+#include "command_line.h"
 
 #include "swell/bake/bake_driver.h"
 
 namespace swell::bake {
-namespace {
-
-/// CLI11's message with control characters (an argument may hold any) escaped: one line.
-std::string oneLine(const std::string& message) {
-    std::string out;
-    for (const char c : message) {
-        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) {
-            static constexpr char kHex[] = "0123456789abcdef";
-            out += "\\x";
-            out += kHex[(static_cast<unsigned char>(c) >> 4) & 0xf];
-            out += kHex[static_cast<unsigned char>(c) & 0xf];
-        } else {
-            out += c;
-        }
-    }
-    return out;
-}
-
-} // namespace
 
 std::optional<int> parseBakeCommandLine(int argc, const char* const* argv, BakeCommandLine& cl,
                                         std::ostream& out, std::ostream& err) {
@@ -48,14 +29,8 @@ std::optional<int> parseBakeCommandLine(int argc, const char* const* argv, BakeC
                  "--set, --threads and build)");
     app.add_flag("--json", cl.asJson, "print the summary as one JSON object on stdout");
     app.add_flag("-q,--quiet", cl.quiet, "no progress lines");
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::ParseError& e) {
-        if (e.get_exit_code() == 0)
-            return app.exit(e, out, err);
-        err << "swell-bake: " << oneLine(e.what()) << " (see --help)\n";
-        return 2;
-    }
+    if (const auto rc = cli::parse(app, argc, argv, "swell-bake", 2, out, err))
+        return rc;
     for (const auto& [name, value] :
          {std::pair{"SCENE", &cl.scenePath}, {"--output", &cl.output}}) {
         if (value->empty()) {
