@@ -6,12 +6,15 @@ tank and surging scenes); replay at extreme parameters and on degenerate caches.
 Every bake must end either stable (cache verified, no NaN, conservation figures reported) or
 stopped by the divergence detector with a clear message and no cache; every replay must give a
 finite result that matches the CPU reference or one clear error line. A timeout is a hang.
-Writes out/stress/*.csv and the outcome table in docs/validation.md; exits 1 on any failure."""
+Writes out/stress/*.csv and the outcome table in docs/validation.md; exits 1 on any failure.
+--only fuzz (not part of the default run) builds the libFuzzer targets of tests/fuzz in
+build-fuzz/ and runs each for --fuzz-seconds (docs/validation.md section 6a)."""
 
 import argparse
 import json
 import math
 import os
+import subprocess
 import sys
 import time
 
@@ -23,6 +26,8 @@ import swell_cache  # noqa: E402
 
 OUT = os.path.join(bl.ROOT, "out", "stress")
 DOC = os.path.join(bl.ROOT, "docs", "validation.md")
+FUZZ_INPUT_TIMEOUT = 30  # s: libFuzzer -timeout, one input slower than this is a hang
+FUZZ_RSS_MB = 2048  # libFuzzer -rss_limit_mb
 
 
 def scene(name):
@@ -172,12 +177,138 @@ def run_replay(case, timeout, log):
     return row
 
 
+# ---------------------------------------------------------------- fuzz (issue 17)
+FUZZ_BUILD = os.path.join(bl.ROOT, "build-fuzz")
+FUZZ_SRC = os.path.join(bl.ROOT, "tests", "fuzz")
+FUZZ_TARGETS = ["scene", "checkpoint", "options"]
+FUZZ_STATE = os.path.join(OUT, "fuzz.json")
+
+
+def fuzz_build(targets, log):
+    """Configures build-fuzz/ with clang and -DSWELL_FUZZ=ON and builds the fuzz targets."""
+    if not os.path.exists(os.path.join(FUZZ_BUILD, "build.ninja")):
+        env = dict(os.environ, CC="clang", CXX="clang++")
+        r = bl.run(["cmake", "-S", bl.ROOT, "-B", FUZZ_BUILD, "-G", "Ninja", "-DCMAKE_BUILD_TYPE=RelWithDebInfo",
+                    "-DSWELL_FUZZ=ON", "-DSWELL_BUILD_TESTS=OFF", "-DSWELL_BUILD_BENCHMARKS=OFF",
+                    "-DSWELL_BUILD_PYTHON=OFF"], timeout=600, nice=0, env=env, log=log)
+        if r.rc != 0:
+            raise SystemExit("tools/stress: configuring build-fuzz failed: " + r.last_err_line())
+    r = bl.run(["cmake", "--build", FUZZ_BUILD, "-j2", "--target"] + ["swell-%s-fuzz" % t for t in targets],
+               timeout=3600, nice=0, log=log)
+    if r.rc != 0:
+        raise SystemExit("tools/stress: building the fuzz targets failed: " + r.last_err_line())
+
+
+def fuzz_start(target, seconds, input_timeout, rss_mb):
+    """Starts one libFuzzer run: new inputs go to out/stress/fuzz/<target>/corpus, the checked-in
+    seeds (tests/fuzz/corpus/<target>) are read only; crash/timeout/oom files go next to them."""
+    work = os.path.join(OUT, "fuzz", target)
+    for sub in ["corpus", "artifacts"]:
+        os.makedirs(os.path.join(work, sub), exist_ok=True)
+    for f in os.listdir(os.path.join(work, "artifacts")):
+        os.remove(os.path.join(work, "artifacts", f))
+    args = [os.path.join(FUZZ_BUILD, "bin", "swell-%s-fuzz" % target),
+            "-max_total_time=%d" % seconds, "-timeout=%d" % input_timeout, "-rss_limit_mb=%d" % rss_mb,
+            "-max_len=8192", "-print_final_stats=1",
+            "-artifact_prefix=%s/" % os.path.join(work, "artifacts")]
+    dictionary = os.path.join(FUZZ_SRC, "%s.dict" % target)
+    if os.path.exists(dictionary):
+        args.append("-dict=" + dictionary)
+    args += [os.path.join(work, "corpus"), os.path.join(FUZZ_SRC, "corpus", target)]
+    logf = open(os.path.join(work, "libfuzzer.log"), "w")
+    env = dict(os.environ, ASAN_OPTIONS="detect_leaks=0", OMP_NUM_THREADS="1")
+    p = subprocess.Popen(["nice", "-n", "5"] + args, stdout=logf, stderr=subprocess.STDOUT, env=env,
+                         start_new_session=True)
+    cmd = "build-fuzz/bin/swell-%s-fuzz -max_total_time=%d -timeout=%d -rss_limit_mb=%d -max_len=8192%s " \
+          "out/stress/fuzz/%s/corpus tests/fuzz/corpus/%s" % (
+              target, seconds, input_timeout, rss_mb,
+              " -dict=tests/fuzz/%s.dict" % target if os.path.exists(dictionary) else "", target, target)
+    return {"target": target, "proc": p, "log": logf, "work": work, "t0": time.monotonic(), "command": cmd,
+            "seconds": seconds}
+
+
+def fuzz_finish(run):
+    """Waits for a libFuzzer run and reads its outcome: executions, and what it left behind."""
+    limit = run["seconds"] + 600
+    try:
+        rc = run["proc"].wait(timeout=max(1, limit - (time.monotonic() - run["t0"])))
+    except subprocess.TimeoutExpired:
+        os.killpg(run["proc"].pid, 9)
+        rc = None
+    run["log"].close()
+    text = open(os.path.join(run["work"], "libfuzzer.log"), errors="replace").read()
+    execs = None
+    for line in text.splitlines():
+        if line.startswith("stat::number_of_executed_units:"):
+            execs = int(line.split(":")[-1])
+    artifacts = sorted(os.listdir(os.path.join(run["work"], "artifacts")))
+    kinds = {k: [a for a in artifacts if a.startswith(k + "-")] for k in ["crash", "timeout", "oom", "leak"]}
+    corpus = len(os.listdir(os.path.join(run["work"], "corpus")))
+    seeds = len(os.listdir(os.path.join(FUZZ_SRC, "corpus", run["target"])))
+    ok = rc == 0 and execs is not None and not artifacts
+    reason = ""
+    if not ok:
+        err = [l for l in text.splitlines() if "ERROR" in l or "swell fuzz:" in l]
+        reason = (err[0] if err else "exit %s" % rc).strip()
+    return {"target": run["target"], "seconds": round(time.monotonic() - run["t0"]), "executions": execs,
+            "crashes": len(kinds["crash"]) + len(kinds["leak"]), "timeouts": len(kinds["timeout"]),
+            "ooms": len(kinds["oom"]), "seeds": seeds, "corpus": corpus + seeds, "ok": ok,
+            "outcome": "ok" if ok else "FAIL: " + reason[:160], "command": run["command"],
+            "artifacts": artifacts}
+
+
+def run_fuzz(targets, seconds, jobs, input_timeout, rss_mb, log):
+    fuzz_build(targets, log)
+    rows, queue, running = [], list(targets), []
+    while queue or running:
+        while queue and len(running) < jobs:
+            running.append(fuzz_start(queue.pop(0), seconds, input_timeout, rss_mb))
+            print("  fuzz %-12s started (%d s)" % (running[-1]["target"], seconds), flush=True)
+        first = running.pop(0)
+        row = fuzz_finish(first)
+        rows.append(row)
+        print("  fuzz %-12s %s executions, %s (%d s)" % (row["target"], row["executions"], row["outcome"],
+                                                       row["seconds"]), flush=True)
+    return rows
+
+
+def fuzz_docs(rows, m):
+    """Merges this run's rows into out/stress/fuzz.json (one row per target, the latest run) and
+    writes the table of every target in it into docs/validation.md."""
+    state = {}
+    if os.path.exists(FUZZ_STATE):
+        with open(FUZZ_STATE) as f:
+            state = json.load(f)
+    for r in rows:
+        state[r["target"]] = dict(r, date=m["date"], commit=m["commit"], load=m["loads"][0][1])
+    with open(FUZZ_STATE, "w") as f:
+        json.dump(state, f, indent=1)
+    ordered = [state[t] for t in FUZZ_TARGETS if t in state]
+    head = ("Generated by `tools/stress --only fuzz` (%s, %d cores; libFuzzer from clang 14 with "
+            "AddressSanitizer and UndefinedBehaviorSanitizer, at most two targets at once). Per target: "
+            "`-timeout` %s s per input (a slower input is a hang), `-rss_limit_mb` %s (more is an OOM); "
+            "an input refused with anything but one clear error line aborts, as does a broken property "
+            "of an accepted one (tests/fuzz/*_fuzz.cpp). Seeds: `tests/fuzz/corpus/<target>/`, replayed "
+            "by ctest (`Fuzz.*.Corpus`). State of every target's latest run: `out/stress/fuzz.json`." % (
+                m["cpu"], m["cores"], FUZZ_INPUT_TIMEOUT, FUZZ_RSS_MB))
+    table = bl.md_table(ordered, [
+        ("surface", "target"), ("run", lambda r: "%s, commit %s" % (r["date"], r["commit"])),
+        ("seconds", "seconds"), ("executions", lambda r: "{:,}".format(r["executions"] or 0)),
+        ("crashes", "crashes"), ("hangs (timeouts)", "timeouts"), ("OOMs", "ooms"),
+        ("corpus (seeds)", lambda r: "%s (%s)" % (r["corpus"], r["seeds"])), ("outcome", "outcome"),
+        ("command", lambda r: "`%s`" % r["command"])])
+    bl.replace_section(DOC, "fuzz", "\n".join([head, "", table]))
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--long-steps", type=int, default=100000, help="steps of the long runs")
     ap.add_argument("--timeout", type=int, default=600, help="per-run limit (s), long runs get 5x")
-    ap.add_argument("--only", default="", help="bake,replay,durability")
+    ap.add_argument("--only", default="", help="bake,replay,durability,fuzz (fuzz is not in the default run)")
     ap.add_argument("--lock-trials", type=int, default=20, help="durability: lock trials")
+    ap.add_argument("--fuzz-seconds", type=int, default=600, help="libFuzzer time per fuzz target (s)")
+    ap.add_argument("--fuzz-targets", default=",".join(FUZZ_TARGETS), help="fuzz targets to run")
+    ap.add_argument("--fuzz-jobs", type=int, default=2, help="fuzz targets run at once")
     ap.add_argument("--no-docs", action="store_true")
     args = ap.parse_args()
     only = set(filter(None, args.only.split(",")))
@@ -234,19 +365,26 @@ def main():
     if not only or "durability" in only:
         print("tools/stress: durability (locks, ENOSPC/EIO at every write site, resume)", flush=True)
         dur_ok = durability_section(args, log, not args.no_docs)
+    fuzz_rows = []
+    if "fuzz" in only:  # not part of the default run: 10 minutes per target
+        targets = [t for t in args.fuzz_targets.split(",") if t]
+        fuzz_rows = run_fuzz(targets, args.fuzz_seconds, args.fuzz_jobs, FUZZ_INPUT_TIMEOUT, FUZZ_RSS_MB, log)
     loads.append(("end", bl.load_average(), time.strftime("%H:%M:%S")))
     minutes = (time.monotonic() - t0) / 60
     m = bl.machine()
     m.update(total_minutes=round(minutes, 1), loads=loads)
     with open(os.path.join(OUT, "machine.json"), "w") as f:
         json.dump(m, f, indent=1)
-    fails = [r for r in bake_rows + replay_rows if not r["ok"]]
-    if not args.no_docs and (bake_rows or replay_rows):
-        docs(bake_rows, replay_rows, m, args.long_steps)
+    fails = [r for r in bake_rows + replay_rows + fuzz_rows if not r["ok"]]
+    if not args.no_docs:
+        if bake_rows or replay_rows:
+            docs(bake_rows, replay_rows, m, args.long_steps)
+        if fuzz_rows:
+            fuzz_docs(fuzz_rows, m)
     print("tools/stress: %d cases, %d failed, %.1f min; out/stress/" % (
-        len(bake_rows) + len(replay_rows), len(fails), minutes), flush=True)
+        len(bake_rows) + len(replay_rows) + len(fuzz_rows), len(fails), minutes), flush=True)
     for r in fails:
-        print("  FAILED: %s: %s" % (r["case"], r["outcome"]))
+        print("  FAILED: %s: %s" % (r.get("case", r.get("target")), r["outcome"]))
     if not dur_ok:
         print("  FAILED: durability (see the lines above)")
     sys.exit(1 if fails or not dur_ok else 0)

@@ -5,16 +5,17 @@
 #include <csignal>
 #include <cstdio>
 #include <fstream>
+#include <iostream>
 #include <string>
 #include <vector>
 
 #include <unistd.h>
 
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 #include <omp.h>
 
+#include "bake_cli.h"
 #include "swell/bake/bake_driver.h"
 #include "swell/bake/checkpoint.h"
 #include "swell/bake/error.h"
@@ -136,40 +137,13 @@ int reportFailure(const std::exception& e, const std::string& scenePath,
 } // namespace
 
 int main(int argc, char** argv) {
-    CLI::App app{"swell-bake: run a scene's 2D MPS simulation and write the surface/splash cache"};
-    std::string scenePath, output, probes;
-    std::vector<std::string> sets;
-    int threads = 0;
-    long checkpointEvery = 0;
-    bool asJson = false, quiet = false, resume = false;
-    app.add_option("SCENE", scenePath, "scene file (JSON, docs/scenes.md)")->required();
-    app.add_option("-o,--output", output,
-                   "cache file to write (.swell); appears only when the bake completes")
-        ->required();
-    app.add_option("--set", sets,
-                   "override a scene key before validation: section.key=value (repeatable)");
-    app.add_option("--threads", threads, "OpenMP threads (default: OpenMP's choice)")
-        ->check(CLI::Range(1, 1024));
-    app.add_option("--probes", probes, "write a CSV time,front_x,gauge_<x>... per stored frame");
-    app.add_option("--checkpoint-every", checkpointEvery,
-                   "write a checkpoint CACHE.ckpt every N steps (and on SIGINT/SIGTERM); removed "
-                   "when the bake "
-                   "completes")
-        ->check(CLI::Range(1L, 1000000000L));
-    app.add_flag("--resume", resume,
-                 "continue from CACHE.ckpt; the cache is byte-identical to an uninterrupted bake "
-                 "(same scene and --set; same --threads from 4096 particles; any build of the "
-                 "same numerics version)");
-    app.add_flag("--json", asJson, "print the summary as one JSON object on stdout");
-    app.add_flag("-q,--quiet", quiet, "no progress lines");
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::ParseError& e) {
-        if (e.get_exit_code() == 0)
-            return app.exit(e);
-        std::fprintf(stderr, "swell-bake: %s (see --help)\n", e.what());
-        return 2;
-    }
+    BakeCommandLine cl;
+    if (const auto rc = parseBakeCommandLine(argc, argv, cl, std::cout, std::cerr))
+        return *rc;
+    const std::string& scenePath = cl.scenePath;
+    const std::string& output = cl.output;
+    const int threads = cl.threads;
+    const bool quiet = cl.quiet;
     if (threads > 0)
         omp_set_num_threads(threads);
     std::signal(SIGINT, onSignal);
@@ -177,26 +151,24 @@ int main(int argc, char** argv) {
 
     ProgressReporter progress(quiet);
     try {
-        const Scene scene = loadScene(scenePath, sets);
-        (void)frameIntervalSteps(scene); // bake-specific scene errors before any warning
-        (void)totalSteps(scene);
+        const Scene scene = loadBakeScene(cl); // bake-specific scene errors before any warning
         for (const std::string& w : sceneWarnings(scene))
             std::fprintf(stderr, "swell-bake: warning: %s\n", w.c_str());
         BakeOptions opt;
         opt.output = output;
-        opt.probes = probes;
+        opt.probes = cl.probes;
         opt.sceneFile = scenePath;
-        opt.overrides = sets;
+        opt.overrides = cl.sets;
         opt.threads = threads > 0 ? threads : omp_get_max_threads();
         opt.programVersion = SWELL_VERSION;
-        opt.checkpointEvery = checkpointEvery;
-        opt.resume = resume;
+        opt.checkpointEvery = cl.checkpointEvery;
+        opt.resume = cl.resume;
         opt.onProgress = [&](const BakeProgress& p) { progress(p); };
         opt.cancelled = [] { return g_stop != 0; };
         const BakeSummary s = runBake(scene, opt);
         if (!quiet)
             printSummary(scene, s, output);
-        if (asJson)
+        if (cl.asJson)
             std::printf("%s\n", toJson(s).dump().c_str());
         return 0;
     } catch (const std::exception& e) {

@@ -4,13 +4,15 @@
 #include <cstdio>
 #include <ctime>
 #include <fstream>
+#include <iostream>
 #include <string>
 #include <vector>
 
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 #include <omp.h>
+
+#include "mps_bench_cli.h"
 
 #include "swell/bake/error.h"
 #include "swell/bake/scene.h"
@@ -19,37 +21,15 @@ using namespace swell::bake;
 using nlohmann::json;
 
 int main(int argc, char** argv) {
-    CLI::App app{
-        "swell-mps-bench: MPS step time by phase, ~10,000 particles (dam break in a 2 m tank)"};
-    int threads = 0;
-    int warmup = 100;
-    int steps = 400;
-    std::vector<std::string> sets;
-    bool asJson = false;
-    app.add_option("--threads", threads, "OpenMP threads (default: all)");
-    app.add_option("--warmup", warmup, "steps run before timing");
-    app.add_option("--steps", steps, "timed steps");
-    app.add_option("--set", sets, "override a key of the built-in scene: section.key=value")
-        ->expected(1)
-        ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
-    app.add_flag("--json", asJson, "print one JSON object on stdout");
-    CLI11_PARSE(app, argc, argv);
-    if (threads > 0)
-        omp_set_num_threads(threads);
-
-    // A 2.0 m x 1.04 m tank (l0 = 0.01 m, 2 wall + 2 dummy layers: 1,664 fixed particles) with
-    // a 1.0 m x 0.84 m water column (8,400 particles) that collapses: a breaking surge like the
-    // paper's surging wave (8,376 water + 1,662 fixed, Table 2).
-    json j = {{"name", "bench_10k"},
-              {"geometry",
-               {{"particle_spacing", 0.01},
-                {"tank", {{"x0", 0.0}, {"y0", 0.0}, {"x1", 2.0}, {"y1", 1.04}}},
-                {"water", json::array({{{"x0", 0.0}, {"y0", 0.0}, {"x1", 1.0}, {"y1", 0.84}}})}}},
-              {"solver", {{"dt", 0.0005}}}};
+    MpsBenchCommandLine cl;
+    if (const auto rc = parseMpsBenchCommandLine(argc, argv, cl, std::cout, std::cerr))
+        return *rc;
+    if (cl.threads > 0)
+        omp_set_num_threads(cl.threads);
+    const int warmup = cl.warmup;
+    const int steps = cl.steps;
     try {
-        for (const auto& s : sets)
-            applyOverride(j, s);
-        const Scene scene = parseScene(j);
+        const Scene scene = mpsBenchScene(cl);
         MpsSolver solver = makeSolver(scene);
         const auto& P = solver.particles();
         const std::size_t n = P.size();
@@ -98,7 +78,7 @@ int main(int argc, char** argv) {
             ph[std::string(toString(static_cast<Phase>(p)))] = phase[p] / steps * 1e3;
         }
         out["phase_ms_per_step"] = ph;
-        if (asJson) {
+        if (cl.asJson) {
             std::printf("%s\n", out.dump().c_str());
         } else {
             std::printf("%s\n", out.dump(2).c_str());

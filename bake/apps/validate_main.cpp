@@ -7,15 +7,17 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <span>
 #include <string>
 #include <vector>
 
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 #include <omp.h>
 #include <unistd.h>
+
+#include "validate_cli.h"
 
 #include "swell/bake/bake_driver.h"
 #include "swell/bake/error.h"
@@ -350,93 +352,32 @@ json regularWave(const Scene& scene, double from, double to, const std::string& 
 } // namespace
 
 int main(int argc, char** argv) {
-    CLI::App app{"swell-validate: dam-break, lobovsky, still-tank and regular-wave validation runs "
-                 "of the MPS "
-                 "solver"};
-    app.require_subcommand(1);
-    app.fallthrough();
-    std::vector<std::string> sets;
-    int threads = 0;
-    bool asJson = false;
-    app.add_option("--set", sets, "override a scene key: section.key=value (repeatable)")
-        ->expected(1)
-        ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
-    app.add_option("--threads", threads, "OpenMP threads (default: all)");
-    app.add_flag("--json", asJson, "print one JSON object on stdout");
-
-    auto* dam =
-        app.add_subcommand("dam-break", "run a dam-break scene and compare the surge front with "
-                                        "Martin & Moyce (1952) over T in [0.8, 3.0]");
-    std::string damScene;
-    double tEnd = 3.2;
-    std::string csv;
-    dam->add_option("scene", damScene, "scene JSON (the first water rectangle is the column)")
-        ->required();
-    dam->add_option("--until", tEnd, "stop at this T = t sqrt(2g/a)");
-    dam->add_option("--csv", csv, "write the front series T,Z to this file");
-
-    auto* lob = app.add_subcommand(
-        "lobovsky", "run the Lobovsky et al. (2014) H = 300 mm dam break and compare the water "
-                    "height at gauges H1..H4 with the records over t in [0, 1.5] s");
-    std::string lobScene;
-    double lobEnd = 1.5;
-    std::string lobCsv;
-    lob->add_option("scene", lobScene, "scene JSON (the first water rectangle is the column)")
-        ->required();
-    lob->add_option("--until", lobEnd, "stop at this time (s)");
-    lob->add_option("--csv", lobCsv, "write the height series t,h_H1..h_H4 (m) to this file");
-
-    auto* still = app.add_subcommand("still-tank", "run a still-tank scene and check hydrostatics");
-    std::string stillScene;
-    double settle = 2.0;
-    long steps = -1;
-    long trace = 0;
-    still->add_option("scene", stillScene, "scene JSON (the first water rectangle sets H)")
-        ->required();
-    still->add_option("--settle", settle, "time (s) after which averages start");
-    still->add_option("--steps", steps, "steps to run (default: end_time / dt)");
-    still->add_option("--trace", trace, "print step stats to stderr every N steps");
-
-    auto* wave = app.add_subcommand("regular-wave",
-                                    "bake a sinusoidal-piston scene and compare the wave height "
-                                    "with Biesel's transfer function and the wavelength with the "
-                                    "dispersion relation");
-    std::string waveScene;
-    double waveFrom = -1.0;
-    double waveTo = -1.0;
-    std::string keep;
-    wave->add_option("scene", waveScene,
-                     "scene JSON with piston.kind sinusoidal and two or more gauges")
-        ->required();
-    wave->add_option("--from", waveFrom,
-                     "start of the fit window (s); default: after the ramp and the wave's arrival");
-    wave->add_option("--to", waveTo,
-                     "end of the fit window (s); default: before reflections return");
-    wave->add_option("--keep", keep, "keep the cache and probes CSV in this folder");
-
-    CLI11_PARSE(app, argc, argv);
-    if (threads > 0)
-        omp_set_num_threads(threads);
+    ValidateCommandLine cl;
+    if (const auto rc = parseValidateCommandLine(argc, argv, cl, std::cout, std::cerr))
+        return *rc;
+    if (cl.threads > 0)
+        omp_set_num_threads(cl.threads);
     try {
         json out;
         const auto start = std::chrono::steady_clock::now();
-        if (*dam) {
-            out = damBreak(loadScene(damScene, sets), tEnd, csv);
-        } else if (*lob) {
-            out = lobovsky(loadScene(lobScene, sets), lobEnd, lobCsv);
-        } else if (*wave) {
-            out = regularWave(loadScene(waveScene, sets), waveFrom, waveTo, keep);
+        using Run = ValidateCommandLine::Run;
+        const Scene scene = loadValidateScene(cl);
+        if (cl.run == Run::DamBreak) {
+            out = damBreak(scene, cl.damUntil, cl.csv);
+        } else if (cl.run == Run::Lobovsky) {
+            out = lobovsky(scene, cl.lobovskyUntil, cl.csv);
+        } else if (cl.run == Run::RegularWave) {
+            out = regularWave(scene, cl.waveFrom, cl.waveTo, cl.keep);
         } else {
-            const Scene scene = loadScene(stillScene, sets);
-            if (steps < 0)
-                steps = std::lround(scene.run.endTime / scene.solver.time.dt);
-            out = stillTank(scene, settle, steps, trace);
+            const long steps =
+                cl.steps >= 0 ? cl.steps : std::lround(scene.run.endTime / scene.solver.time.dt);
+            out = stillTank(scene, cl.settle, steps, cl.trace);
         }
         out["wall_seconds"] =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         out["threads"] = omp_get_max_threads();
-        out["overrides"] = sets;
-        if (asJson) {
+        out["overrides"] = cl.sets;
+        if (cl.asJson) {
             std::printf("%s\n", out.dump().c_str());
         } else {
             for (const auto& [k, v] : out.items())

@@ -327,8 +327,13 @@ Checkpoint readCheckpoint(const fs::path& path) {
     }
     if (get<std::uint64_t>(h + 32) != XXH3_64bits(h + kHeaderSize, packed))
         damaged("payload checksum mismatch");
-    if (rawSize > kMaxRawPayload)
+    // Sizes are checked before the payload is allocated: a damaged (or forged) header must not
+    // make the reader allocate gigabytes. The writer's zstd frame records the raw size, and
+    // solver state never compresses 1000-fold.
+    if (rawSize > kMaxRawPayload || rawSize > packed * 1000 + (std::uint64_t{1} << 20))
         damaged("impossible payload size");
+    if (ZSTD_getFrameContentSize(h + kHeaderSize, packed) != rawSize)
+        damaged("payload does not decompress to its recorded size");
     std::vector<std::uint8_t> raw(static_cast<std::size_t>(rawSize));
     const std::size_t n = ZSTD_decompress(raw.data(), raw.size(), h + kHeaderSize, packed);
     if (ZSTD_isError(n) || n != raw.size())

@@ -12,9 +12,38 @@
 namespace swell::bake {
 namespace {
 
-/// Number of whole lattice cells of size l0 in `length`, tolerating rounding.
+/// Number of whole lattice cells of size l0 in `length`, tolerating rounding; at most 1e15 (a
+/// count that high is refused by checkParticleCount before anything loops over it).
 long cellsIn(double length, double l0) {
-    return static_cast<long>(std::floor(length / l0 + 1e-6));
+    return static_cast<long>(std::min(std::floor(length / l0 + 1e-6), 1e15));
+}
+
+/// Refuses a geometry of more than kMaxParticles particles before any is generated: counts
+/// them in floating point (no overflow), as the generator below lays them out.
+void checkParticleCount(const GeometryParams& g, int layers) {
+    const double l0 = g.particleSpacing;
+    const auto cells = [l0](double length) {
+        return std::max(0.0, std::floor(length / l0 + 1e-6));
+    };
+    double count = 0.0;
+    for (const Box& b : g.water)
+        count += cells(b.width()) * cells(b.height());
+    if (g.tank) {
+        const double nIn = std::round(g.tank->width() / l0);
+        const double nUp = std::round(g.tank->height() / l0);
+        const double back = std::ceil(std::max(0.0, g.bedExtensionBack) / l0 - 1e-6);
+        count += layers * (nIn + 2.0 * layers + back) + nUp * 2.0 * layers;
+    }
+    for (const Box& s : g.solids) {
+        const double nx = cells(s.width()), ny = cells(s.height());
+        count += nx * ny - std::max(0.0, nx - 2.0 * layers) * std::max(0.0, ny - 2.0 * layers);
+    }
+    if (!(count <= static_cast<double>(kMaxParticles))) {
+        throw SceneError("geometry.particle_spacing",
+                         fmt::format("{} m gives {:.4g} particles, more than the {} a scene may "
+                                     "have: use a larger spacing or smaller rectangles",
+                                     l0, count, kMaxParticles));
+    }
 }
 
 bool isWholeMultiple(double length, double l0) {
@@ -80,6 +109,10 @@ GeneratedGeometry generateGeometry(const GeometryParams& g) {
         solidRegions.push_back({g.solids[s], key});
     }
 
+    for (std::size_t w = 0; w < g.water.size(); ++w)
+        checkBox(g.water[w], fmt::format("geometry.water[{}]", w));
+    checkParticleCount(g, layers);
+
     GeneratedGeometry out;
     Particles& P = out.particles;
     std::vector<std::uint8_t> backWall; // 1 for the tank's back-wall particles (piston)
@@ -105,11 +138,18 @@ GeneratedGeometry generateGeometry(const GeometryParams& g) {
                 throw SceneError(key, fmt::format("overlaps geometry.water[{}]", v));
             }
         }
+        // Only the solids that reach into this rectangle can hold one of its particles.
+        std::vector<std::pair<Box, std::string>> near;
+        for (const auto& region : solidRegions) {
+            const Box& r = region.first;
+            if (r.x1 > b.x0 && r.x0 < b.x1 && r.y1 > b.y0 && r.y0 < b.y1)
+                near.push_back(region);
+        }
         for (long j = 0; j < ny; ++j) {
             for (long i = 0; i < nx; ++i) {
                 const double x = b.x0 + (static_cast<double>(i) + 0.5) * l0;
                 const double y = b.y0 + (static_cast<double>(j) + 0.5) * l0;
-                for (const auto& [box, name] : solidRegions) {
+                for (const auto& [box, name] : near) {
                     const double m = 0.25 * l0; // a particle centre strictly inside a solid
                     if (x > box.x0 + m && x < box.x1 - m && y > box.y0 + m && y < box.y1 - m) {
                         throw SceneError(
@@ -153,7 +193,11 @@ GeneratedGeometry generateGeometry(const GeometryParams& g) {
         const long nx = cellsIn(s.width(), l0);
         const long ny = cellsIn(s.height(), l0);
         for (long j = 0; j < ny; ++j) {
+            // Rows through the empty core visit only their outer `layers` sites at each end.
+            const bool core = j >= layers && j < ny - layers;
             for (long i = 0; i < nx; ++i) {
+                if (core && i == layers && nx - layers > i)
+                    i = nx - layers;
                 const long layer = std::min({i, j, nx - 1 - i, ny - 1 - j});
                 if (layer >= layers)
                     continue;
@@ -206,6 +250,17 @@ GeneratedGeometry generateGeometry(const GeometryParams& g) {
         const double w = bx1 - bx0;
         const double h = by1 - by0;
         out.domain = Box{bx0 - 0.5 * w, by0 - 0.25 * h, bx1 + 0.5 * w, by1 + h};
+    }
+    // The solver's neighbour grid covers the domain with cells of at least l0: bound them here,
+    // naming the key, rather than fail later inside the solver (NeighborGrid allows 5e7).
+    const double cells = std::ceil(out.domain.width() / l0) * std::ceil(out.domain.height() / l0);
+    if (!(cells <= kMaxDomainCells)) {
+        throw SceneError(g.domain ? "geometry.domain" : "geometry",
+                         fmt::format("the domain [{:.6g}, {:.6g}] x [{:.6g}, {:.6g}] m is {:.4g} "
+                                     "particle spacings square, more than {:.0e}{}",
+                                     out.domain.x0, out.domain.x1, out.domain.y0, out.domain.y1,
+                                     cells, kMaxDomainCells,
+                                     g.domain ? "" : " (it grows with the rectangles' extent)"));
     }
     return out;
 }

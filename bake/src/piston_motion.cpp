@@ -47,6 +47,9 @@ PistonMotion::PistonMotion(const PistonParams& p, double endTime) : m_params(p) 
     require(std::isfinite(p.strokeMin) && p.strokeMin >= 0.0, "stroke_min", "must be >= 0");
     require(std::isfinite(p.strokeMax) && p.strokeMax >= p.strokeMin, "stroke_max",
             "must be >= stroke_min");
+    // Every cycle is drawn up front: a bounded count (the shortest period over the run).
+    require(endTime / p.periodMin <= static_cast<double>(kMaxPistonCycles), "period_min",
+            "too short for the run: end_time / period_min exceeds 1,000,000 cycles");
     std::uint64_t state = p.seed;
     for (double t = 0.0; t <= endTime;) {
         const double period = uniform(state, p.periodMin, p.periodMax);

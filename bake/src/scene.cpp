@@ -16,6 +16,27 @@ namespace {
 
 using nlohmann::json;
 
+/// A value as an error message shows it: JSON on one line, invalid UTF-8 replaced, cut at 60
+/// characters.
+std::string shown(const json& v) {
+    std::string t = v.dump(-1, ' ', false, json::error_handler_t::replace);
+    if (t.size() > 60)
+        t = t.substr(0, 57) + "...";
+    return t;
+}
+
+/// A key as an error message shows it: control characters escaped, so the message is one line.
+std::string printable(const std::string& k) {
+    std::string out;
+    for (const char c : k) {
+        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
+            out += fmt::format("\\x{:02x}", static_cast<unsigned char>(c));
+        else
+            out += c;
+    }
+    return out;
+}
+
 /// Reads the keys of one JSON object, remembering which were used so that
 /// finish() can reject the unknown ones.
 class Section {
@@ -25,7 +46,9 @@ public:
             throw SceneError(m_path, "must be a JSON object");
     }
 
-    std::string key(const std::string& k) const { return m_path.empty() ? k : m_path + "." + k; }
+    std::string key(const std::string& k) const {
+        return m_path.empty() ? printable(k) : m_path + "." + printable(k);
+    }
     bool has(const std::string& k) const { return m_json.contains(k); }
 
     const json* get(const std::string& k) {
@@ -41,7 +64,7 @@ public:
         if (!v)
             return def;
         if (!v->is_number())
-            throw SceneError(key(k), fmt::format("must be a number{}, got {}", unit, v->dump()));
+            throw SceneError(key(k), fmt::format("must be a number{}, got {}", unit, shown(*v)));
         const double x = v->get<double>();
         if (!std::isfinite(x) || x < lo || x > hi || (loOpen && x == lo)) {
             throw SceneError(key(k), fmt::format("{} is out of range: must be {} {}{}", x,
@@ -58,7 +81,7 @@ public:
         if (!v)
             return def;
         if (!v->is_number_integer())
-            throw SceneError(key(k), fmt::format("must be an integer, got {}", v->dump()));
+            throw SceneError(key(k), fmt::format("must be an integer, got {}", shown(*v)));
         const auto x = v->get<long long>();
         if (x < lo || x > hi) {
             throw SceneError(key(k),
@@ -72,7 +95,7 @@ public:
         if (!v)
             return def;
         if (!v->is_boolean())
-            throw SceneError(key(k), fmt::format("must be true or false, got {}", v->dump()));
+            throw SceneError(key(k), fmt::format("must be true or false, got {}", shown(*v)));
         return v->get<bool>();
     }
 
@@ -81,7 +104,7 @@ public:
         if (!v)
             return def;
         if (!v->is_string())
-            throw SceneError(key(k), fmt::format("must be a string, got {}", v->dump()));
+            throw SceneError(key(k), fmt::format("must be a string, got {}", shown(*v)));
         return v->get<std::string>();
     }
 
@@ -94,7 +117,7 @@ public:
         for (E e : values)
             names += (names.empty() ? "\"" : ", \"") + std::string(toString(e)) + "\"";
         if (!v->is_string())
-            throw SceneError(key(k), fmt::format("must be one of {}, got {}", names, v->dump()));
+            throw SceneError(key(k), fmt::format("must be one of {}, got {}", names, shown(*v)));
         const auto s = v->get<std::string>();
         for (E e : values) {
             if (toString(e) == s)
@@ -178,7 +201,7 @@ Scene parseScene(const json& j) {
     if (const json* sd = top.get("seed")) {
         if (!sd->is_number_unsigned() && !(sd->is_number_integer() && sd->get<long long>() >= 0)) {
             throw SceneError("seed",
-                             fmt::format("must be a non-negative integer, got {}", sd->dump()));
+                             fmt::format("must be a non-negative integer, got {}", shown(*sd)));
         }
         scene.seed = sd->get<std::uint64_t>();
     }
@@ -290,7 +313,7 @@ Scene parseScene(const json& j) {
                 const json& v = (*g)[i];
                 if (!v.is_number() || !std::isfinite(v.get<double>())) {
                     throw SceneError(fmt::format("output.gauges[{}]", i),
-                                     fmt::format("must be a number (m), got {}", v.dump()));
+                                     fmt::format("must be a number (m), got {}", shown(v)));
                 }
                 o.gauges.push_back(v.get<double>());
             }
@@ -396,18 +419,22 @@ Scene parseScene(const json& j) {
     return scene;
 }
 
+json parseSceneJson(std::string_view text, const std::string& source) {
+    try {
+        return json::parse(text);
+    } catch (const json::exception& e) { // syntax, and numbers beyond a double (out_of_range)
+        throw SceneError(
+            "", fmt::format("{} is not valid JSON: {}", printable(source), printable(e.what())));
+    }
+}
+
 Scene loadScene(const std::filesystem::path& path, const std::vector<std::string>& overrides) {
     std::ifstream in(path);
     if (!in)
-        throw SceneError("", fmt::format("cannot open scene file {}", path.string()));
+        throw SceneError("", fmt::format("cannot open scene file {}", printable(path.string())));
     std::stringstream buffer;
     buffer << in.rdbuf();
-    json j;
-    try {
-        j = json::parse(buffer.str());
-    } catch (const json::parse_error& e) {
-        throw SceneError("", fmt::format("{} is not valid JSON: {}", path.string(), e.what()));
-    }
+    json j = parseSceneJson(buffer.str(), path.string());
     for (const std::string& o : overrides)
         applyOverride(j, o);
     return parseScene(j);
@@ -507,16 +534,22 @@ double stillWaterLevel(const Scene& scene) {
 void applyOverride(json& j, const std::string& assignment) {
     const auto eq = assignment.find('=');
     if (eq == std::string::npos || eq == 0) {
-        throw SceneError(
-            "", fmt::format("override \"{}\" must look like section.key=value", assignment));
+        throw SceneError("", fmt::format("override {} must look like section.key=value",
+                                         shown(json(printable(assignment)))));
     }
     const std::string path = assignment.substr(0, eq);
     const std::string text = assignment.substr(eq + 1);
     json value;
     try {
         value = json::parse(text);
-    } catch (const json::parse_error&) {
+    } catch (const json::exception&) {
         value = text;
+        try {
+            (void)value.dump(); // throws on invalid UTF-8, which no scene file can hold either
+        } catch (const json::exception&) {
+            throw SceneError(printable(path),
+                             fmt::format("override value {} is not valid UTF-8", shown(value)));
+        }
     }
     json* node = &j;
     std::size_t start = 0;
@@ -525,9 +558,10 @@ void applyOverride(json& j, const std::string& assignment) {
         const std::string part =
             path.substr(start, dot == std::string::npos ? std::string::npos : dot - start);
         if (part.empty())
-            throw SceneError(path, "empty key in override");
+            throw SceneError(printable(path), "empty key in override");
         if (!node->is_object())
-            throw SceneError(path, "override goes through a value that is not an object");
+            throw SceneError(printable(path),
+                             "override goes through a value that is not an object");
         if (dot == std::string::npos) {
             (*node)[part] = value;
             return;

@@ -1,10 +1,10 @@
 // swell-cache: inspect, verify, dump and synthesize .swell caches.
+#include "cache_cli.h"
 #include "swell/cache/error.h"
 #include "swell/cache/reader.h"
 #include "swell/cache/synthetic.h"
 #include "swell/cache/writer.h"
 
-#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
@@ -93,36 +93,6 @@ void printInfo(const json& j) {
                r.contains("steady_reason") && r["steady_reason"].is_string()
                    ? r["steady_reason"].get<std::string>()
                    : std::string("no reason given"));
-}
-
-/// Options of every subcommand (each reads its own).
-struct CacheOptions {
-    std::string path;
-    bool asJson = false;
-    std::size_t frameIndex = 0;
-    std::string recodeOut;
-    SyntheticWave wave;
-    std::size_t frames = 1200;
-    std::string encoding = "float32";
-    bool noShuffle = false;
-    bool noDelta = false;
-    int level = 3;
-
-    /// The encoding and filter options applied to `h`.
-    void applyEncoding(Header& h) const {
-        h.encoding = encoding == "float32" ? Encoding::Float32 : Encoding::Quantized16;
-        h.shuffle = !noShuffle;
-        h.delta = !noDelta;
-        h.compressionLevel = level;
-    }
-};
-
-void addEncodingOptions(CLI::App* cmd, CacheOptions& o) {
-    cmd->add_option("--encoding", o.encoding, "float32 or quantized16")
-        ->check(CLI::IsMember({"float32", "quantized16"}));
-    cmd->add_flag("--no-shuffle", o.noShuffle, "disable the byte-shuffle filter");
-    cmd->add_flag("--no-delta", o.noDelta, "disable the delta filter");
-    cmd->add_option("--level", o.level, "zstd level")->check(CLI::Range(1, 19));
 }
 
 void runVerify(const CacheOptions& o) {
@@ -214,43 +184,19 @@ void runInfo(const CacheOptions& o) {
 } // namespace
 
 int main(int argc, char** argv) {
-    CLI::App app{"swell-cache: inspect, verify, dump and synthesize .swell caches"};
-    app.require_subcommand(1);
     CacheOptions o;
-    auto* info = app.add_subcommand("info", "Summarize a cache (header, counts, sizes)");
-    info->add_option("CACHE", o.path, "cache file")->required();
-    info->add_flag("--json", o.asJson, "print one JSON object");
-    auto* verify = app.add_subcommand("verify", "Decode every frame and check every checksum");
-    verify->add_option("CACHE", o.path, "cache file")->required();
-    verify->add_flag("--json", o.asJson, "print one JSON object");
-    auto* dump = app.add_subcommand("dump", "Print one frame's particles as CSV");
-    dump->add_option("CACHE", o.path, "cache file")->required();
-    dump->add_option("--frame", o.frameIndex, "frame index")->required();
-    auto* recode = app.add_subcommand(
-        "recode",
-        "Copy a cache with another encoding or filters (frames, header and metadata kept)");
-    recode->add_option("CACHE", o.path, "input cache file")->required();
-    recode->add_option("OUT", o.recodeOut, "output cache file")->required();
-    auto* synth = app.add_subcommand(
-        "synth", "Write a synthetic cache (travelling wave) for demos and benchmarks");
-    synth->add_option("OUT", o.path, "output cache file")->required();
-    synth->add_option("--frames", o.frames, "number of frames")->check(CLI::Range(1, 1000000));
-    synth->add_option("--surface", o.wave.surfaceCount, "surface particles per frame")
-        ->check(CLI::Range(0, 10000000));
-    synth->add_option("--splash", o.wave.splashCount, "splash particles per frame")
-        ->check(CLI::Range(0, 10000000));
-    synth->add_option("--seed", o.wave.seed, "seed of the jitter and splash placement");
-    addEncodingOptions(synth, o);
-    addEncodingOptions(recode, o);
-    CLI11_PARSE(app, argc, argv);
+    CacheCommand command = CacheCommand::Info;
+    if (const auto rc = parseCacheCommandLine(argc, argv, o, command, std::cout, std::cerr))
+        return *rc;
     try {
-        const std::pair<CLI::App*, void (*)(const CacheOptions&)> commands[] = {{info, runInfo},
-                                                                                {verify, runVerify},
-                                                                                {dump, runDump},
-                                                                                {recode, runRecode},
-                                                                                {synth, runSynth}};
-        for (const auto& [cmd, run] : commands) {
-            if (*cmd)
+        const std::pair<CacheCommand, void (*)(const CacheOptions&)> commands[] = {
+            {CacheCommand::Info, runInfo},
+            {CacheCommand::Verify, runVerify},
+            {CacheCommand::Dump, runDump},
+            {CacheCommand::Recode, runRecode},
+            {CacheCommand::Synth, runSynth}};
+        for (const auto& [which, run] : commands) {
+            if (which == command)
                 run(o);
         }
     } catch (const std::exception& e) {

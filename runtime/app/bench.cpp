@@ -95,8 +95,9 @@ public:
         return cmd;
     }
 
+    void check() override { finishOptions(m_o); }
+
     int run() override {
-        finishOptions(m_o);
         const cache::Reader reader(m_o.cache);
         resolveAutoRes(m_o, reader.header());
         const std::vector<double> taus =

@@ -12,7 +12,10 @@ public:
     virtual ~Command() = default;
     /// Adds the subcommand and its options to `app`; returns it.
     virtual CLI::App* add(CLI::App& app) = 0;
-    /// Runs it (after parsing); the exit status.
+    /// Resolves and checks its options without reading the cache or touching the GPU; throws
+    /// std::invalid_argument naming the option. run() needs it done first.
+    virtual void check() = 0;
+    /// Runs it (after check()); the exit status.
     virtual int run() = 0;
 };
 

@@ -103,10 +103,13 @@ public:
         return cmd;
     }
 
-    int run() override {
+    void check() override {
         finishOptions(m_o);
         if (m_o.modeParams.mode != ReplayMode::Surging)
             throw std::invalid_argument("fidelity measures the surging layout (--mode surging)");
+    }
+
+    int run() override {
         const cache::Reader reader(m_o.cache);
         resolveAutoRes(m_o, reader.header());
         const EglContext context;

@@ -42,10 +42,13 @@ public:
         return cmd;
     }
 
-    int run() override {
+    void check() override {
         finishOptions(m_o);
         checkSeconds(m_seconds);
         m_sequence.format = parseHeightFormat(m_format, "--format");
+    }
+
+    int run() override {
         const cache::Reader reader(m_o.cache);
         resolveAutoRes(m_o, reader.header());
         const std::vector<double> taus = outputTaus(m_o, m_seconds);

@@ -448,9 +448,12 @@ public:
         return cmd;
     }
 
-    int run() override {
+    void check() override {
         finishOptions(m_o);
         m_r.finish();
+    }
+
+    int run() override {
         const cache::Reader reader(m_o.cache);
         resolveAutoRes(m_o, reader.header());
         const std::vector<double> taus = outputTaus(m_o, m_r.seconds);

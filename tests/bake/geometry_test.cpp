@@ -114,3 +114,36 @@ TEST(Geometry, BadRectanglesNameTheirKey) {
     g.domain = Box{0.0, 0.0, 0.2, 0.2}; // cuts through the tank
     EXPECT_EQ(sceneErrorKey([&] { generateGeometry(g); }), "geometry.domain");
 }
+
+TEST(Geometry, MoreThanTheParticleLimitIsRefusedBeforeAnyIsMade) {
+    GeometryParams g = tankWithColumn();
+    g.particleSpacing = 1e-5; // 1e4 x 2e4 = 2e8 water particles in the 0.1 m x 0.2 m column
+    g.tank.reset();
+    EXPECT_EQ(sceneErrorKey([&] { (void)generateGeometry(g); }), "geometry.particle_spacing");
+    g.particleSpacing = 0.01;
+    g.water = {Box{-1e300, 0.0, 1e300, 0.1}}; // counts beyond any integer type
+    EXPECT_EQ(sceneErrorKey([&] { (void)generateGeometry(g); }), "geometry.particle_spacing");
+    g.water = {Box{0.0, 0.0, 0.1, 0.1}};
+    g.solids = {Box{1.0, 0.0, 1e12, 1e12}}; // hollow, but its ring alone is too many
+    EXPECT_EQ(sceneErrorKey([&] { (void)generateGeometry(g); }), "geometry.particle_spacing");
+}
+
+TEST(Geometry, HollowSolidHoldsOnlyItsWallAndDummyRing) {
+    GeometryParams g = tankWithColumn();
+    g.tank.reset();
+    g.solids = {Box{1.0, 0.0, 3.0, 1.0}}; // 200 x 100 sites, 4 layers: the core stays empty
+    const GeneratedGeometry geo = generateGeometry(g);
+    const std::size_t ring = 200 * 100 - (200 - 8) * (100 - 8);
+    EXPECT_EQ(geo.particles.size() - geo.particles.count(ParticleKind::Water), ring);
+    EXPECT_EQ(geo.particles.count(ParticleKind::Wall), 200 * 100 - (200 - 4) * (100 - 4));
+}
+
+TEST(Geometry, DomainBeyondTheNeighbourGridIsRefusedNamingIt) {
+    GeometryParams g = tankWithColumn();
+    g.domain = Box{-1e4, -1e4, 1e4, 1e4}; // 2e6 x 2e6 spacings
+    EXPECT_EQ(sceneErrorKey([&] { (void)generateGeometry(g); }), "geometry.domain");
+    g.domain.reset();
+    g.tank.reset();
+    g.water = {Box{0.0, 0.0, 0.01, 0.01}, Box{1e5, 0.0, 1e5 + 0.01, 0.01}}; // two far apart
+    EXPECT_EQ(sceneErrorKey([&] { (void)generateGeometry(g); }), "geometry");
+}

@@ -108,3 +108,16 @@ TEST(PistonMotion, RejectsBadParametersNamingTheField) {
     p.period = 0.0;
     EXPECT_THROW(PistonMotion(p, 1.0), std::invalid_argument);
 }
+
+TEST(PistonMotion, MoreRandomCyclesThanTheLimitAreRefused) {
+    PistonParams p = randomParams(1);
+    p.periodMin = 1e-6;
+    p.periodMax = 1e-6;
+    try {
+        PistonMotion m(p, 10.0); // 1e7 cycles
+        FAIL();
+    } catch (const std::invalid_argument& e) {
+        EXPECT_NE(std::string(e.what()).find("piston.period_min"), std::string::npos);
+    }
+    EXPECT_NO_THROW(PistonMotion(p, 0.5)); // 5e5 cycles
+}

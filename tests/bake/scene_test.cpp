@@ -1,4 +1,6 @@
+#include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -373,4 +375,41 @@ TEST(Scene, UnknownSchemeAndUnsupportedCombinationsAreClearErrors) {
     }
     j["solver"]["shifting"] = 0.0;
     EXPECT_EQ(errorKey(j), "<accepted>");
+}
+
+TEST(Scene, NumberBeyondADoubleIsASceneErrorNamingTheFile) {
+    const swell::test::TempDir dir("swell_big_number_");
+    const auto tmp = dir / "big.json";
+    {
+        std::FILE* f = std::fopen(tmp.c_str(), "w");
+        std::fputs(R"({"geometry": {"particle_spacing": 1e400}})", f);
+        std::fclose(f);
+    }
+    try {
+        (void)loadScene(tmp);
+        FAIL();
+    } catch (const SceneError& e) {
+        EXPECT_NE(std::string(e.what()).find("big.json is not valid JSON"), std::string::npos);
+    }
+}
+
+TEST(Scene, ErrorsStayOnOneLine) {
+    const auto message = [](const std::function<void()>& f) {
+        try {
+            f();
+        } catch (const SceneError& e) {
+            return std::string(e.what());
+        }
+        return std::string("<no SceneError>");
+    };
+    json j = minimal();
+    j["solver"]["a\nb"] = 1; // an unknown key holding a newline
+    const std::string unknown = message([&] { (void)parseScene(j); });
+    EXPECT_EQ(unknown, "scene key 'solver.a\\x0ab': unknown key");
+    json k = minimal();
+    const std::string utf8 =
+        message([&] { applyOverride(k, std::string("name=\xff\xfe")); }); // not UTF-8
+    EXPECT_NE(utf8.find("not valid UTF-8"), std::string::npos) << utf8;
+    EXPECT_EQ(message([] { (void)loadScene("no\nsuch.json"); }),
+              "scene key '': cannot open scene file no\\x0asuch.json");
 }

@@ -1,4 +1,5 @@
 #pragma once
+#include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <vector>
@@ -28,6 +29,15 @@ struct GeometryParams {
     double bedExtensionBack = 0.0;
 };
 
+/// Most particles a geometry may generate (water, wall and dummy together): 4 million, some
+/// 40 times the largest shipped scene. A scene past it is refused before any particle is made,
+/// naming geometry.particle_spacing and the count, instead of allocating without bound.
+inline constexpr std::size_t kMaxParticles = 4'000'000;
+
+/// Largest domain, in particle spacings squared (the solver's neighbour grid holds at most 5e7
+/// cells of at least one spacing): a geometry whose domain is larger is refused.
+inline constexpr double kMaxDomainCells = 5e7;
+
 /// The particles and domain a geometry describes.
 struct GeneratedGeometry {
     Particles particles;
@@ -41,7 +51,8 @@ struct GeneratedGeometry {
 /// Water rectangles hold the lattice sites (x0 + (i + 1/2) l0, y0 + (j + 1/2) l0) inside
 /// them; tank walls and solid blocks put their innermost `wallLayers` as Wall particles
 /// and the next `dummyLayers` as Dummy. Throws SceneError naming the key for an empty
-/// water rectangle, water overlapping a solid, or particles outside the domain.
+/// water rectangle, water overlapping a solid, particles outside the domain, more than
+/// kMaxParticles particles or a domain larger than kMaxDomainCells.
 GeneratedGeometry generateGeometry(const GeometryParams& geometry);
 
 } // namespace swell::bake

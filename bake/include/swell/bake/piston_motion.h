@@ -40,6 +40,10 @@ struct PistonState {
 /// X(t) = S_i/2 (1 - cos(2 pi (t - t_i) / T_i)), so position and velocity are continuous
 /// at every cycle boundary. The ramp multiplies by r(t) = (1 - cos(pi t / t_ramp)) / 2,
 /// which makes position, velocity and acceleration start from zero.
+/// Most random cycles a piston draws (end_time / period_min): a bound on the memory and time
+/// PistonMotion takes; a scene past it is refused naming piston.period_min.
+inline constexpr long kMaxPistonCycles = 1'000'000;
+
 class PistonMotion {
 public:
     /// Validates (throws std::invalid_argument naming the field) and draws the cycles

@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <nlohmann/json_fwd.hpp>
@@ -68,6 +69,10 @@ struct Scene {
 /// Also generates the geometry once to reject unusable rectangles, and checks dt against
 /// the Courant limit for the scene's expected speed (unless solver.adaptive_dt).
 Scene parseScene(const nlohmann::json& json);
+
+/// Parses a scene file's text as JSON; anything that is not (syntax, a number beyond a double)
+/// throws SceneError (key "") naming `source`.
+nlohmann::json parseSceneJson(std::string_view text, const std::string& source);
 
 /// Reads a scene file, applies the "--set" overrides in order (applyOverride) and parses it;
 /// unreadable files and JSON syntax errors also throw SceneError (key "") with the file name.

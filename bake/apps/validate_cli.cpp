@@ -1,0 +1,87 @@
+#include "validate_cli.h"
+
+#include "command_line.h"
+
+namespace swell::bake {
+
+std::optional<int> parseValidateCommandLine(int argc, const char* const* argv,
+                                            ValidateCommandLine& cl, std::ostream& out,
+                                            std::ostream& err) {
+    CLI::App app{"swell-validate: dam-break, lobovsky, still-tank and regular-wave validation runs "
+                 "of the MPS "
+                 "solver"};
+    app.require_subcommand(1);
+    app.fallthrough();
+    app.add_option("--set", cl.sets, "override a scene key: section.key=value (repeatable)")
+        ->expected(1)
+        ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+    app.add_option("--threads", cl.threads, "OpenMP threads (default: all)")
+        ->check(CLI::Range(1, 1024));
+    app.add_flag("--json", cl.asJson, "print one JSON object on stdout");
+
+    auto* dam =
+        app.add_subcommand("dam-break", "run a dam-break scene and compare the surge front with "
+                                        "Martin & Moyce (1952) over T in [0.8, 3.0]");
+    dam->add_option("scene", cl.scene, "scene JSON (the first water rectangle is the column)")
+        ->required();
+    dam->add_option("--until", cl.damUntil, "stop at this T = t sqrt(2g/a)")
+        ->check(cli::finiteRange(0.0, 1e6));
+    dam->add_option("--csv", cl.csv, "write the front series T,Z to this file");
+
+    auto* lob = app.add_subcommand(
+        "lobovsky", "run the Lobovsky et al. (2014) H = 300 mm dam break and compare the water "
+                    "height at gauges H1..H4 with the records over t in [0, 1.5] s");
+    lob->add_option("scene", cl.scene, "scene JSON (the first water rectangle is the column)")
+        ->required();
+    lob->add_option("--until", cl.lobovskyUntil, "stop at this time (s)")
+        ->check(cli::finiteRange(0.0, 1e6));
+    lob->add_option("--csv", cl.csv, "write the height series t,h_H1..h_H4 (m) to this file");
+
+    auto* still = app.add_subcommand("still-tank", "run a still-tank scene and check hydrostatics");
+    still->add_option("scene", cl.scene, "scene JSON (the first water rectangle sets H)")
+        ->required();
+    still->add_option("--settle", cl.settle, "time (s) after which averages start")
+        ->check(cli::finiteRange(0.0, 1e6));
+    still->add_option("--steps", cl.steps, "steps to run (default: end_time / dt)")
+        ->check(CLI::Range(1L, 1000000000L));
+    still->add_option("--trace", cl.trace, "print step stats to stderr every N steps")
+        ->check(CLI::Range(0L, 1000000000L));
+
+    auto* wave = app.add_subcommand("regular-wave",
+                                    "bake a sinusoidal-piston scene and compare the wave height "
+                                    "with Biesel's transfer function and the wavelength with the "
+                                    "dispersion relation");
+    wave->add_option("scene", cl.scene,
+                     "scene JSON with piston.kind sinusoidal and two or more gauges")
+        ->required();
+    wave->add_option("--from", cl.waveFrom,
+                     "start of the fit window (s); default: after the ramp and the wave's arrival")
+        ->check(cli::finiteRange(0.0, 1e6));
+    wave->add_option("--to", cl.waveTo,
+                     "end of the fit window (s); default: before reflections return")
+        ->check(cli::finiteRange(0.0, 1e6));
+    wave->add_option("--keep", cl.keep, "keep the cache and probes CSV in this folder");
+
+    if (const auto rc = cli::parse(app, argc, argv, "swell-validate", 0, out, err))
+        return rc;
+    cl.run = *dam     ? ValidateCommandLine::Run::DamBreak
+             : *lob   ? ValidateCommandLine::Run::Lobovsky
+             : *still ? ValidateCommandLine::Run::StillTank
+                      : ValidateCommandLine::Run::RegularWave;
+    if (cl.scene.empty()) {
+        err << "swell-validate: scene: an empty path (see --help)\n";
+        return 2;
+    }
+    if (cl.waveFrom >= 0.0 && cl.waveTo >= 0.0 && !(cl.waveTo > cl.waveFrom)) {
+        err << "swell-validate: --to " << cl.waveTo << " must be after --from " << cl.waveFrom
+            << " (see --help)\n";
+        return 2;
+    }
+    return std::nullopt;
+}
+
+Scene loadValidateScene(const ValidateCommandLine& cl) {
+    return loadScene(cl.scene, cl.sets);
+}
+
+} // namespace swell::bake

@@ -1,0 +1,75 @@
+#pragma once
+// What every program's command line shares (swell-bake, swell-cache, swell-play,
+// swell-validate, swell-mps-bench): parsing with CLI11 into one clear error line, and a check
+// for finite numbers. Header-only (target swell_cli); cache/ is the library every app uses.
+
+#include <CLI/CLI.hpp>
+
+#include <cmath>
+#include <optional>
+#include <ostream>
+#include <sstream>
+#include <string>
+
+namespace swell::cli {
+
+/// `message` with control characters (an argument may hold any) escaped: one line.
+inline std::string oneLine(const std::string& message) {
+    static constexpr char kHex[] = "0123456789abcdef";
+    std::string out;
+    for (const char c : message) {
+        const auto u = static_cast<unsigned char>(c);
+        if (u < 0x20 || u == 0x7f) {
+            out += "\\x";
+            out += kHex[u >> 4];
+            out += kHex[u & 0xf];
+        } else {
+            out += c;
+        }
+    }
+    return out;
+}
+
+/// Parses argv with `app`. Returns nullopt when the program should go on, else its exit status:
+/// 0 after --help (printed on `out`); after a bad command line one line "PROGRAM: problem (see
+/// --help)" on `err` and `badStatus`, or CLI11's own code for the error when badStatus is 0.
+inline std::optional<int> parse(CLI::App& app, int argc, const char* const* argv,
+                                const std::string& program, int badStatus, std::ostream& out,
+                                std::ostream& err) {
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        if (e.get_exit_code() == 0)
+            return app.exit(e, out, err);
+        err << program << ": " << oneLine(e.what()) << " (see --help)\n";
+        return badStatus != 0 ? badStatus : e.get_exit_code();
+    }
+    return std::nullopt;
+}
+
+/// "[lo, hi]" with the bounds as C++ streams print them (1e+06, not 1000000.000000).
+inline std::string range(double lo, double hi) {
+    std::ostringstream s;
+    s << "[" << lo << ", " << hi << "]";
+    return s.str();
+}
+
+/// A CLI11 check: a finite number in [lo, hi] (CLI::Range lets NaN through).
+inline CLI::Validator finiteRange(double lo, double hi) {
+    return CLI::Validator(
+        [lo, hi](std::string& text) -> std::string {
+            double v = 0.0;
+            std::size_t used = 0;
+            try {
+                v = std::stod(text, &used);
+            } catch (const std::exception&) {
+                used = 0;
+            }
+            if (used == 0 || used != text.size() || !std::isfinite(v) || v < lo || v > hi)
+                return "Value " + text + " not a finite number in " + range(lo, hi);
+            return std::string();
+        },
+        "FINITE in " + range(lo, hi));
+}
+
+} // namespace swell::cli

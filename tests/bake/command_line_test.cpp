@@ -1,0 +1,91 @@
+// The command lines of swell-bake, swell-validate and swell-mps-bench (bake/app/bake_cli.h,
+// bake/apps/*_cli.h): nonsense values are refused with one line and a non-zero status, without
+// running anything. The options fuzz target (tests/fuzz) checks every refusal is one line; these
+// check that the values below are refused at all.
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "bake_cli.h"
+#include "mps_bench_cli.h"
+#include "validate_cli.h"
+
+#include "swell/bake/error.h"
+
+using namespace swell::bake;
+
+namespace {
+
+struct Outcome {
+    std::optional<int> rc;
+    std::string err;
+};
+
+template <class Line, class Parse> Outcome parse(std::vector<std::string> args, Parse p) {
+    std::vector<const char*> argv;
+    for (const std::string& a : args)
+        argv.push_back(a.c_str());
+    Line cl;
+    std::ostringstream out, err;
+    const auto rc = p(static_cast<int>(argv.size()), argv.data(), cl, out, err);
+    return {rc, err.str()};
+}
+
+Outcome bake(std::vector<std::string> a) {
+    a.insert(a.begin(), "swell-bake");
+    return parse<BakeCommandLine>(a, parseBakeCommandLine);
+}
+Outcome validate(std::vector<std::string> a) {
+    a.insert(a.begin(), "swell-validate");
+    return parse<ValidateCommandLine>(a, parseValidateCommandLine);
+}
+Outcome bench(std::vector<std::string> a) {
+    a.insert(a.begin(), "swell-mps-bench");
+    return parse<MpsBenchCommandLine>(a, parseMpsBenchCommandLine);
+}
+
+/// Refused: a non-zero status and one line starting with the program's name.
+void expectRefused(const Outcome& o, const std::string& program, const std::string& mention) {
+    ASSERT_TRUE(o.rc.has_value()) << mention;
+    EXPECT_NE(*o.rc, 0);
+    EXPECT_EQ(o.err.rfind(program + ": ", 0), 0u) << o.err;
+    EXPECT_EQ(o.err.find('\n'), o.err.size() - 1) << o.err;
+    EXPECT_NE(o.err.find(mention), std::string::npos) << o.err;
+}
+
+} // namespace
+
+TEST(CommandLine, SwellBakeAcceptsABakeAndRefusesEmptyPathsAndControlCharacters) {
+    EXPECT_FALSE(bake({"s.json", "-o", "c.swell", "--threads", "2"}).rc.has_value());
+    expectRefused(bake({"s.json", "-o", ""}), "swell-bake", "--output");
+    expectRefused(bake({"", "-o", "c.swell"}), "swell-bake", "SCENE");
+    expectRefused(bake({"s.json", "-o", "c.swell", "--threads", "0"}), "swell-bake", "--threads");
+    expectRefused(bake({"s.json", "-o", "c.swell", "x\ry"}), "swell-bake", "x\\x0dy");
+}
+
+TEST(CommandLine, SwellValidateRefusesNonsenseValues) {
+    EXPECT_FALSE(validate({"dam-break", "s.json", "--until", "2"}).rc.has_value());
+    expectRefused(validate({"dam-break", "s.json", "--until", "nan"}), "swell-validate", "--until");
+    expectRefused(validate({"lobovsky", "s.json", "--until", "-1"}), "swell-validate", "--until");
+    expectRefused(validate({"still-tank", "s.json", "--steps", "-5"}), "swell-validate", "--steps");
+    expectRefused(validate({"still-tank", "s.json", "--settle", "inf"}), "swell-validate",
+                  "--settle");
+    expectRefused(validate({"regular-wave", "s.json", "--from", "5", "--to", "2"}),
+                  "swell-validate", "--to");
+    expectRefused(validate({"--threads", "-3", "dam-break", "s.json"}), "swell-validate",
+                  "--threads");
+}
+
+TEST(CommandLine, SwellMpsBenchRefusesNoStepsAndTakesItsSceneOverrides) {
+    EXPECT_FALSE(bench({"--steps", "10", "--warmup", "0"}).rc.has_value());
+    expectRefused(bench({"--steps", "0"}), "swell-mps-bench", "--steps");
+    expectRefused(bench({"--warmup", "-1"}), "swell-mps-bench", "--warmup");
+    MpsBenchCommandLine cl;
+    cl.sets = {"geometry.particle_spacing=0.02", "solver.dt=0.001"};
+    EXPECT_DOUBLE_EQ(mpsBenchScene(cl).geometry.particleSpacing, 0.02);
+    cl.sets = {"solver.scheme=nope"};
+    EXPECT_THROW((void)mpsBenchScene(cl), SceneError);
+}
