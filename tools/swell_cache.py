@@ -7,6 +7,8 @@ python3-xxhash is installed.
     python3 tools/swell_cache.py CACHE --frame 7     # that frame as CSV
 """
 import json
+import os
+import re
 import struct
 import sys
 
@@ -55,9 +57,28 @@ def _unfilter(raw, encoding, ns, nsp, flags):
     return bytes(out)
 
 
+def temporary_file_writer(path):
+    """The PID in the name of a writer's temporary file `<name>.tmp-<pid>`, else 0."""
+    m = re.search(r"\.tmp-([0-9]{1,9})$", os.path.basename(str(path)))
+    return int(m.group(1)) if m and int(m.group(1)) > 0 else 0
+
+
 class Cache:
     def __init__(self, path):
         self.path = path
+        pid = temporary_file_writer(path)
+        if pid:
+            # As the C++ reader: a writer's temporary is never a cache, complete or not.
+            try:
+                os.kill(pid, 0)
+                state = "still running"
+            except ProcessLookupError:
+                state = "no longer running: the next bake to that output removes it"
+            except PermissionError:
+                state = "still running"
+            raise CacheError("%s: a temporary file of an unfinished write by process %d (%s), "
+                             "not a cache; a cache appears under its own name only when complete"
+                             % (path, pid, state))
         with open(path, "rb") as f:
             self.data = f.read()
         d = self.data

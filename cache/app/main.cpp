@@ -1,6 +1,7 @@
 // swell-cache: inspect, verify, dump and synthesize .swell caches.
 #include "cache_cli.h"
 #include "swell/cache/error.h"
+#include "swell/cache/output_lock.h"
 #include "swell/cache/reader.h"
 #include "swell/cache/synthetic.h"
 #include "swell/cache/writer.h"
@@ -139,6 +140,7 @@ void runRecode(const CacheOptions& o) {
     const Reader r(o.path);
     Header h = r.header();
     o.applyEncoding(h);
+    const OutputLock lock(o.recodeOut); // one writer per output, as swell-bake
     Writer w(o.recodeOut, h);
     for (std::size_t i = 0; i < r.frameCount(); ++i)
         w.addFrame(r.readFrame(i));
@@ -166,6 +168,7 @@ void runSynth(const CacheOptions& o) {
                           {"period_s", wave.period},
                           {"replay", syntheticReplayJson(wave)}}
                          .dump();
+    const OutputLock lock(o.path); // one writer per output, as swell-bake
     Writer w(o.path, h);
     for (std::size_t i = 0; i < o.frames; ++i)
         w.addFrame(syntheticFrame(wave, i));
@@ -199,6 +202,9 @@ int main(int argc, char** argv) {
             if (which == command)
                 run(o);
         }
+    } catch (const OutputBusy& e) {
+        fmt::print(stderr, "swell-cache: {}\n", e.what());
+        return 6; // as swell-bake: the output is being written by another process
     } catch (const std::exception& e) {
         fmt::print(stderr, "swell-cache: {}\n", e.what());
         return 1;

@@ -66,4 +66,19 @@ grep -q "a.swell.tmp-999999999: a temporary file of an unfinished write by proce
 cp "$dir/a.swell" "$dir/a.swell.tmp-$$"
 if "$bin/swell-cache" verify "$dir/a.swell.tmp-$$" 2> "$dir/err"; then fail "verify passed a live writer's temporary"; fi
 grep -q "by process $$ (still running)" "$dir/err" || fail "live temporary message: $(cat "$dir/err")"
+# synth and recode take the output lock as swell-bake does: with another process holding it
+# (a POSIX record lock on OUT.lock, as fcntl F_SETLK takes it), exit 6 naming that process.
+python3 -c 'import fcntl, sys, time; f = open(sys.argv[1], "a"); fcntl.lockf(f, fcntl.LOCK_EX); print(flush=True); time.sleep(60)' \
+    "$dir/held.swell.lock" > "$dir/holder.out" &
+holder=$!
+for _ in $(seq 100); do [[ -s "$dir/holder.out" ]] && break; sleep 0.05; done
+set +e
+"$bin/swell-cache" synth "$dir/held.swell" --frames 5 2> "$dir/err"; synth_rc=$?
+"$bin/swell-cache" recode "$dir/a.swell" "$dir/held.swell" 2> "$dir/err2"; recode_rc=$?
+set -e
+kill "$holder"
+[[ $synth_rc -eq 6 && $recode_rc -eq 6 ]] || fail "a held output: synth exit $synth_rc, recode exit $recode_rc"
+grep -q "in use by process $holder" "$dir/err" || fail "held-output message: $(cat "$dir/err")"
+grep -q "in use by process $holder" "$dir/err2" || fail "held-output message: $(cat "$dir/err2")"
+[[ ! -e "$dir/held.swell" ]] || fail "a refused synth wrote the output"
 echo "swell-cache CLI OK"

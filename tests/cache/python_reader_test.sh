@@ -18,4 +18,9 @@ done
 size=$(stat -c %s "$dir/float32.swell")
 printf '\xff' | dd of="$dir/float32.swell" bs=1 seek=$((size - 6 * 40 - 8 - 3)) conv=notrunc 2>/dev/null
 if "$py" "$reader" "$dir/float32.swell" 2>/dev/null; then echo "damage not detected"; exit 1; fi
+# A writer's temporary (OUT.tmp-PID) is refused as by swell-cache verify, naming the writer.
+cp "$dir/quantized16.swell" "$dir/q.swell.tmp-999999999"
+if "$py" "$reader" "$dir/q.swell.tmp-999999999" 2> "$dir/err"; then echo "temporary read"; exit 1; fi
+grep -q "a temporary file of an unfinished write by process 999999999 (no longer running" "$dir/err" ||
+    { echo "temporary message: $(cat "$dir/err")"; exit 1; }
 echo "python reader OK"
