@@ -267,9 +267,7 @@ void Progress::done() {
 
 ReplayMemory replayMemory(const Options& o, const cache::Reader& reader, const TimelinePlan& plan,
                           std::size_t sliceSets, std::span<const std::uint32_t> ids) {
-    const auto& loop = plan.timeline.loop();
-    return estimateReplayMemory(reader, ids, o.params, sliceSets,
-                                loop ? static_cast<std::size_t>(loop->crossfade) : 0);
+    return estimateReplayMemory(reader, ids, o.params, sliceSets, plan.timeline);
 }
 
 namespace {
@@ -301,10 +299,9 @@ std::vector<Chunk> streamChunks(const Options& o, const cache::Reader& reader,
         o.params, o.modeParams, plan.timeline, framesPerTimeUnit(reader.header(), o.params));
     const std::size_t budget = budgetBytes(o.memoryBudgetGiB, "--memory-budget");
     auto fits = [&](std::size_t first, std::size_t last) {
-        const std::vector<double> part(taus.begin() + static_cast<std::ptrdiff_t>(first),
-                                       taus.begin() + static_cast<std::ptrdiff_t>(last));
-        return replayMemory(o, reader, plan, samplers.size(), framesUsed(samplers, part)).total() <=
-               budget;
+        const std::vector<std::uint32_t> ids =
+            framesUsed(samplers, std::span(taus).subspan(first, last - first));
+        return replayMemory(o, reader, plan, samplers.size(), ids).total() <= budget;
     };
     for (std::size_t count = 1;; count *= 2) {
         const std::size_t length = (taus.size() + count - 1) / count;

@@ -82,10 +82,8 @@ TimelinePlan planOf(const cache::Reader& reader, const ReplayParams& params) {
 std::vector<std::uint32_t> budgeted(const cache::Reader& reader, const PlaybackConfig& config,
                                     const TimelinePlan& plan, std::size_t sliceSets) {
     std::vector<std::uint32_t> ids = timelineFrames(plan.timeline);
-    const auto& loop = plan.timeline.loop();
     checkMemoryBudget(
-        estimateReplayMemory(reader, ids, config.params, sliceSets,
-                             loop ? static_cast<std::size_t>(loop->crossfade) : 0),
+        estimateReplayMemory(reader, ids, config.params, sliceSets, plan.timeline),
         budgetBytes(config.memoryBudgetGiB, "memory_budget_gib"),
         fmt::format("{}: a replay holding every frame of its timeline", reader.path().string()),
         "memory_budget_gib", "raise it, lower the mesh, or replay a shorter cache");

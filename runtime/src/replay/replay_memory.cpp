@@ -1,5 +1,6 @@
 #include "swell/runtime/replay/replay_memory.h"
 
+#include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
 #include <stdexcept>
@@ -23,7 +24,7 @@ std::string size(std::size_t bytes) {
 
 ReplayMemory estimateReplayMemory(const cache::Reader& reader, std::span<const std::uint32_t> ids,
                                   const ReplayParams& params, std::size_t sliceSets,
-                                  std::size_t blendEntries) {
+                                  const Timeline& timeline) {
     ReplayMemory m;
     m.frames = ids.size();
     std::size_t surface = 0; // surface particles of the held frames
@@ -39,17 +40,20 @@ ReplayMemory estimateReplayMemory(const cache::Reader& reader, std::span<const s
     const auto N = static_cast<std::size_t>(params.cellsX);
     const auto M = static_cast<std::size_t>(params.cellsZ);
     const std::size_t quads = (N + 3) / 4;
+    const auto blendEntries =
+        static_cast<std::size_t>(std::count_if(timeline.entries().begin(), timeline.entries().end(),
+                                               [](const TimelineEntry& e) { return e.blended(); }));
     const std::size_t slots = ids.size() + blendEntries;
     const std::size_t columns = slots * quads * 8 * sizeof(float); // S and W per column quad
     const std::size_t particles = params.reconstruction == Reconstruction::Paper
                                       ? surface * 2 * sizeof(float) + slots * (N + 3) * 4
                                       : 0;
-    const std::size_t timeline = reader.frameCount() * 2 * sizeof(std::uint32_t);
+    const std::size_t tables = timeline.size() * 2 * sizeof(std::uint32_t); // slot, shown frame
     const std::size_t slices = static_cast<std::size_t>(2 * params.slices - 1) * 8;
     const std::size_t noise =
         static_cast<std::size_t>(params.noise.timeSamples) * params.slices * sizeof(double);
     const std::size_t heights = N * M * sizeof(float) * 2; // buffer + texture
-    m.gpuBytes = sliceSets * (columns + particles + timeline + slices + noise) + heights;
+    m.gpuBytes = sliceSets * (columns + particles + tables + slices + noise) + heights;
     m.stagingBytes = sliceSets * (columns + particles);
     return m;
 }

@@ -42,7 +42,8 @@ TEST_F(ReplayMemoryTest, DecodedBytesComeExactlyFromTheIndex) {
     const cache::Reader reader(s_path);
     std::vector<std::uint32_t> ids(120);
     std::iota(ids.begin(), ids.end(), 100u);
-    const ReplayMemory m = estimateReplayMemory(reader, ids, ReplayParams{}, 1, 0);
+    const Timeline whole = Timeline::whole(reader.frameCount(), FramePolicy::Loop);
+    const ReplayMemory m = estimateReplayMemory(reader, ids, ReplayParams{}, 1, whole);
     std::size_t bytes = 0;
     for (std::uint32_t id : ids) {
         const cache::Frame f = reader.readFrame(id);
@@ -53,10 +54,10 @@ TEST_F(ReplayMemoryTest, DecodedBytesComeExactlyFromTheIndex) {
     // GPU buffers grow with the frames held, the mesh and the slice sets.
     ReplayParams wide;
     wide.cellsX = 4 * wide.cellsX;
-    EXPECT_GT(estimateReplayMemory(reader, ids, wide, 1, 0).gpuBytes, 3 * m.gpuBytes / 2);
-    EXPECT_GT(estimateReplayMemory(reader, ids, ReplayParams{}, 3, 0).gpuBytes, 2 * m.gpuBytes);
+    EXPECT_GT(estimateReplayMemory(reader, ids, wide, 1, whole).gpuBytes, 3 * m.gpuBytes / 2);
+    EXPECT_GT(estimateReplayMemory(reader, ids, ReplayParams{}, 3, whole).gpuBytes, 2 * m.gpuBytes);
     std::vector<std::uint32_t> fewer(ids.begin(), ids.begin() + 10);
-    EXPECT_LT(estimateReplayMemory(reader, fewer, ReplayParams{}, 1, 0).total(), m.total() / 4);
+    EXPECT_LT(estimateReplayMemory(reader, fewer, ReplayParams{}, 1, whole).total(), m.total() / 4);
 }
 
 TEST_F(ReplayMemoryTest, GpuEstimateCoversWhatTheReplayUploads) {
@@ -79,9 +80,7 @@ TEST_F(ReplayMemoryTest, GpuEstimateCoversWhatTheReplayUploads) {
             for (std::uint32_t id : ids)
                 set.frames.push_back(reader.readFrame(id));
             const GpuReplay gpu(set, p, sampler);
-            const auto& loop = plan.timeline.loop();
-            const ReplayMemory m = estimateReplayMemory(
-                reader, ids, p, 1, loop ? static_cast<std::size_t>(loop->crossfade) : 0);
+            const ReplayMemory m = estimateReplayMemory(reader, ids, p, 1, plan.timeline);
             SCOPED_TRACE(::testing::Message() << toString(r) << " N " << N);
             EXPECT_GE(m.gpuBytes, gpu.uploadedBytes());
             EXPECT_LT(m.gpuBytes, 4 * gpu.uploadedBytes() + 64 * 1024 * 4 * 2); // not wildly high

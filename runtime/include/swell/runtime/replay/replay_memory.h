@@ -13,6 +13,7 @@
 
 #include "swell/cache/reader.h"
 #include "swell/runtime/replay/replay_params.h"
+#include "swell/runtime/replay/timeline.h"
 
 #include <cstddef>
 #include <cstdint>
@@ -32,12 +33,12 @@ struct ReplayMemory {
     std::size_t total() const { return decodedBytes + gpuBytes + stagingBytes; }
 };
 
-/// Estimate for holding cache frames `ids` of `reader` in a replay with `params` (its grid),
-/// `sliceSets` slice sets (1, or the ripple's directions) and `blendEntries` cross-faded
-/// timeline entries per set (a seamless loop's L).
+/// Estimate for holding cache frames `ids` of `reader` in a replay with `params` (its grid) and
+/// `sliceSets` slice sets (1, or the ripple's directions) over `timeline` (its entries' tables
+/// and one column slot per cross-faded entry, in each set).
 ReplayMemory estimateReplayMemory(const cache::Reader& reader, std::span<const std::uint32_t> ids,
                                   const ReplayParams& params, std::size_t sliceSets,
-                                  std::size_t blendEntries);
+                                  const Timeline& timeline);
 
 /// Bytes of `gib` GiB; throws std::invalid_argument naming `option` unless 0 < gib <= 1 TiB.
 std::size_t budgetBytes(double gib, const std::string& option);
