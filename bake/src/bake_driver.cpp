@@ -57,8 +57,7 @@ public:
     void write() {
         if (!enabled())
             return;
-        m_tmp = m_path;
-        m_tmp += ".tmp-" + std::to_string(::getpid());
+        m_tmp = cache::temporaryPath(m_path);
         if (const int err = cache::writeFile(m_tmp, m_text.data(), m_text.size()); err != 0)
             fail(err, "; no cache written");
     }

@@ -17,6 +17,7 @@
 #include <zstd.h>
 
 #include "swell/cache/checked_write.h"
+#include "swell/cache/output_lock.h"
 
 namespace swell::bake {
 namespace {
@@ -262,8 +263,7 @@ std::uint64_t writeCheckpoint(const fs::path& path, const Checkpoint& c) {
     put<std::uint64_t>(h + 32, XXH3_64bits(file.data() + kHeaderSize, n));
     put<std::uint64_t>(h + 40, XXH3_64bits(h, 40));
 
-    fs::path tmp = path;
-    tmp += ".tmp-" + std::to_string(::getpid());
+    const fs::path tmp = cache::temporaryPath(path);
     const auto fail = [&](const std::string& what, int err) {
         std::error_code ec;
         fs::remove(tmp, ec);

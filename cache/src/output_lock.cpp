@@ -69,6 +69,12 @@ OutputLock::~OutputLock() {
     }
 }
 
+fs::path temporaryPath(const fs::path& path) {
+    fs::path tmp = path;
+    tmp += ".tmp-" + std::to_string(::getpid());
+    return tmp;
+}
+
 long temporaryFileWriter(const fs::path& path) {
     const std::string f = path.filename().string();
     const std::size_t at = f.rfind(".tmp-");

@@ -3,6 +3,7 @@
 #include "format.h"
 #include "swell/cache/checked_write.h"
 #include "swell/cache/error.h"
+#include "swell/cache/output_lock.h"
 
 #include <cerrno>
 #include <cmath>
@@ -72,8 +73,7 @@ void validateFrame(const Header& h, const Frame& f, std::size_t index) {
 Writer::Writer(fs::path path, Header header)
     : m_path(std::move(path)), m_header(std::move(header)) {
     validateHeader(m_header);
-    m_tmpPath = m_path;
-    m_tmpPath += ".tmp-" + std::to_string(::getpid());
+    m_tmpPath = temporaryPath(m_path);
     m_file = std::fopen(m_tmpPath.c_str(), "w+b");
     if (!m_file)
         throw CacheError(describe(m_path, std::string("cannot create temporary file ") +

@@ -1,6 +1,7 @@
 #include "swell/runtime/io/atomic_write.h"
 
 #include "swell/cache/checked_write.h"
+#include "swell/cache/output_lock.h"
 #include "swell/runtime/error.h"
 
 #include <cstring>
@@ -45,8 +46,7 @@ void DeferredRenames::commit() {
 
 void writeAtomically(const std::filesystem::path& path,
                      const std::function<void(const std::filesystem::path&)>& write) {
-    std::filesystem::path temporary = path;
-    temporary += ".tmp-" + std::to_string(::getpid());
+    const std::filesystem::path temporary = cache::temporaryPath(path);
     std::error_code ec;
     try {
         write(temporary);

@@ -36,6 +36,10 @@ private:
     int m_fd = -1;
 };
 
+/// Where this process writes `path` before renaming it into place: `<path>.tmp-<pid>`, the one
+/// name every swell writer uses (and temporaryFileWriter reads).
+std::filesystem::path temporaryPath(const std::filesystem::path& path);
+
 /// The PID in the name of a temporary file `<name>.tmp-<pid>` (as every swell writer names
 /// them), or 0 when `path` is not named so.
 long temporaryFileWriter(const std::filesystem::path& path);
