@@ -55,7 +55,8 @@ public:
         const TimelinePlan plan = planReplay(m_o, reader);
         // More output than the memory budget holds at once is replayed in chunks of output
         // frames, each with only its own frames decoded and uploaded: the same heights.
-        const std::vector<Chunk> chunks = streamChunks(m_o, reader, plan, taus);
+        const std::vector<SliceSampler> samplers = samplersOf(m_o, reader, plan);
+        const std::vector<Chunk> chunks = streamChunks(m_o, reader, plan, samplers, taus);
         std::filesystem::create_directories(m_outDir);
         const EglContext context;
         std::optional<HeightSequence> sequence;
@@ -68,7 +69,7 @@ public:
         for (const Chunk& chunk : chunks) {
             const std::vector<double> part(taus.begin() + static_cast<std::ptrdiff_t>(chunk.first),
                                            taus.begin() + static_cast<std::ptrdiff_t>(chunk.last));
-            const ReplaySetup setup = replayOn(m_o, reader, plan, part);
+            const ReplaySetup setup = replayOn(m_o, reader, plan, part, samplers);
             ModeReplay gpu(setup.set, m_o.params, m_o.modeParams, setup.samplers);
             if (!sequence) {
                 sequence.emplace(m_outDir, m_sequence, heightScale(setup.set.header.domain),

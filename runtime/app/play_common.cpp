@@ -280,12 +280,23 @@ void checkBudget(const Options& o, const ReplayMemory& m, const std::string& wha
 
 } // namespace
 
+std::vector<SliceSampler> samplersOf(const Options& o, const cache::Reader& reader,
+                                     const TimelinePlan& plan) {
+    return makeSamplers(o.params, o.modeParams, plan.timeline,
+                        framesPerTimeUnit(reader.header(), o.params));
+}
+
 ReplaySetup replayOn(const Options& o, const cache::Reader& reader, const TimelinePlan& plan,
                      const std::vector<double>& taus) {
+    return replayOn(o, reader, plan, taus, samplersOf(o, reader, plan));
+}
+
+ReplaySetup replayOn(const Options& o, const cache::Reader& reader, const TimelinePlan& plan,
+                     const std::vector<double>& taus, std::vector<SliceSampler> samplers) {
     ReplaySetup s;
     s.plan = plan;
     s.A = framesPerTimeUnit(reader.header(), o.params);
-    s.samplers = makeSamplers(o.params, o.modeParams, plan.timeline, s.A);
+    s.samplers = std::move(samplers);
     const std::vector<std::uint32_t> ids = framesUsed(s.samplers, taus);
     s.memory = replayMemory(o, reader, plan, s.samplers.size(), ids);
     checkBudget(o, s.memory, "this replay");
@@ -294,9 +305,8 @@ ReplaySetup replayOn(const Options& o, const cache::Reader& reader, const Timeli
 }
 
 std::vector<Chunk> streamChunks(const Options& o, const cache::Reader& reader,
-                                const TimelinePlan& plan, const std::vector<double>& taus) {
-    const std::vector<SliceSampler> samplers = makeSamplers(
-        o.params, o.modeParams, plan.timeline, framesPerTimeUnit(reader.header(), o.params));
+                                const TimelinePlan& plan, std::span<const SliceSampler> samplers,
+                                const std::vector<double>& taus) {
     const std::size_t budget = budgetBytes(o.memoryBudgetGiB, "--memory-budget");
     auto fits = [&](std::size_t first, std::size_t last) {
         const std::vector<std::uint32_t> ids =

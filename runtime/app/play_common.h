@@ -111,9 +111,17 @@ std::vector<std::string>& pendingNotes();
 /// The timeline over `reader`'s cache for o.params (a pending note when the cache records no
 /// water extent or steady window); errors name the cache file.
 runtime::TimelinePlan planReplay(const Options& o, const cache::Reader& reader);
+/// The slice samplers (one per slice set) of a replay over `plan`.
+std::vector<runtime::SliceSampler> samplersOf(const Options& o, const cache::Reader& reader,
+                                              const runtime::TimelinePlan& plan);
 /// A replay over an already planned timeline (the samplers and the frames `taus` select).
 ReplaySetup replayOn(const Options& o, const cache::Reader& reader,
                      const runtime::TimelinePlan& plan, const std::vector<double>& taus);
+/// The same with the samplers samplersOf(o, reader, plan) already made (a replay in chunks
+/// makes them once).
+ReplaySetup replayOn(const Options& o, const cache::Reader& reader,
+                     const runtime::TimelinePlan& plan, const std::vector<double>& taus,
+                     std::vector<runtime::SliceSampler> samplers);
 /// What a replay of frames `ids` over `plan` would hold (replay_memory.h).
 runtime::ReplayMemory replayMemory(const Options& o, const cache::Reader& reader,
                                    const runtime::TimelinePlan& plan, std::size_t sliceSets,
@@ -128,7 +136,9 @@ struct Chunk {
 /// Throws the budget error (naming the cache and the budget) when one output frame alone does
 /// not fit.
 std::vector<Chunk> streamChunks(const Options& o, const cache::Reader& reader,
-                                const runtime::TimelinePlan& plan, const std::vector<double>& taus);
+                                const runtime::TimelinePlan& plan,
+                                std::span<const runtime::SliceSampler> samplers,
+                                const std::vector<double>& taus);
 /// The frames `taus` select from `reader`, for `samplers`.
 runtime::FrameSet loadUsed(const cache::Reader& reader,
                            std::span<const runtime::SliceSampler> samplers,
