@@ -104,6 +104,10 @@ json damBreak(const Scene& scene, double tEnd, const std::string& csv) {
         out["aligned_shift_T_a225"] = a225.shift;
         out["aligned_shift_T_a1125"] = a1125.shift;
         out["aligned_points"] = aligned.points;
+        // The experiment against itself under the same rule (martinMoyceScatter).
+        const AlignedFront scatter = martinMoyceScatter(0.8, 3.0);
+        out["experiment_scatter_mean"] = scatter.error.mean;
+        out["experiment_scatter_max"] = scatter.error.max;
         json z = json::object();
         for (double T : {1.0, 2.0, 3.0}) {
             for (std::size_t k = 1; k < series.size(); ++k) {
@@ -232,6 +236,12 @@ json stillTank(const Scene& scene, double settle, long steps, long trace) {
     double pSum = 0.0;
     long pCount = 0;
     double maxSpeedAfter = 0.0;
+    // What the particles do, beside what their velocities say: the mean speed, and each water
+    // particle's excursion from where it was when settling ended (max over particles and time).
+    double speedSum = 0.0;
+    long speedCount = 0;
+    double maxExcursion2 = 0.0;
+    std::vector<double> settledX, settledY;
     std::size_t escaped = 0;
     json out{{"scene", scene.name},
              {"H", H},
@@ -264,6 +274,18 @@ json stillTank(const Scene& scene, double settle, long steps, long trace) {
                 pSum += p / static_cast<double>(gauge.size());
                 ++pCount;
                 maxSpeedAfter = std::max(maxSpeedAfter, s.maxSpeed);
+                if (settledX.empty()) {
+                    settledX = P.x;
+                    settledY = P.y;
+                }
+                for (std::size_t i = 0; i < P.size(); ++i) {
+                    if (P.kind[i] != ParticleKind::Water)
+                        continue;
+                    speedSum += std::hypot(P.vx[i], P.vy[i]);
+                    ++speedCount;
+                    const double dx = P.x[i] - settledX[i], dy = P.y[i] - settledY[i];
+                    maxExcursion2 = std::max(maxExcursion2, dx * dx + dy * dy);
+                }
             }
         }
         out["outcome"] = "stable";
@@ -282,6 +304,9 @@ json stillTank(const Scene& scene, double settle, long steps, long trace) {
     out["bottom_pressure_ratio"] = pMean / expected;
     out["max_speed_after_settle"] = maxSpeedAfter;
     out["max_speed_over_sqrt_gH"] = maxSpeedAfter / waveSpeed;
+    const double meanSpeed = speedCount ? speedSum / static_cast<double>(speedCount) : 0.0;
+    out["mean_speed_over_sqrt_gH"] = meanSpeed / waveSpeed;
+    out["max_excursion_over_l0"] = std::sqrt(maxExcursion2) / l0;
     out["escaped"] = escaped;
     out["ppe_iterations_mean"] = totals.steps ? totals.ppeIterations / totals.steps : 0.0;
     out["solver_seconds"] = totals.seconds;

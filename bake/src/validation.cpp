@@ -161,6 +161,10 @@ AlignedFront alignedFront(std::span<const FrontPoint> sim, std::span<const Front
     return out;
 }
 
+AlignedFront martinMoyceScatter(double tLo, double tHi) {
+    return alignedFront(martinMoyceA225(), martinMoyceA1125(), tLo, tHi);
+}
+
 LevelError compareLevel(std::span<const LevelPoint> sim, std::span<const LevelPoint> record,
                         double tLo, double tHi) {
     if (sim.size() < 2)

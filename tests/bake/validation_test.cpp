@@ -100,6 +100,20 @@ TEST(Validation, AlignedFrontUsesTheFirstCrossingOfTheFirstPoint) {
     EXPECT_NEAR(a.error.meanSigned, 0.25, 1e-12);
 }
 
+// The experiment against itself: the a = 2.25 in record aligned on the a = 1.125 in record's
+// first point (Z = 1.245 at T = 0.849). By hand: a = 2.25 in crosses 1.245 at
+// T = 0.832 + 0.387 (0.028 / 0.257) = 0.8742, shift -0.0252; at the four a = 1.125 in points
+// in [0.8, 3] it is +0.050, +0.019, +0.001 and -0.122 off, mean 0.048 a, max 0.122 a: above
+// issue 14's 0.03 a / 0.06 a targets (docs/validation.md section 7).
+TEST(Validation, MartinMoyceScatterComparesTheTwoSeriesUnderTheAlignmentRule) {
+    const AlignedFront s = martinMoyceScatter(0.8, 3.0);
+    EXPECT_NEAR(s.shift, -0.0252, 2e-4);
+    EXPECT_EQ(s.error.points, 4);
+    EXPECT_NEAR(s.error.mean, 0.048, 1e-3);
+    EXPECT_NEAR(s.error.max, 0.122, 1e-3);
+    EXPECT_NEAR(s.error.meanSigned, (0.050 + 0.019 + 0.001 - 0.122) / 4.0, 2e-3);
+}
+
 TEST(Validation, AlignedFrontRejectsASeriesThatNeverReachesTheFirstPosition) {
     const std::vector<FrontPoint> exp{{1.0, 2.0}, {2.0, 3.0}};
     const std::vector<FrontPoint> slow{{0.0, 1.0}, {3.0, 1.9}, {6.0, 1.99}};
@@ -276,6 +290,7 @@ namespace {
 struct StillTankResult {
     double pressureRatio = 0.0; // time-averaged bed pressure / (rho g H)
     double maxSpeedRatio = 0.0; // max |u| after settling / sqrt(g H)
+    double excursion = 0.0;     // max distance of a water particle from its settled place (l0)
     std::size_t escaped = 0;
     long steps = 0;
 };
@@ -298,6 +313,7 @@ StillTankResult runStillTank(Scene scene, long steps, double settle) {
     double sum = 0.0;
     long count = 0;
     double maxSpeed = 0.0;
+    std::vector<double> settledX, settledY;
     for (long k = 0; k < steps; ++k) {
         const StepStats& s = solver.step(); // a DivergenceError fails the test
         ++r.steps;
@@ -309,6 +325,16 @@ StillTankResult runStillTank(Scene scene, long steps, double settle) {
         sum += p / static_cast<double>(gauge.size());
         ++count;
         maxSpeed = std::max(maxSpeed, s.maxSpeed);
+        if (settledX.empty()) {
+            settledX = P.x;
+            settledY = P.y;
+        }
+        for (std::size_t i = 0; i < P.size(); ++i) {
+            if (P.kind[i] == ParticleKind::Water) {
+                r.excursion = std::max(
+                    r.excursion, std::hypot(P.x[i] - settledX[i], P.y[i] - settledY[i]) / l0);
+            }
+        }
     }
     for (std::size_t i = 0; i < P.size(); ++i) {
         if (P.kind[i] == ParticleKind::Water && !tank.contains(P.x[i], P.y[i]))
@@ -325,7 +351,10 @@ StillTankResult runStillTank(Scene scene, long steps, double settle) {
 // Still tank, 20,000 steps at dt = 1 ms, H = 0.1 m, l0 = H/10, water's viscosity, default
 // scheme: measured 0.987 rho g H (docs/validation.md section 7; the textbook scheme reads
 // 1.054). Max |u| after 2 s: 0.11 of sqrt(g H) (the textbook scheme and the corrected
-// gradient with the relaxed source keep churning at 0.5); the 1 % goal is not met.
+// gradient with the relaxed source keep churning at 0.5); the 1 % goal is not met. The
+// particles move far less than those speeds say: measured, no water particle gets further
+// than 2.03 l0 from where it was at 2 s in the next 18 s (from 10 s to 20 s: 0.40 l0; the
+// textbook scheme's particles wander 16.5 l0 in those 10 s, swell-validate still-tank).
 TEST(Validation, StillTankHydrostaticPressureWithTheDefaultScheme) {
     const Scene scene = loadScene(kScenes / "still_tank_small.json");
     ASSERT_EQ(scene.solver.scheme, Scheme::Swell);
@@ -334,8 +363,10 @@ TEST(Validation, StillTankHydrostaticPressureWithTheDefaultScheme) {
     EXPECT_EQ(r.escaped, 0u);
     RecordProperty("bottom_pressure_ratio", fmt::format("{:.4f}", r.pressureRatio));
     RecordProperty("max_speed_ratio", fmt::format("{:.4f}", r.maxSpeedRatio));
+    RecordProperty("max_excursion_l0", fmt::format("{:.3f}", r.excursion));
     EXPECT_NEAR(r.pressureRatio, 1.0, 0.02);
     EXPECT_LT(r.maxSpeedRatio, 0.15);
+    EXPECT_LT(r.excursion, 2.5);
 }
 
 // The lidded tank (closed_tank_small.json: no free surface): what moves there comes from the

@@ -59,6 +59,14 @@ AlignedFront alignedFront(std::span<const FrontPoint> simulated,
                           std::span<const FrontPoint> experiment, double tLo = 0.8,
                           double tHi = 3.0);
 
+/// How far Martin & Moyce's two series are from each other under the same rule: the
+/// a = 2.25 in record, treated as a simulated series, aligned on the a = 1.125 in record's
+/// first point and compared with its other points in [tLo, tHi] (alignedFront). The
+/// experiment's own repeatability: a front error below it cannot be told from scatter.
+/// (The other direction is not defined: the a = 1.125 in record starts beyond the a = 2.25 in
+/// record's first position.)
+AlignedFront martinMoyceScatter(double tLo = 0.8, double tHi = 3.0);
+
 /// Water-level gauge against an experimental record (Lobovsky et al. 2014 dam break): the
 /// simulated series (sorted by t, sampled more densely than the record) is linearly
 /// interpolated at each record time in [tLo, tHi], so that every compared value is a measured
