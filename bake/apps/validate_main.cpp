@@ -364,6 +364,18 @@ json regularWave(const Scene& scene, double from, double to, const std::string& 
     out["wavelength_fit_error"] = c.wavelengthFitError();
     out["decay_per_wavelength"] = c.decayPerWavelength;
     out["decay_total"] = c.decayTotal;
+    // The same measurement of linear theory's record of the same piston (linearTheoryRecord):
+    // what the window and fit alone make of an undamped wave train.
+    std::vector<double> times;
+    for (const ProbeSample& s : samples)
+        times.push_back(s.time);
+    const RegularWaveCheck lin = checkRegularWave(scene, linearTheoryRecord(scene, times), window);
+    json linErrors = json::array();
+    for (std::size_t g = 0; g < lin.heights.size(); ++g)
+        linErrors.push_back(lin.heightError(g));
+    out["theory_record_height_errors"] = linErrors;
+    out["theory_record_decay_per_wavelength"] = lin.decayPerWavelength;
+    out["theory_record_decay_total"] = lin.decayTotal;
     out["steepness_theory"] = c.theory.steepness;
     out["ms_per_step"] = summary.msPerStep;
     out["us_per_particle_step"] =

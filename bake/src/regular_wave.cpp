@@ -145,6 +145,66 @@ RegularWaveCheck checkRegularWave(const Scene& scene, std::span<const ProbeSampl
     return out;
 }
 
+std::vector<ProbeSample> linearTheoryRecord(const Scene& scene, std::span<const double> times) {
+    double h = 0.0;
+    (void)theoryOf(scene, h); // validates the scene, sets the still-water depth h
+    const PistonParams& p = *scene.piston;
+    const double g = scene.physics.gravity;
+    const double x0 = scene.geometry.tank->x0; // the paddle's rest position
+    double tEnd = 0.0;
+    for (double t : times)
+        tEnd = std::max(tEnd, t);
+    // Piston velocity sampled 100 times per period up to the last time, then zero; the
+    // transform spans 8 times that, so the periodic wrap-around of the sampled transform
+    // reaches no requested time.
+    const double twoPi = 2.0 * std::numbers::pi;
+    const double dt = p.period / 100.0;
+    const PistonMotion motion(p, tEnd);
+    std::vector<double> v;
+    for (double t = 0.0; t <= tEnd; t += dt)
+        v.push_back(motion.at(t).velocity);
+    const double span = 8.0 * std::max(tEnd, p.period);
+    const double dw = twoPi / span;
+    // Frequencies up to 8 times the piston's: the ramp's spectrum is negligible beyond.
+    const double omega = twoPi / p.period;
+    const int bins = static_cast<int>(std::ceil(8.0 * omega / dw));
+    struct Component {
+        double k, re, im; // wavenumber; B(kh) V(w) / w dw / pi, complex
+    };
+    std::vector<Component> comps;
+    comps.reserve(static_cast<std::size_t>(bins));
+    for (int m = 1; m <= bins; ++m) {
+        const double w = m * dw;
+        double re = 0.0, im = 0.0; // V(w) = sum V(t_n) e^{-i w t_n} dt
+        for (std::size_t n = 0; n < v.size(); ++n) {
+            const double ph = w * static_cast<double>(n) * dt;
+            re += v[n] * std::cos(ph) * dt;
+            im -= v[n] * std::sin(ph) * dt;
+        }
+        const double k = dispersionWavenumber(w, h, g);
+        const double c = bieselHeightOverStroke(k * h) / w * dw / std::numbers::pi;
+        comps.push_back({k, c * re, c * im});
+    }
+    // eta(x, t) = (1 / pi) Re sum B V(w) / w e^{i (w t - k x)} dw
+    std::vector<ProbeSample> out;
+    out.reserve(times.size());
+    for (double t : times) {
+        ProbeSample s;
+        s.time = t;
+        s.frontX = std::numeric_limits<double>::quiet_NaN();
+        for (double gx : scene.output.gauges) {
+            double eta = 0.0;
+            for (std::size_t m = 0; m < comps.size(); ++m) {
+                const double ph = static_cast<double>(m + 1) * dw * t - comps[m].k * (gx - x0);
+                eta += comps[m].re * std::cos(ph) - comps[m].im * std::sin(ph);
+            }
+            s.elevations.push_back(eta);
+        }
+        out.push_back(std::move(s));
+    }
+    return out;
+}
+
 std::vector<ProbeSample> readProbeCsv(const std::filesystem::path& path) {
     std::ifstream in(path);
     if (!in)

@@ -331,8 +331,8 @@ StillTankResult runStillTank(Scene scene, long steps, double settle) {
         }
         for (std::size_t i = 0; i < P.size(); ++i) {
             if (P.kind[i] == ParticleKind::Water) {
-                r.excursion = std::max(
-                    r.excursion, std::hypot(P.x[i] - settledX[i], P.y[i] - settledY[i]) / l0);
+                r.excursion = std::max(r.excursion,
+                                       std::hypot(P.x[i] - settledX[i], P.y[i] - settledY[i]) / l0);
             }
         }
     }

@@ -7,6 +7,7 @@
 #include <span>
 #include <vector>
 
+#include "swell/bake/piston_motion.h"
 #include "swell/bake/probes.h"
 #include "swell/bake/scene.h"
 #include "swell/bake/wave_theory.h"
@@ -64,6 +65,18 @@ struct RegularWaveCheck {
 /// std::invalid_argument for too few samples or a dry gauge (NaN) inside the window.
 RegularWaveCheck checkRegularWave(const Scene& scene, std::span<const ProbeSample> samples,
                                   const WaveWindow& window);
+
+/// What linear theory records at the scene's gauges at `times` (s): the propagating wave of
+/// the piston's actual motion, ramp included, as a superposition of Biesel waves. The piston
+/// velocity V(t) (PistonMotion, zero after the last time) is Fourier transformed, and each
+/// frequency travels as its own Biesel wave: eta(x, w) = B(kh) V(w) / w e^{-i k x}, with
+/// B = H / S of bieselHeightOverStroke and k from dispersionWavenumber, x from the paddle's
+/// rest position (for V = V0 cos wt this is the regular wave H / 2 cos(wt - kx),
+/// H = B S). The evanescent modes near the paddle are left out. Run through
+/// checkRegularWave with the record's window, it shows what the measurement itself makes of
+/// an undamped wave train: the growth of the dispersive wave front, which the window's
+/// group-velocity rule neglects. Throws like checkRegularWave for an unsuitable scene.
+std::vector<ProbeSample> linearTheoryRecord(const Scene& scene, std::span<const double> times);
 
 /// Reads a probes CSV written by swell-bake --probes (header time,front_x,gauge_<x>...).
 /// Throws std::runtime_error naming the file and line for a malformed file.
