@@ -37,6 +37,7 @@ constexpr long kSteps = 120;
 // The digest of each numerics version. Append only: a new version gets a new line.
 const std::map<int, std::string> kDigests = {
     {1, "e2a0d8b78e7c2be8"},
+    {2, "437508a02c584e2f"},
 };
 
 json guardScene() {

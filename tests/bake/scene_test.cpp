@@ -69,8 +69,7 @@ TEST(Scene, DamBreakSceneIsTheMartinMoyceSetUp) {
 
 TEST(Scene, DefaultsFillMissingSectionsAndKeys) {
     const Scene s = parseScene(minimal());
-    const SolverParams d;
-    EXPECT_DOUBLE_EQ(s.solver.model.reDensity, d.model.reDensity);
+    EXPECT_DOUBLE_EQ(s.solver.model.reDensity, 2.8); // the swell scheme's
     EXPECT_DOUBLE_EQ(s.solver.model.reLaplacian, 3.1);
     EXPECT_DOUBLE_EQ(s.physics.density, 1000.0);
     EXPECT_EQ(s.geometry.wallLayers, 2);
@@ -329,6 +328,7 @@ TEST(Scene, SchemeSetsTheModelAndKeysOverrideIt) {
     EXPECT_DOUBLE_EQ(byDefault.solver.model.shifting, 0.02);
     EXPECT_DOUBLE_EQ(byDefault.solver.model.collisionDistance, 0.8);
     EXPECT_DOUBLE_EQ(byDefault.solver.model.restitution, 0.0);
+    EXPECT_DOUBLE_EQ(byDefault.solver.model.reDensity, 2.8);
     j["solver"]["scheme"] = "textbook";
     const Scene textbook = parseScene(j);
     EXPECT_EQ(textbook.solver.model.gradient, GradientModel::MinimumPressure);
@@ -338,6 +338,7 @@ TEST(Scene, SchemeSetsTheModelAndKeysOverrideIt) {
     EXPECT_DOUBLE_EQ(textbook.solver.model.shifting, 0.0);
     EXPECT_DOUBLE_EQ(textbook.solver.model.collisionDistance, 0.5);
     EXPECT_DOUBLE_EQ(textbook.solver.model.restitution, 0.2);
+    EXPECT_DOUBLE_EQ(textbook.solver.model.reDensity, 2.1);
     j["solver"]["gradient_correction"] = true; // a key overrides its scheme's value
     EXPECT_EQ(parseScene(j).solver.model.gradient, GradientModel::MinimumPressureCorrected);
     EXPECT_EQ(toJson(parseScene(j))["solver"]["scheme"], "textbook");

@@ -12,7 +12,7 @@ namespace swell::bake {
 /// Bump whenever the solver's results change (anything that moves a particle, by one bit or
 /// more, in tests/bake/numerics_version_test.cpp, which then fails and names the new digest to
 /// record). Recorded in checkpoints and in the cache metadata ("numerics_version").
-inline constexpr int kNumericsVersion = 1;
+inline constexpr int kNumericsVersion = 2;
 
 /// True when a scene of `particles` particles (water + fixed) gives results that depend on
 /// the OpenMP thread count: the solver's floating-point reductions (the PPE matrix-vector
