@@ -492,10 +492,38 @@ TEST(Validation, RegularWaveMatchesLinearWavemakerTheoryAtCiResolution) {
     const std::vector<ProbeSample> samples = readProbeCsv(opt.probes);
     const RegularWaveCheck c = checkRegularWave(scene, samples, regularWaveWindow(scene));
     // Bounds (docs/validation.md): height within 10 % of Biesel at the gauge 2.5 h from the
-    // paddle (measured +0.6 % with one thread, default scheme; thread counts move it by a few
-    // per cent), wavelength within 10 % of the dispersion relation (measured +6.9 %).
+    // paddle (measured -1.8 % with one thread, default scheme; +0.6 % with the 2.1 l0 kernel;
+    // thread counts move it by a few per cent), wavelength within 10 % of the dispersion
+    // relation (measured +1.2 %; +6.9 % with 2.1 l0).
     EXPECT_NEAR(c.heightError(0), 0.0, 0.10)
         << "H = " << c.heights[0] << " m, Biesel " << c.theory.height;
     EXPECT_NEAR(c.wavelengthError(), 0.0, 0.10)
         << "L = " << c.wavelength << " m, theory " << c.theory.wavelength;
+}
+
+// The progressive wave over three wavelengths (scenes/progressive_wave.json: kh = 1.0, h/20,
+// seven gauges from 2.5 h to 2.5 h + 3 L; docs/validation.md 7.2), the case the 2.8 l0 kernel
+// fixed: 22,500 particles, 9,700 steps, about 3 min with 2 threads. The record moves with the
+// thread count (rounding in the parallel sums, amplified by the flow): measured with 1 and
+// 2 threads, height at 2.5 h -3.0 % / +3.2 %, every gauge within 5.6 % / 4.4 %, height lost
+// over 3 L 2.7 % / 7.4 %, wavelength +0.5 % / +0.6 %. Bounds a little above both; the 2.1 l0
+// kernel lost 14.2 % over 3 L and the textbook scheme 83 %, so a regression to either fails.
+TEST(Validation, ProgressiveWaveKeepsItsHeightOverThreeWavelengthsAtCiResolution) {
+    const Scene scene =
+        loadScene(std::filesystem::path(SWELL_SCENES_DIR) / "progressive_wave.json");
+    const swell::test::TempDir dir("swell_progressive_wave_");
+    BakeOptions opt;
+    opt.output = dir / "w.swell";
+    opt.probes = dir / "w.csv";
+    runBake(scene, opt);
+    const std::vector<ProbeSample> samples = readProbeCsv(opt.probes);
+    const RegularWaveCheck c = checkRegularWave(scene, samples, regularWaveWindow(scene));
+    ASSERT_EQ(c.heights.size(), 7u);
+    EXPECT_NEAR(c.heightError(0), 0.0, 0.06) << "H at 2.5 h = " << c.heights[0] << " m";
+    for (std::size_t g = 0; g < c.heights.size(); ++g) {
+        EXPECT_NEAR(c.heightError(g), 0.0, 0.08) << "gauge at x = " << c.gauges[g] << " m";
+    }
+    EXPECT_LT(c.decayTotal, 0.10) << "1 - H(last gauge) / H(first gauge)";
+    EXPECT_NEAR(c.wavelengthFitError(), 0.0, 0.03)
+        << "L = " << c.wavelengthFit << " m, theory " << c.theory.wavelength;
 }
