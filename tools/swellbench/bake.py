@@ -58,7 +58,7 @@ def us_per_particle_step(j, steps, particles):
 def dam_break_cases(quick):
     """(spacing a/per, scheme, settings, PPE tolerance): both schemes at 1e-6 at every spacing;
     full mode also 1e-3 and 1e-4 for the default scheme at a/20 and a/40."""
-    spacings = [10, 20, 40] if quick else [10, 20, 40, 50]
+    spacings = [10, 20, 40] if quick else [10, 20, 40, 50, 80]
     tolerances = [1e-6] if quick else [1e-3, 1e-4, 1e-6]
     for per in spacings:
         for sname, sset in SCHEMES:
