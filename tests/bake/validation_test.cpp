@@ -503,11 +503,12 @@ TEST(Validation, RegularWaveMatchesLinearWavemakerTheoryAtCiResolution) {
 
 // The progressive wave over three wavelengths (scenes/progressive_wave.json: kh = 1.0, h/20,
 // seven gauges from 2.5 h to 2.5 h + 3 L; docs/validation.md 7.2), the case the 2.8 l0 kernel
-// fixed: 22,500 particles, 9,700 steps, about 3 min with 2 threads. The record moves with the
-// thread count (rounding in the parallel sums, amplified by the flow): measured with 1 and
-// 2 threads, height at 2.5 h -3.0 % / +3.2 %, every gauge within 5.6 % / 4.4 %, height lost
-// over 3 L 2.7 % / 7.4 %, wavelength +0.5 % / +0.6 %. Bounds a little above both; the 2.1 l0
-// kernel lost 14.2 % over 3 L and the textbook scheme 83 %, so a regression to either fails.
+// fixed: 15,000 water and 3,328 wall particles, 9,700 steps, about 3 min with 2 threads. The
+// record moves with the thread count (rounding in the parallel sums, amplified by the flow):
+// measured with 1 and 2 threads, height at 2.5 h -3.0 % / +3.2 %, every gauge within
+// 5.6 % / 4.4 %, height lost over 3 L 2.7 % / 7.4 %, wavelength +0.5 % / +0.6 %. Bounds a
+// little above both; the 2.1 l0 kernel lost 14.2 % over 3 L and the textbook scheme 83 %, so a
+// regression to either fails.
 TEST(Validation, ProgressiveWaveKeepsItsHeightOverThreeWavelengthsAtCiResolution) {
     const Scene scene =
         loadScene(std::filesystem::path(SWELL_SCENES_DIR) / "progressive_wave.json");
