@@ -53,6 +53,19 @@ DamBreakRun runDamBreak(const Scene& scene, double tEnd) {
     return run;
 }
 
+/// Bakes a regular-wave scene with probes into a temporary folder and fits its gauge records
+/// in the scene's own window (what `swell-validate regular-wave` does).
+RegularWaveCheck bakeRegularWave(const char* sceneFile) {
+    const Scene scene = loadScene(kScenes / sceneFile);
+    const swell::test::TempDir dir("swell_wave_");
+    BakeOptions opt;
+    opt.output = dir / "w.swell";
+    opt.probes = dir / "w.csv";
+    runBake(scene, opt);
+    const std::vector<ProbeSample> samples = readProbeCsv(opt.probes);
+    return checkRegularWave(scene, samples, regularWaveWindow(scene));
+}
+
 } // namespace
 
 TEST(Validation, FrontComparisonInterpolatesAndAverages) {
@@ -483,14 +496,7 @@ TEST(Validation, HarmonicFitRecoversAmplitudePhaseAndMean) {
 // 10,000 particles, about 90 s. At h/15 (regular_wave_small.json) the record is too noisy for a
 // test: the same height read -10 % to +16 % from one build or thread count to the next.
 TEST(Validation, RegularWaveMatchesLinearWavemakerTheoryAtCiResolution) {
-    const Scene scene = loadScene(std::filesystem::path(SWELL_SCENES_DIR) / "regular_wave.json");
-    const swell::test::TempDir dir("swell_regular_wave_");
-    BakeOptions opt;
-    opt.output = dir / "w.swell";
-    opt.probes = dir / "w.csv";
-    runBake(scene, opt);
-    const std::vector<ProbeSample> samples = readProbeCsv(opt.probes);
-    const RegularWaveCheck c = checkRegularWave(scene, samples, regularWaveWindow(scene));
+    const RegularWaveCheck c = bakeRegularWave("regular_wave.json");
     // Bounds (docs/validation.md): height within 10 % of Biesel at the gauge 2.5 h from the
     // paddle (measured -1.8 % with one thread, default scheme; +0.6 % with the 2.1 l0 kernel;
     // thread counts move it by a few per cent), wavelength within 10 % of the dispersion
@@ -510,15 +516,7 @@ TEST(Validation, RegularWaveMatchesLinearWavemakerTheoryAtCiResolution) {
 // little above both; the 2.1 l0 kernel lost 14.2 % over 3 L and the textbook scheme 83 %, so a
 // regression to either fails.
 TEST(Validation, ProgressiveWaveKeepsItsHeightOverThreeWavelengthsAtCiResolution) {
-    const Scene scene =
-        loadScene(std::filesystem::path(SWELL_SCENES_DIR) / "progressive_wave.json");
-    const swell::test::TempDir dir("swell_progressive_wave_");
-    BakeOptions opt;
-    opt.output = dir / "w.swell";
-    opt.probes = dir / "w.csv";
-    runBake(scene, opt);
-    const std::vector<ProbeSample> samples = readProbeCsv(opt.probes);
-    const RegularWaveCheck c = checkRegularWave(scene, samples, regularWaveWindow(scene));
+    const RegularWaveCheck c = bakeRegularWave("progressive_wave.json");
     ASSERT_EQ(c.heights.size(), 7u);
     EXPECT_NEAR(c.heightError(0), 0.0, 0.06) << "H at 2.5 h = " << c.heights[0] << " m";
     for (std::size_t g = 0; g < c.heights.size(); ++g) {
