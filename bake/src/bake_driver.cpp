@@ -326,7 +326,6 @@ BakeSummary runBake(const Scene& scene, const BakeOptions& opt) {
         {"overrides", opt.overrides},
         {"scene", toJson(scene)},
         {"seed", scene.seed},
-        {"threads", opt.threads},
         {"dt", scene.solver.time.dt},
         {"steps", steps},
         {"frame_interval_steps", interval},
@@ -344,16 +343,17 @@ BakeSummary runBake(const Scene& scene, const BakeOptions& opt) {
     removeStaleTemporaries(opt.output, opt.probes);
 
     // Checkpoints (docs/scenes.md "Checkpoints"): a resume must match what decides the
-    // numbers: the numerics version, the scene, the overrides and, where it matters, the
-    // thread count; not the program version or build (a rebuild keeps a long bake).
+    // numbers: the numerics version, the scene and the overrides; not the thread count
+    // (numerics_version.h), the program version or build (a rebuild keeps a long bake).
+    // "threads": "any" is what builds before the thread count stopped mattering wrote for
+    // small scenes, so their checkpoints still resume; their large-scene checkpoints, which
+    // name a count, are refused.
     const std::filesystem::path ckptPath = checkpointPath(opt.output);
     const std::string fingerprint = json{
         {"numerics_version", kNumericsVersion},
         {"scene", toJson(scene)},
         {"overrides", opt.overrides},
-        {"threads", threadCountAffectsResults(P.size())
-                        ? json(opt.threads)
-                        : json("any")}}.dump();
+        {"threads", "any"}}.dump();
     std::optional<Checkpoint> resumed;
     long first = 0; // steps already done
     BakeTotals tot;

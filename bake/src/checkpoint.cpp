@@ -375,11 +375,10 @@ void checkFingerprint(const fs::path& path, const std::string& stored, const std
                                b.contains(ptr) ? shorten(b.at(ptr)) : "absent");
         }
     }
-    throw CheckpointError(fmt::format(
-        "{}: checkpoint of a different bake ({}); resume with the same scene and --set "
-        "overrides (and, for scenes of 4096 particles or more, the same --threads), or bake "
-        "without --resume to start over",
-        where(path), what));
+    throw CheckpointError(
+        fmt::format("{}: checkpoint of a different bake ({}); resume with the same scene and --set "
+                    "overrides, or bake without --resume to start over",
+                    where(path), what));
 }
 
 } // namespace swell::bake

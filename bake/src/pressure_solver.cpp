@@ -12,9 +12,14 @@
 namespace swell::bake {
 namespace {
 
+// Sums run in index order on one thread, whatever the thread count: an OpenMP reduction
+// would add per-thread partial sums, whose rounding depends on how many threads there are, and
+// the flow amplifies that last bit into a different bake (numerics_version.h). The in-order
+// sum is also what one thread computed before, so the numbers of a one-thread bake are
+// unchanged. Its cost is one pass of n dependent additions, beside a matrix-vector product of
+// about 30 multiply-adds per row.
 double dot(const double* a, const double* b, std::size_t n) {
     double s = 0.0;
-#pragma omp parallel for reduction(+ : s) schedule(static) if (n >= kParallelVector)
     for (std::size_t i = 0; i < n; ++i)
         s += a[i] * b[i];
     return s;
@@ -24,9 +29,7 @@ double dot(const double* a, const double* b, std::size_t n) {
 
 double SparseRows::multiply(const double* v, double* out) const {
     const int n = static_cast<int>(rows);
-    double vAv = 0.0;
-#pragma omp parallel for schedule(static) reduction(+ : vAv)                                       \
-    if (static_cast<std::size_t>(n) >= kParallelMin)
+#pragma omp parallel for schedule(static) if (static_cast <std::size_t>(n) >= kParallelMin)
     for (int r = 0; r < n; ++r) {
         const int end = rowEnd(r);
         double s = 0.0;
@@ -34,9 +37,8 @@ double SparseRows::multiply(const double* v, double* out) const {
             s += val[static_cast<std::size_t>(k)] * v[col[static_cast<std::size_t>(k)]];
         }
         out[r] = s;
-        vAv += v[r] * s;
     }
-    return vAv;
+    return dot(v, out, rows); // in order: the same v.Av with any thread count
 }
 
 PressureSolver::PressureSolver(Preconditioner preconditioner, double tolerance, int maxIterations,
@@ -325,15 +327,13 @@ PressureSolveResult PressureSolver::solve() {
         double rz = dot(r, z, n);
         while (it < m_maxIterations) {
             const double alpha = rz / m_a.multiply(d, q); // q = A d and d.q in one sweep
-            double rr = 0.0;
-#pragma omp parallel for schedule(static) reduction(+ : rr) if (n >= kParallelVector)
+#pragma omp parallel for schedule(static) if (n >= kParallelVector)
             for (std::size_t i = 0; i < n; ++i) {
                 x[i] += alpha * d[i];
                 r[i] -= alpha * q[i];
-                rr += r[i] * r[i];
             }
             ++it;
-            rNorm = std::sqrt(rr);
+            rNorm = std::sqrt(dot(r, r, n));
             if (!(rNorm > target))
                 break; // also stops on NaN, caught below
             applyPreconditioner(r, z);

@@ -26,7 +26,7 @@ struct SparseRows {
     int rowEnd(int r) const {
         return rowPtr[static_cast<std::size_t>(r)] + rowNnz[static_cast<std::size_t>(r)];
     }
-    /// out = A v; returns v.out (the conjugate gradient's d.Ad in the same sweep).
+    /// out = A v; returns v.out, summed in index order (the same bits with any thread count).
     double multiply(const double* v, double* out) const;
 };
 
