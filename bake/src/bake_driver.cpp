@@ -270,6 +270,8 @@ json toJson(const BakeSummary& s) {
         {"ms_per_step", s.msPerStep},
         {"ppe_iterations_mean", s.ppeIterationsMean},
         {"max_courant", s.maxCourant},
+        {"split_steps", s.splitSteps},
+        {"substeps", s.substeps},
         {"recycled", s.recycled},
         {"cache_bytes", s.cacheBytes},
         {"raw_bytes", s.rawBytes},
@@ -446,6 +448,10 @@ BakeSummary runBake(const Scene& scene, const BakeOptions& opt) {
         tot.solverSeconds += st.seconds();
         tot.ppeIterations += st.ppeIterations;
         tot.maxCourant = std::max(tot.maxCourant, st.courant);
+        if (st.substeps > 1) {
+            ++tot.splitSteps;
+            tot.substeps += static_cast<std::uint64_t>(st.substeps);
+        }
         if (k % interval == 0)
             store();
         if (opt.onProgress) {
@@ -477,6 +483,8 @@ BakeSummary runBake(const Scene& scene, const BakeOptions& opt) {
     }
     sum.recycled = tot.recycled;
     sum.maxCourant = tot.maxCourant;
+    sum.splitSteps = tot.splitSteps;
+    sum.substeps = tot.substeps;
     sum.keptMax = static_cast<std::size_t>(tot.keptMax);
     sum.rawBytes = tot.rawBytes;
     const double surfaceTotal = tot.surface, splashTotal = tot.splash;

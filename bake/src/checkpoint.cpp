@@ -27,7 +27,7 @@ namespace fs = std::filesystem;
 // Header: magic, u32 version, u32 flags (0), u64 payload bytes (compressed), u64 payload
 // bytes (raw), u64 XXH3-64 of the compressed payload, u64 XXH3-64 of the 40 bytes before it.
 constexpr std::uint8_t kMagic[8] = {0x89, 'S', 'W', 'K', '\r', '\n', 0x1a, '\n'};
-constexpr std::uint32_t kVersion = 1;
+constexpr std::uint32_t kVersion = 2; // 2: the sub-step counters
 constexpr std::size_t kHeaderSize = 48;
 constexpr std::uint64_t kMaxRawPayload = std::uint64_t{64}
                                          << 30; // 64 GiB: a damaged size fails fast
@@ -158,6 +158,8 @@ std::vector<std::uint8_t> encodePayload(const Checkpoint& c) {
     o.pod(t.ppeIterations);
     o.pod(t.maxCourant);
     o.pod(t.recycled);
+    o.pod(t.splitSteps);
+    o.pod(t.substeps);
     o.pod<std::uint64_t>(c.frames.size());
     for (const cache::Frame& f : c.frames) {
         o.vec(f.surface);
@@ -192,6 +194,8 @@ Checkpoint decodePayload(std::span<const std::uint8_t> raw, const fs::path& path
     t.ppeIterations = in.pod<double>();
     t.maxCourant = in.pod<double>();
     t.recycled = in.pod<std::uint64_t>();
+    t.splitSteps = in.pod<std::uint64_t>();
+    t.substeps = in.pod<std::uint64_t>();
     const std::uint64_t frames = in.pod<std::uint64_t>();
     if (frames > raw.size())
         in.damaged("impossible frame count");

@@ -260,7 +260,11 @@ Eigen::Map<const Eigen::VectorXd> MpsSolver::ppeSolution() const {
 }
 
 void MpsSolver::fail(std::size_t particle, const std::string& reason) const {
-    throw DivergenceError(m_step + 1, m_time + m_stats.dt, particle, reason);
+    if (m_substeps == 1)
+        throw DivergenceError(m_step + 1, m_time + m_subDt, particle, reason);
+    throw DivergenceError(m_step + 1, m_time + m_subDt, particle,
+                          fmt::format("{} (in sub-step {} of {}, solver.substep_courant {:.3g})",
+                                      reason, m_substep, m_substeps, m_par.time.substepCourant));
 }
 
 void MpsSolver::rebuildNeighbors(const std::vector<double>& x, const std::vector<double>& y) {
@@ -314,15 +318,49 @@ double MpsSolver::chooseDt() const {
     return std::min(t.dt, t.courantTarget * m_l0 / m_stats.maxSpeed);
 }
 
+int MpsSolver::substepsFor(double dt) const {
+    // Sub-steps: a fast splash (paper Figure 3's jets) is followed in k shorter steps, so
+    // that no particle crosses more than substepCourant l0 per sub-step, while the step, its
+    // time and the frames built on it stay as they are.
+    const double c = m_par.time.substepCourant;
+    const double courant = m_stats.maxSpeed * dt / m_l0;
+    if (!(c > 0.0) || !(courant > c))
+        return 1;
+    return static_cast<int>(std::min<double>(kMaxSubsteps, std::ceil(courant / c)));
+}
+
 const StepStats& MpsSolver::step() {
     const double dt = chooseDt();
+    const int k = substepsFor(dt);
     const double lastMaxSpeed = m_stats.maxSpeed;
     m_stats = StepStats{};
     m_stats.step = m_step + 1;
     m_stats.dt = dt;
+    m_stats.substeps = k;
     m_stats.maxSpeed = lastMaxSpeed;
-    PhaseTimer timer(m_stats);
+    m_substeps = k;
+    if (k == 1) {
+        m_substep = 1;
+        advance(dt);
+        m_time += dt;
+    } else {
+        const double start = m_time;
+        const double h = dt / k;
+        for (int s = 0; s < k; ++s) {
+            m_substep = s + 1;
+            m_time = start + s * h;
+            advance(h);
+        }
+        m_time = start + dt;
+    }
+    ++m_step;
+    m_stats.time = m_time;
+    return m_stats;
+}
 
+void MpsSolver::advance(double dt) {
+    m_subDt = dt;
+    PhaseTimer timer(m_stats);
     if (skinUsedUp(m_p.x, m_p.y))
         rebuildNeighbors(m_p.x, m_p.y);
     timer.lap(Phase::Neighbors);
@@ -343,11 +381,6 @@ const StepStats& MpsSolver::step() {
         shiftParticles();
     checkState(dt);
     timer.lap(Phase::Correction);
-
-    m_time += dt;
-    ++m_step;
-    m_stats.time = m_time;
-    return m_stats;
 }
 
 void MpsSolver::predictVelocity(double dt) {
@@ -419,7 +452,7 @@ void MpsSolver::resolveCollisions(double dt) {
                           }
                       });
     }
-    m_stats.collisions = collisions;
+    m_stats.collisions += collisions;
 #pragma omp parallel for schedule(static) if (n >= kParallelMin)
     for (std::size_t i = 0; i < n; ++i) {
         if (isFixed(m_p.kind[i]))
@@ -583,8 +616,8 @@ void MpsSolver::assemblePressureEquation(double dt) {
 void MpsSolver::solvePressure() {
     m_stats.ppeUnknowns = m_ppe.matrix().rows;
     const PressureSolveResult res = m_ppe.solve();
-    m_stats.ppeIterations = res.iterations;
-    m_stats.ppeResidual = res.relativeResidual;
+    m_stats.ppeIterations += res.iterations;
+    m_stats.ppeResidual = std::max(m_stats.ppeResidual, res.relativeResidual);
     switch (res.status) {
     case PressureSolveStatus::Converged:
         return;
@@ -684,7 +717,7 @@ void MpsSolver::correctVelocity(double dt) {
         maxSpeed2 = std::max(maxSpeed2, m_p.vx[i] * m_p.vx[i] + m_p.vy[i] * m_p.vy[i]);
     }
     m_stats.maxSpeed = std::sqrt(maxSpeed2);
-    m_stats.courant = m_stats.maxSpeed * dt / m_l0;
+    m_stats.courant = std::max(m_stats.courant, m_stats.maxSpeed * dt / m_l0);
 }
 void MpsSolver::shiftParticles() {
     // Particle shifting (Xu et al. 2009; Lind et al. 2012's Fickian form in MPS operators):

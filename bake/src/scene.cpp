@@ -257,6 +257,7 @@ Scene parseScene(const json& j) {
         t.adaptive = s.boolean("adaptive_dt", t.adaptive);
         t.courantTarget = s.number("courant_target", t.courantTarget, 0.0, 1.0, true);
         t.courantLimit = s.number("courant_limit", t.courantLimit, 0.0, 2.0, true);
+        t.substepCourant = s.number("substep_courant", t.substepCourant, 0.0, 1.0);
         run.expectedSpeed =
             s.number("expected_speed", run.expectedSpeed, 0.0, kInf, false, " (m/s)");
         m.reDensity = s.number("re_density", m.reDensity, 1.0, 10.0, true, " (l0)");
@@ -479,6 +480,7 @@ json toJson(const Scene& sc) {
           {"adaptive_dt", s.time.adaptive},
           {"courant_target", s.time.courantTarget},
           {"courant_limit", s.time.courantLimit},
+          {"substep_courant", s.time.substepCourant},
           {"expected_speed", sc.run.expectedSpeed},
           {"re_density", s.model.reDensity},
           {"re_laplacian", s.model.reLaplacian},

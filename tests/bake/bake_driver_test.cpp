@@ -419,6 +419,30 @@ TEST_F(BakeDriver, LargeSceneGivesTheSameCacheWithAnyThreadCount) {
     EXPECT_EQ(bytes(other.output), bytes(one.output));
 }
 
+// Sub-steps (solver.substep_courant) survive a resume: the speed that decides the next
+// step's split is part of the checkpoint, so a bake whose steps are split resumes to the same
+// cache byte for byte and counts the same sub-steps. (substep_courant 0.05: steps split from
+// 0.4 m/s, which the piston's first waves reach.)
+TEST_F(BakeDriver, ResumeOfABakeWithSubstepsMatchesTheWholeBake) {
+    const Scene scene =
+        loadScene(kScenes / "surging_small.json",
+                  {"solver.end_time=2.0", "solver.dt=0.0025", "solver.substep_courant=0.05"});
+    BakeOptions opt;
+    opt.output = m_dir / "whole.swell";
+    const BakeSummary whole = runBake(scene, opt);
+    ASSERT_GT(whole.splitSteps, 0u) << "the scene must split steps";
+    EXPECT_GT(whole.substeps, 2 * whole.splitSteps - 1);
+    EXPECT_LE(whole.maxCourant, 0.5);
+    opt.output = m_dir / "s.swell";
+    crashingBake(scene, opt, 200, 500);
+    opt.resume = true;
+    const BakeSummary resumed = runBake(scene, opt);
+    EXPECT_EQ(resumed.resumedFromStep, 400);
+    EXPECT_EQ(bytes(opt.output), bytes(m_dir / "whole.swell"));
+    EXPECT_EQ(resumed.splitSteps, whole.splitSteps);
+    EXPECT_EQ(resumed.substeps, whole.substeps);
+}
+
 // Every bake (not only a resume) first removes what killed bakes of the same output left:
 // temporaries of the cache, checkpoint and probes of processes that are gone, never those of
 // a live process (pid 1) or files that only look alike.

@@ -41,7 +41,7 @@ Checkpoint sample() {
     c.frames[1].surface = {0.1f, 0.2f, 0.3f, 0.4f};
     c.frames[2].splash = {0.5f, 0.6f, 1.0f, -1.0f};
     c.probeRows = {"0,1,2", "0.02,1,nan", "0.04,1,2", "0.06,1,3"};
-    c.totals = BakeTotals{10.0, 2.0, 7, 96, 1.5, 300.0, 0.12, 3};
+    c.totals = BakeTotals{10.0, 2.0, 7, 96, 1.5, 300.0, 0.12, 3, 5, 12};
     return c;
 }
 
@@ -107,6 +107,8 @@ TEST_F(CheckpointFile, EveryFieldRoundTrips) {
     EXPECT_EQ(r.totals.ppeIterations, 300.0);
     EXPECT_EQ(r.totals.maxCourant, 0.12);
     EXPECT_EQ(r.totals.recycled, 3u);
+    EXPECT_EQ(r.totals.splitSteps, 5u);
+    EXPECT_EQ(r.totals.substeps, 12u);
 }
 
 TEST_F(CheckpointFile, WritingReplacesTheOldFileWholeAndLeavesNoTemporary) {

@@ -211,12 +211,58 @@ TEST(MpsSolver, StepLoopDoesNotAllocate) {
 
 TEST(MpsSolver, DetectorStopsOnCourantNumberAboveTheLimit) {
     Scene scene = smallDamBreak();
-    scene.solver.time.dt = 0.006; // far above what the collapse allows
+    scene.solver.time.dt = 0.006;           // far above what the collapse allows ...
+    scene.solver.time.substepCourant = 0.0; // ... when no step is split
     MpsSolver solver = makeSolver(scene);
     const std::string msg = runUntilFailure(solver, 200);
     ASSERT_FALSE(msg.empty()) << "a too-large step must be stopped";
     EXPECT_NE(msg.find("step"), std::string::npos);
     EXPECT_NE(msg.find("particle"), std::string::npos);
+    EXPECT_NE(msg.find("courant_limit"), std::string::npos) << msg;
+}
+
+// Sub-steps (TimeStepParams::substepCourant): with the detector's limit at 1 (as a splashing
+// scene sets it), the same too-large step is split as soon as the previous step's fastest
+// particle would cross more than 0.5 l0, so the collapse runs 0.6 s (100 steps) without
+// reaching the limit; each step still advances exactly dt, and the number of sub-steps
+// follows the speed, ceil(max|u| dt / (0.5 l0)). (With the default limit, 0.5, a step that
+// would be split next has already been stopped: sub-steps act where a scene raises the limit.)
+TEST(MpsSolver, SubstepsFollowAFlowTheStepIsTooLongFor) {
+    Scene scene = smallDamBreak();
+    scene.solver.time.dt = 0.006;
+    scene.solver.time.courantLimit = 1.0;
+    MpsSolver solver = makeSolver(scene);
+    int most = 1;
+    for (int k = 0; k < 100; ++k) {
+        const double before = solver.time();
+        const double speed = solver.exportState().lastMaxSpeed;
+        const StepStats& s = solver.step();
+        const double courant = speed * 0.006 / 0.01;
+        EXPECT_EQ(s.substeps, courant > 0.5 ? static_cast<int>(std::ceil(courant / 0.5)) : 1)
+            << "step " << s.step;
+        EXPECT_LE(s.courant, scene.solver.time.courantLimit);
+        EXPECT_EQ(solver.time(), before + 0.006) << "step " << s.step;
+        most = std::max(most, s.substeps);
+    }
+    EXPECT_GE(most, 3) << "the collapse reaches 3 x 0.5 l0 per step of 6 ms";
+    scene.solver.time.substepCourant = 0.0;
+    MpsSolver whole = makeSolver(scene);
+    EXPECT_NE(runUntilFailure(whole, 100), "") << "without sub-steps the detector stops it";
+}
+
+// A flow too fast even for kMaxSubsteps sub-steps is still stopped, and the message says in
+// which sub-step.
+TEST(MpsSolver, DetectorNamesTheSubstepItStopsIn) {
+    const Scene scene = smallDamBreak();
+    MpsSolver solver = makeSolver(scene);
+    solver.step();
+    MpsState state = solver.exportState();
+    state.particles.vx[5] = 2000.0; // 200 l0 per step: 400 sub-steps would be needed
+    state.lastMaxSpeed = 2000.0;
+    solver.importState(state);
+    const std::string msg = runUntilFailure(solver, 1);
+    EXPECT_NE(msg.find("in sub-step 1 of 64"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("step 2"), std::string::npos) << msg;
 }
 
 TEST(MpsSolver, DetectorNamesStepTimeAndParticleForNonFiniteState) {

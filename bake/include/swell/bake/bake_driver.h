@@ -82,7 +82,9 @@ struct BakeSummary {
     double wallSeconds = 0.0;    ///< whole bake, cache writing included (s)
     double msPerStep = 0.0;      ///< solver wall time per step (ms)
     double ppeIterationsMean = 0.0;
-    double maxCourant = 0.0;
+    double maxCourant = 0.0;      ///< largest Courant number of a (sub-)step
+    std::uint64_t splitSteps = 0; ///< steps taken in sub-steps (solver.substep_courant)
+    std::uint64_t substeps = 0;   ///< sub-steps those steps were split into, all together
     std::uint64_t recycled =
         0; ///< water particles moved from the outflow to the inflow (Sec. 3.3.2)
     std::uint64_t cacheBytes = 0;      ///< size of the cache file

@@ -33,14 +33,16 @@ struct BakeTotals {
     double solverSeconds = 0.0; ///< solver wall time of the steps done (s)
     double ppeIterations = 0.0; ///< PCG iterations summed over the steps done
     double maxCourant = 0.0;
-    std::uint64_t recycled = 0; ///< water particles recycled outflow -> inflow
+    std::uint64_t recycled = 0;   ///< water particles recycled outflow -> inflow
+    std::uint64_t splitSteps = 0; ///< steps taken in sub-steps
+    std::uint64_t substeps = 0;   ///< sub-steps of those steps
 };
 
 /// What a checkpoint holds.
 struct Checkpoint {
     /// What must be equal for a resume (JSON text): the numerics version (numerics_version.h),
-    /// every resolved scene value, the --set overrides and the thread count when it changes
-    /// the results ("any" otherwise). Nothing that changes with a rebuild alone.
+    /// every resolved scene value and the --set overrides (and "threads": "any": the thread
+    /// count changes nothing). Nothing that changes with a rebuild alone.
     std::string fingerprint;
     long checkpointEvery = 0;           ///< steps between checkpoints of the bake that wrote it
     MpsState solver;                    ///< solver state after step solver.step

@@ -103,7 +103,15 @@ struct TimeStepParams {
     bool adaptive = false;      ///< shrink dt so max|u| dt / l0 <= courantTarget
     double courantTarget = 0.2; ///< Courant number the adaptive step aims at (-)
     double courantLimit = 0.5;  ///< detector: a step above this Courant number stops the run (-)
+    /// A step whose Courant number, max|u| of the previous step x dt / l0, is above this is
+    /// taken as k = ceil(C / substepCourant) equal sub-steps (at most kMaxSubsteps), so a fast
+    /// splash is followed in finer steps while frames stay evenly spaced; 0 turns it off (-).
+    double substepCourant = 0.5;
 };
+
+/// Most sub-steps one step is split into (TimeStepParams::substepCourant); a flow that needs
+/// more is stopped by the detector's Courant limit.
+inline constexpr int kMaxSubsteps = 64;
 
 /// The particle model: kernel radii (in l0), free-surface test, collisions, gradient model.
 struct ModelParams {

@@ -113,6 +113,8 @@ private:
     void shiftParticles();
     void checkState(double dt);
     double chooseDt() const;
+    int substepsFor(double dt) const;
+    void advance(double dt); // one (sub-)step of dt from m_time
     [[noreturn]] void fail(std::size_t particle, const std::string& reason) const;
 
     PhysicsParams m_phys;
@@ -126,6 +128,9 @@ private:
     double m_hlScale = 0.0; // higher-order Laplacian: k / rho (times re / r^3 per pair)
     double m_time = 0.0;
     long m_step = 0;
+    double m_subDt = 0.0; // dt of the sub-step being taken (error messages)
+    int m_substep = 0;    // which one, 1-based, of m_substeps
+    int m_substeps = 1;
     StepStats m_stats;
     NeighborGrid m_grid;
 

@@ -21,16 +21,17 @@ std::string_view toString(Phase phase);
 struct StepStats {
     long step = 0;            ///< index of the step just taken (1 = first)
     double time = 0.0;        ///< simulated time after the step (s)
-    double dt = 0.0;          ///< time step used (s)
-    int ppeIterations = 0;    ///< PCG iterations
-    double ppeResidual = 0.0; ///< final relative residual |b - Ax| / |b|
+    double dt = 0.0;          ///< time step used (s), all its sub-steps together
+    int substeps = 1;         ///< sub-steps the step was taken in (TimeStepParams::substepCourant)
+    int ppeIterations = 0;    ///< PCG iterations, summed over the sub-steps
+    double ppeResidual = 0.0; ///< final relative residual |b - Ax| / |b| (largest sub-step)
     std::size_t ppeUnknowns = 0;
     double maxSpeed = 0.0;            ///< max |u| of water after the step (m/s)
-    double courant = 0.0;             ///< max |u| dt / l0 (-)
+    double courant = 0.0;             ///< max |u| dt / l0 of the sub-steps, their own dt (-)
     std::size_t outOfBounds = 0;      ///< particles outside the domain (a non-zero count throws)
     std::size_t surfaceParticles = 0; ///< water + wall flagged free surface (p = 0)
-    std::size_t collisions = 0;       ///< colliding pairs handled
-    int neighborRebuilds = 0;         ///< times the neighbour lists were rebuilt this step (0-2)
+    std::size_t collisions = 0;       ///< colliding pairs handled, summed over the sub-steps
+    int neighborRebuilds = 0;         ///< times the neighbour lists were rebuilt (0-2 per sub-step)
     std::array<double, kPhaseCount> phaseSeconds{}; ///< wall time per Phase (s)
 
     double seconds() const {
