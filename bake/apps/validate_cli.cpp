@@ -60,7 +60,13 @@ std::optional<int> parseValidateCommandLine(int argc, const char* const* argv,
     wave->add_option("--to", cl.waveTo,
                      "end of the fit window (s); default: before reflections return")
         ->check(cli::finiteRange(0.0, 1e6));
-    wave->add_option("--keep", cl.keep, "keep the cache and probes CSV in this folder");
+    auto* keep =
+        wave->add_option("--keep", cl.keep, "keep the cache and probes CSV in this folder");
+    wave->add_option("--ensemble", cl.ensemble,
+                     "run N members, seeds 1..N, the water jittered by geometry.jitter (1e-6 l0 "
+                     "unless set): each member's figures and their mean, spread and range")
+        ->check(CLI::Range(1, 64))
+        ->excludes(keep);
 
     if (const auto rc = cli::parse(app, argc, argv, "swell-validate", 0, out, err))
         return rc;

@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "split_mix64.h"
 #include "swell/bake/error.h"
 
 namespace swell::bake {
@@ -263,6 +264,16 @@ GeneratedGeometry generateGeometry(const GeometryParams& g) {
                                      g.domain ? "" : " (it grows with the rectangles' extent)"));
     }
     return out;
+}
+
+void jitterWater(Particles& particles, double amplitude, std::uint64_t seed) {
+    std::uint64_t state = seed;
+    for (std::size_t i = 0; i < particles.size(); ++i) {
+        if (particles.kind[i] != ParticleKind::Water)
+            continue;
+        particles.x[i] += uniform(state, -amplitude, amplitude);
+        particles.y[i] += uniform(state, -amplitude, amplitude);
+    }
 }
 
 } // namespace swell::bake

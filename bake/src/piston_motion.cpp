@@ -6,22 +6,12 @@
 #include <stdexcept>
 #include <string>
 
+#include "split_mix64.h"
+
 namespace swell::bake {
 namespace {
 
 constexpr double kTwoPi = 2.0 * std::numbers::pi;
-
-/// SplitMix64 step: a fixed generator, the same sequence on every platform.
-std::uint64_t splitmix(std::uint64_t& state) {
-    std::uint64_t z = (state += 0x9e3779b97f4a7c15ULL);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-    return z ^ (z >> 31);
-}
-
-double uniform(std::uint64_t& state, double lo, double hi) {
-    return lo + (hi - lo) * static_cast<double>(splitmix(state) >> 11) * 0x1.0p-53;
-}
 
 void require(bool ok, const char* field, const char* what) {
     if (!ok)

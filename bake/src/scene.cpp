@@ -237,6 +237,7 @@ Scene parseScene(const json& j) {
         g.solids = readBoxes(s, "solids");
         g.wallLayers = s.integer("wall_layers", g.wallLayers, 1, 10);
         g.dummyLayers = s.integer("dummy_layers", g.dummyLayers, 0, 10);
+        g.jitter = s.number("jitter", g.jitter, 0.0, 0.1, false, " (l0)");
         if (const json* d = s.get("domain"))
             g.domain = readBox(*d, "geometry.domain");
         s.finish();
@@ -453,7 +454,8 @@ json toJson(const Scene& sc) {
              {"water", water},
              {"solids", solids},
              {"wall_layers", g.wallLayers},
-             {"dummy_layers", g.dummyLayers}};
+             {"dummy_layers", g.dummyLayers},
+             {"jitter", g.jitter}};
     if (g.tank)
         geo["tank"] = boxJson(*g.tank);
     if (g.domain)
@@ -577,6 +579,10 @@ void applyOverride(json& j, const std::string& assignment) {
 
 MpsSolver makeSolver(const Scene& scene) {
     GeneratedGeometry geo = generateGeometry(scene.geometry);
+    if (scene.geometry.jitter > 0.0) {
+        jitterWater(geo.particles, scene.geometry.jitter * scene.geometry.particleSpacing,
+                    scene.seed);
+    }
     MpsSolver solver(scene.physics, scene.solver, std::move(geo.particles),
                      scene.geometry.particleSpacing, geo.domain);
     if (scene.piston) {

@@ -77,6 +77,11 @@ TEST(CommandLine, SwellValidateRefusesNonsenseValues) {
                   "swell-validate", "--to");
     expectRefused(validate({"--threads", "-3", "dam-break", "s.json"}), "swell-validate",
                   "--threads");
+    EXPECT_FALSE(validate({"regular-wave", "s.json", "--ensemble", "4"}).rc.has_value());
+    expectRefused(validate({"regular-wave", "s.json", "--ensemble", "0"}), "swell-validate",
+                  "--ensemble");
+    expectRefused(validate({"regular-wave", "s.json", "--ensemble", "2", "--keep", "d"}),
+                  "swell-validate", "--keep");
 }
 
 TEST(CommandLine, SwellMpsBenchRefusesNoStepsAndTakesItsSceneOverrides) {

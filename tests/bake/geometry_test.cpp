@@ -147,3 +147,37 @@ TEST(Geometry, DomainBeyondTheNeighbourGridIsRefusedNamingIt) {
     g.water = {Box{0.0, 0.0, 0.01, 0.01}, Box{1e5, 0.0, 1e5 + 0.01, 0.01}}; // two far apart
     EXPECT_EQ(sceneErrorKey([&] { (void)generateGeometry(g); }), "geometry");
 }
+
+// jitterWater (geometry.jitter): every water particle moves by at most the amplitude along x
+// and y, no fixed particle moves, the offsets are a fixed function of the seed (the same twice,
+// others for another seed) and spread over the whole range (not, e.g., all zero).
+TEST(Geometry, JitterMovesOnlyWaterWithinItsAmplitudeAndFollowsTheSeed) {
+    const GeneratedGeometry base = generateGeometry(tankWithColumn());
+    const double a = 1e-3;
+    const auto jittered = [&](std::uint64_t seed) {
+        Particles p = base.particles;
+        jitterWater(p, a, seed);
+        return p;
+    };
+    const Particles one = jittered(7), again = jittered(7), other = jittered(8);
+    const Particles& P = base.particles;
+    double largest = 0.0;
+    std::size_t moved = 0;
+    for (std::size_t i = 0; i < P.size(); ++i) {
+        const double dx = one.x[i] - P.x[i], dy = one.y[i] - P.y[i];
+        if (P.kind[i] != ParticleKind::Water) {
+            EXPECT_EQ(dx, 0.0);
+            EXPECT_EQ(dy, 0.0);
+            continue;
+        }
+        EXPECT_LE(std::abs(dx), a);
+        EXPECT_LE(std::abs(dy), a);
+        largest = std::max({largest, std::abs(dx), std::abs(dy)});
+        moved += dx != 0.0 && dy != 0.0;
+        EXPECT_EQ(one.x[i], again.x[i]);
+        EXPECT_EQ(one.y[i], again.y[i]);
+        EXPECT_NE(one.x[i], other.x[i]);
+    }
+    EXPECT_EQ(moved, P.count(ParticleKind::Water));
+    EXPECT_GT(largest, 0.9 * a); // 400 draws: the largest is within 10 % of the bound
+}

@@ -140,6 +140,15 @@ TEST(Scene, BadValuesAreRejectedNamingTheKey) {
     j["output"]["splash_ratio"] = 0.97;
     EXPECT_EQ(errorKey(j), "output.splash_ratio");
     j = minimal();
+    j["geometry"]["jitter"] = 0.2; // more than 0.1 l0
+    EXPECT_EQ(errorKey(j), "geometry.jitter");
+    j = minimal();
+    j["solver"]["substep_courant"] = -0.1;
+    EXPECT_EQ(errorKey(j), "solver.substep_courant");
+    j = minimal();
+    j["solver"]["substep_courant"] = 1.5;
+    EXPECT_EQ(errorKey(j), "solver.substep_courant");
+    j = minimal();
     j.erase("geometry");
     EXPECT_EQ(errorKey(j), "geometry");
 }

@@ -27,6 +27,11 @@ struct GeometryParams {
     /// Extra bed (m) behind the tank's back wall, room for a piston back wall moving back
     /// (set by the scene from the piston's motion, not a scene key). Rounded up to l0.
     double bedExtensionBack = 0.0;
+    /// Initial jitter of the water (l0): each water particle starts moved by a uniform random
+    /// offset in [-jitter, jitter] l0 along x and y, drawn from the scene's seed (jitterWater);
+    /// 0 keeps the lattice. A tiny jitter (1e-6) gives ensemble members of one flow whose
+    /// spread is the record's sensitivity to round-off (swell-validate regular-wave --ensemble).
+    double jitter = 0.0;
 };
 
 /// Most particles a geometry may generate (water, wall and dummy together): 4 million, some
@@ -54,5 +59,10 @@ struct GeneratedGeometry {
 /// water rectangle, water overlapping a solid, particles outside the domain, more than
 /// kMaxParticles particles or a domain larger than kMaxDomainCells.
 GeneratedGeometry generateGeometry(const GeometryParams& geometry);
+
+/// Moves each water particle by a uniform random offset in [-amplitude, amplitude] (m) along x
+/// and y, from a SplitMix64 stream seeded with `seed`, in particle order (the same offsets on
+/// every platform). Fixed particles stay.
+void jitterWater(Particles& particles, double amplitude, std::uint64_t seed);
 
 } // namespace swell::bake
