@@ -15,7 +15,7 @@ void placeSplashes(std::vector<SplashSprite>& sprites, const Grid& grid, const M
     const double cx = grid.x0 + 0.5 * grid.cellsX * grid.dx, cz = 0.5 * grid.extentZ;
     switch (mode.mode) {
     case ReplayMode::Surging:
-        return;
+        break;
     case ReplayMode::Ripple: {
         const auto& angles = mode.ripple.anglesDegrees;
         if (direction < 0 || direction >= static_cast<int>(angles.size()))

@@ -24,12 +24,22 @@ Grid testGrid() {
     return g;
 }
 
-TEST(ModeSplashes, SurgingLeavesTheSpritesAlone) {
-    std::vector<SplashSprite> s{{0.3f, 0.6f, 1.2f, 0.5f}, {9.0f, 0.6f, 1.2f, 1.0f}};
+// Surging keeps the sprites where they are and drops those outside the tank (the mesh is x in
+// [-0.5, 3.5], z in [0, 4]): past the far wall, behind the back wall, beyond the side faces.
+TEST(ModeSplashes, SurgingKeepsTheSpritesInTheTankAndDropsTheRest) {
+    std::vector<SplashSprite> s{{0.3f, 0.6f, 1.2f, 0.5f},
+                                {9.0f, 0.6f, 1.2f, 1.0f},
+                                {-0.6f, 0.6f, 1.2f, 1.0f},
+                                {3.4f, 0.9f, 3.9f, 0.7f},
+                                {1.0f, 0.6f, -0.1f, 1.0f},
+                                {1.0f, 0.6f, 4.1f, 1.0f}};
     const std::vector<SplashSprite> before = s;
     placeSplashes(s, testGrid(), ModeParams{}, 0, 3.0);
     ASSERT_EQ(s.size(), 2u);
-    EXPECT_EQ(s[1].x, before[1].x);
+    EXPECT_EQ(s[0].x, before[0].x);
+    EXPECT_EQ(s[0].z, before[0].z);
+    EXPECT_EQ(s[1].x, before[3].x);
+    EXPECT_EQ(s[1].z, before[3].z);
 }
 
 TEST(ModeSplashes, RippleRotatesAboutTheCentreAndDropsWhatLeavesTheMesh) {

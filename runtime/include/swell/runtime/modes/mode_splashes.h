@@ -23,9 +23,10 @@
 namespace swell::runtime {
 
 /// Moves `sprites` (laid out by SplashSystem on the surging slice set of `grid`) to the layout
-/// of `mode` (ripple: direction `direction`; whirlpool: spin at animation time `tau`) and drops
-/// those outside the mesh. Surging leaves them as they are. Throws std::invalid_argument for a
-/// ripple direction out of range.
+/// of `mode` (ripple: direction `direction`; whirlpool: spin at animation time `tau`; surging:
+/// where they are) and drops those outside the mesh: in the surging tank, spray thrown past a
+/// wall would fall outside the box, where the simulated tank's walls hold it. Throws
+/// std::invalid_argument for a ripple direction out of range.
 void placeSplashes(std::vector<SplashSprite>& sprites, const Grid& grid, const ModeParams& mode,
                    int direction, double tau);
 
