@@ -512,16 +512,18 @@ TEST(Validation, RegularWaveMatchesLinearWavemakerTheoryAtCiResolution) {
 // fixed: 15,000 water and 3,328 wall particles, 9,700 steps, about 3 min with 2 threads.
 // Measured (any thread count gives the same bits): height at 2.5 h -3.0 %, every gauge within
 // 5.6 %, height lost over 3 L 2.7 %, wavelength +0.5 %. The record is sensitive to round-off,
-// which the flow amplifies: before the sums were made thread-independent, 2 threads read
-// +3.2 %, 4.4 % and 7.4 % (lost over 3 L) for the same case, and another CPU's libm (its last
-// bits) may move it as much. The bounds cover that spread; the 2.1 l0 kernel lost 14.2 % over
-// 3 L and the textbook scheme 83 %, so a regression to either fails.
+// which the flow amplifies, and another CPU's libm (its last bits) may move it: four members
+// jittered by 1e-6 l0 (swell-validate regular-wave --ensemble 4) read +1.9 +- 2.3 % at 2.5 h
+// (-0.9 to +4.7 %), worst gauge 3.2 to 9.7 %, a gain over 3 L of 0.3 to 6.0 %, wavelength 0.0
+// to +1.8 %; before the sums were thread-independent, 2 threads read +3.2 % and lost 7.4 %.
+// The bounds cover that spread; the 2.1 l0 kernel lost 14.2 % over 3 L and the textbook scheme
+// 83 %, so a regression to either fails.
 TEST(Validation, ProgressiveWaveKeepsItsHeightOverThreeWavelengthsAtCiResolution) {
     const RegularWaveCheck c = bakeRegularWave("progressive_wave.json");
     ASSERT_EQ(c.heights.size(), 7u);
-    EXPECT_NEAR(c.heightError(0), 0.0, 0.06) << "H at 2.5 h = " << c.heights[0] << " m";
+    EXPECT_NEAR(c.heightError(0), 0.0, 0.08) << "H at 2.5 h = " << c.heights[0] << " m";
     for (std::size_t g = 0; g < c.heights.size(); ++g) {
-        EXPECT_NEAR(c.heightError(g), 0.0, 0.08) << "gauge at x = " << c.gauges[g] << " m";
+        EXPECT_NEAR(c.heightError(g), 0.0, 0.12) << "gauge at x = " << c.gauges[g] << " m";
     }
     EXPECT_LT(c.decayTotal, 0.10) << "1 - H(last gauge) / H(first gauge)";
     EXPECT_NEAR(c.wavelengthFitError(), 0.0, 0.03)
