@@ -27,12 +27,9 @@ Grid testGrid() {
 // Surging keeps the sprites where they are and drops those outside the tank (the mesh is x in
 // [-0.5, 3.5], z in [0, 4]): past the far wall, behind the back wall, beyond the side faces.
 TEST(ModeSplashes, SurgingKeepsTheSpritesInTheTankAndDropsTheRest) {
-    std::vector<SplashSprite> s{{0.3f, 0.6f, 1.2f, 0.5f},
-                                {9.0f, 0.6f, 1.2f, 1.0f},
-                                {-0.6f, 0.6f, 1.2f, 1.0f},
-                                {3.4f, 0.9f, 3.9f, 0.7f},
-                                {1.0f, 0.6f, -0.1f, 1.0f},
-                                {1.0f, 0.6f, 4.1f, 1.0f}};
+    std::vector<SplashSprite> s{{0.3f, 0.6f, 1.2f, 0.5f},  {9.0f, 0.6f, 1.2f, 1.0f},
+                                {-0.6f, 0.6f, 1.2f, 1.0f}, {3.4f, 0.9f, 3.9f, 0.7f},
+                                {1.0f, 0.6f, -0.1f, 1.0f}, {1.0f, 0.6f, 4.1f, 1.0f}};
     const std::vector<SplashSprite> before = s;
     placeSplashes(s, testGrid(), ModeParams{}, 0, 3.0);
     ASSERT_EQ(s.size(), 2u);
