@@ -242,6 +242,14 @@ json stillTank(const Scene& scene, double settle, long steps, long trace) {
     long speedCount = 0;
     double maxExcursion2 = 0.0;
     std::vector<double> settledX, settledY;
+    // Drift speed: each water particle's displacement over consecutive windows of kDriftWindow,
+    // divided by it (max over particles and windows): how fast the water moves, to set beside
+    // the largest |u| (a particle whose velocity the shifting keeps from moving it has the one
+    // but not the other; docs/validation.md 7.5).
+    constexpr double kDriftWindow = 0.1; // s
+    double maxDrift = 0.0;
+    double windowStart = -1.0;
+    std::vector<double> windowX, windowY;
     std::size_t escaped = 0;
     json out{{"scene", scene.name},
              {"H", H},
@@ -278,6 +286,23 @@ json stillTank(const Scene& scene, double settle, long steps, long trace) {
                     settledX = P.x;
                     settledY = P.y;
                 }
+                if (windowStart < 0.0) {
+                    windowStart = solver.time();
+                    windowX = P.x;
+                    windowY = P.y;
+                } else if (solver.time() >= windowStart + kDriftWindow - 1e-9) {
+                    const double span = solver.time() - windowStart;
+                    for (std::size_t i = 0; i < P.size(); ++i) {
+                        if (P.kind[i] == ParticleKind::Water) {
+                            maxDrift = std::max(
+                                maxDrift,
+                                std::hypot(P.x[i] - windowX[i], P.y[i] - windowY[i]) / span);
+                        }
+                    }
+                    windowStart = solver.time();
+                    windowX = P.x;
+                    windowY = P.y;
+                }
                 for (std::size_t i = 0; i < P.size(); ++i) {
                     if (P.kind[i] != ParticleKind::Water)
                         continue;
@@ -307,6 +332,7 @@ json stillTank(const Scene& scene, double settle, long steps, long trace) {
     const double meanSpeed = speedCount ? speedSum / static_cast<double>(speedCount) : 0.0;
     out["mean_speed_over_sqrt_gH"] = meanSpeed / waveSpeed;
     out["max_excursion_over_l0"] = std::sqrt(maxExcursion2) / l0;
+    out["max_drift_speed_over_sqrt_gH"] = maxDrift / waveSpeed;
     out["escaped"] = escaped;
     out["ppe_iterations_mean"] = totals.steps ? totals.ppeIterations / totals.steps : 0.0;
     out["solver_seconds"] = totals.seconds;
