@@ -260,11 +260,13 @@ Eigen::Map<const Eigen::VectorXd> MpsSolver::ppeSolution() const {
 }
 
 void MpsSolver::fail(std::size_t particle, const std::string& reason) const {
-    if (m_substeps == 1)
-        throw DivergenceError(m_step + 1, m_time + m_subDt, particle, reason);
-    throw DivergenceError(m_step + 1, m_time + m_subDt, particle,
-                          fmt::format("{} (in sub-step {} of {}, solver.substep_courant {:.3g})",
-                                      reason, m_substep, m_substeps, m_par.time.substepCourant));
+    // The time at the end of the (sub-)step being taken: m_time is its start.
+    const int k = m_stats.substeps;
+    throw DivergenceError(m_step + 1, m_time + m_stats.dt / k, particle,
+                          k == 1 ? reason
+                                 : fmt::format("{} (in sub-step {} of {}, "
+                                               "solver.substep_courant {:.3g})",
+                                               reason, m_substep, k, m_par.time.substepCourant));
 }
 
 void MpsSolver::rebuildNeighbors(const std::vector<double>& x, const std::vector<double>& y) {
@@ -338,7 +340,6 @@ const StepStats& MpsSolver::step() {
     m_stats.dt = dt;
     m_stats.substeps = k;
     m_stats.maxSpeed = lastMaxSpeed;
-    m_substeps = k;
     if (k == 1) {
         m_substep = 1;
         advance(dt);
@@ -359,7 +360,6 @@ const StepStats& MpsSolver::step() {
 }
 
 void MpsSolver::advance(double dt) {
-    m_subDt = dt;
     PhaseTimer timer(m_stats);
     if (skinUsedUp(m_p.x, m_p.y))
         rebuildNeighbors(m_p.x, m_p.y);

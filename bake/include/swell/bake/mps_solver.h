@@ -128,9 +128,7 @@ private:
     double m_hlScale = 0.0; // higher-order Laplacian: k / rho (times re / r^3 per pair)
     double m_time = 0.0;
     long m_step = 0;
-    double m_subDt = 0.0; // dt of the sub-step being taken (error messages)
-    int m_substep = 0;    // which one, 1-based, of m_substeps
-    int m_substeps = 1;
+    int m_substep = 0; // the sub-step being taken, 1-based, of m_stats.substeps (messages)
     StepStats m_stats;
     NeighborGrid m_grid;
 

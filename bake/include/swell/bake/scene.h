@@ -57,8 +57,7 @@ struct Scene {
     SolverParams solver;
     RunParams run;
     OutputParams output;
-    std::uint64_t seed =
-        1; ///< seed of everything random in the scene (piston cycles, water jitter)
+    std::uint64_t seed = 1; ///< seed of all that is random (piston cycles, water jitter)
     /// Piston wavemaker: when set, the tank's back wall moves with this motion (Sec. 3.3.1).
     std::optional<PistonParams> piston;
     /// Inflow-outflow recycling (Sec. 3.3.2), when set.
