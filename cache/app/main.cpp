@@ -12,6 +12,7 @@
 #include <iostream>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <vector>
 
 namespace {
 using namespace swell::cache;
@@ -25,16 +26,33 @@ json infoJson(const Reader& r) {
     const Header& h = r.header();
     std::uint64_t surfSum = 0, splashSum = 0, rawSum = 0, compSum = 0;
     std::uint32_t surfMax = 0, splashMax = 0;
+    // Splashes come in events (a wave hitting the far wall): how many frames hold any, and
+    // the median frame's count, say whether the mean is carried by a few frames.
+    std::vector<std::uint32_t> splashCounts;
+    splashCounts.reserve(r.frameCount());
     for (std::size_t i = 0; i < r.frameCount(); ++i) {
         const FrameInfo& e = r.frameInfo(i);
         surfSum += e.surfaceCount;
         splashSum += e.splashCount;
+        splashCounts.push_back(e.splashCount);
         surfMax = std::max(surfMax, e.surfaceCount);
         splashMax = std::max(splashMax, e.splashCount);
         rawSum += e.rawSize;
         compSum += e.compressedSize;
     }
     const double n = std::max<double>(1.0, static_cast<double>(r.frameCount()));
+    const auto splashFrames =
+        std::count_if(splashCounts.begin(), splashCounts.end(), [](auto c) { return c > 0; });
+    double splashMedian = 0.0;
+    if (!splashCounts.empty()) {
+        const std::size_t mid = splashCounts.size() / 2;
+        std::nth_element(splashCounts.begin(), splashCounts.begin() + mid, splashCounts.end());
+        splashMedian = splashCounts[mid];
+        if (splashCounts.size() % 2 == 0) {
+            const auto below = *std::max_element(splashCounts.begin(), splashCounts.begin() + mid);
+            splashMedian = 0.5 * (splashMedian + below);
+        }
+    }
     json meta = json::parse(h.metadataJson);
     return {
         {"file", r.path().string()},
@@ -53,6 +71,8 @@ json infoJson(const Reader& r) {
         {"surface_max", surfMax},
         {"splash_mean", static_cast<double>(splashSum) / n},
         {"splash_max", splashMax},
+        {"splash_frames", splashFrames},
+        {"splash_median", splashMedian},
         {"bytes_on_disk", r.fileSize()},
         {"raw_bytes", rawSum},
         {"compressed_frame_bytes", compSum},
@@ -72,8 +92,10 @@ void printInfo(const json& j) {
                j["dt"].get<double>(), j["frame_time"].get<double>());
     fmt::print("surface particles  mean {:.1f}, max {}\n", j["surface_mean"].get<double>(),
                j["surface_max"].get<unsigned>());
-    fmt::print("splash particles   mean {:.1f}, max {}\n", j["splash_mean"].get<double>(),
-               j["splash_max"].get<unsigned>());
+    fmt::print("splash particles   mean {:.1f}, max {}, median {:g}; in {} of {} frames\n",
+               j["splash_mean"].get<double>(), j["splash_max"].get<unsigned>(),
+               j["splash_median"].get<double>(), j["splash_frames"].get<std::size_t>(),
+               j["frames"].get<std::size_t>());
     fmt::print("bytes on disk      {}\n", j["bytes_on_disk"].get<std::uint64_t>());
     fmt::print("raw frame bytes    {} (compression ratio {:.2f})\n",
                j["raw_bytes"].get<std::uint64_t>(), j["compression_ratio"].get<double>());

@@ -12,6 +12,11 @@ fail() { echo "FAIL: $*"; exit 1; }
 "$bin/swell-cache" info "$dir/a.swell" --json > "$dir/info.json"
 grep -q '"frames":20' "$dir/info.json" || fail "info --json frames"
 grep -q '"surface_mean":50' "$dir/info.json" || fail "info --json surface_mean"
+grep -q '"splash_frames":20' "$dir/info.json" || fail "info --json splash_frames"
+grep -q '"splash_median":2.0' "$dir/info.json" || fail "info --json splash_median"
+"$bin/swell-cache" synth "$dir/dry.swell" --frames 7 --surface 50 --splash 0 2>/dev/null
+"$bin/swell-cache" info "$dir/dry.swell" | grep -q "^splash particles   mean 0.0, max 0, median 0; in 0 of 7 frames" ||
+    fail "info splash line: $("$bin/swell-cache" info "$dir/dry.swell" | grep splash)"
 [[ $("$bin/swell-cache" dump "$dir/a.swell" --frame 19 | wc -l) -eq 53 ]] || fail "dump rows"
 # synth caches carry the bake's "replay" block (water extent, steady start); info prints it.
 grep -q '"replay":{"particle_spacing":0.0816326530612244[0-9]*,"steady_reason":"synthetic travelling wave: steady from the start","steady_start_s":0.0,"still_water_level":0.5,"water_x_max":4.0,"water_x_min":0.0}' "$dir/info.json" ||
