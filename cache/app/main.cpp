@@ -30,19 +30,19 @@ json infoJson(const Reader& r) {
     // the median frame's count, say whether the mean is carried by a few frames.
     std::vector<std::uint32_t> splashCounts;
     splashCounts.reserve(r.frameCount());
+    std::size_t splashFrames = 0;
     for (std::size_t i = 0; i < r.frameCount(); ++i) {
         const FrameInfo& e = r.frameInfo(i);
         surfSum += e.surfaceCount;
         splashSum += e.splashCount;
         splashCounts.push_back(e.splashCount);
+        splashFrames += e.splashCount > 0 ? 1 : 0;
         surfMax = std::max(surfMax, e.surfaceCount);
         splashMax = std::max(splashMax, e.splashCount);
         rawSum += e.rawSize;
         compSum += e.compressedSize;
     }
     const double n = std::max<double>(1.0, static_cast<double>(r.frameCount()));
-    const auto splashFrames =
-        std::count_if(splashCounts.begin(), splashCounts.end(), [](auto c) { return c > 0; });
     double splashMedian = 0.0;
     if (!splashCounts.empty()) {
         const std::size_t mid = splashCounts.size() / 2;
