@@ -231,7 +231,7 @@ TEST(Scene, WaveScenesLoad) {
     // The paper's scale (Table 2: 8,376 water + 1,662 fixed particles, 12K steps of 1 ms =
     // 12 s). The fixed particles up to 1 m are about 17 % more than the paper's (the breaking
     // waves' run-up must stay in the tank); the walls go on to 1.5 m for the spray, which
-    // reaches 1.3 m (docs/validation.md 7.3).
+    // reaches up to 1.42 m (docs/validation.md 7.6).
     const Scene s = loadScene(kScenes / "surging.json");
     const GeneratedGeometry g = generateGeometry(s.geometry);
     const Particles& p = g.particles;
