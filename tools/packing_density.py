@@ -5,7 +5,10 @@ per number-density kernel and radius (docs/validation.md 7.3, the still tank's b
 MPS takes n0 from a square lattice of spacing l0. Water that the flow and the shifting reorder
 towards a hexagonal packing is held at n = n0 by the density relaxation; where the hexagonal
 packing reaches n0 in less area than the square lattice, the water shrinks by that much.
-Prints, for each kernel and radius (in l0), that area ratio (1 = no volume drift).
+Prints, for each kernel and radius (in l0), that area ratio (1 = no volume drift), and for
+the MPS kernel the number density n / n0 and the neighbour-distribution asymmetry
+|sum (r_j - r_i) w| / (n0 l0) (the solver's free-surface test) of the first rows under a flat
+lattice surface: the density relaxation asks a truncated row for n0 all the same.
 
     /usr/bin/python3 tools/packing_density.py
 """
@@ -46,11 +49,30 @@ def area_ratio(re, w):
     return (0.5 * (lo + hi)) ** 2
 
 
+def surface_rows(re, w, rows=3, k=8):
+    """(n / n0, asymmetry) of the particle `depth` rows under a flat lattice surface."""
+    square = [(i, j) for i in range(-k, k + 1) for j in range(-k, k + 1)]
+    n0 = density(square, re, w)
+    out = []
+    for depth in range(rows):
+        present = [(x, y) for x, y in square if y <= depth]  # the surface row is y = depth
+        n = density(present, re, w)
+        fy = sum(y * w(math.hypot(x, y), re) for x, y in present if 0.0 < math.hypot(x, y) < re)
+        out.append((n / n0, abs(fy) / n0))
+    return out
+
+
 def main():
     print("kernel    re (l0)  hexagonal area at n = n0 / square lattice area")
     for name, w in (("mps", mps), ("wendland", wendland)):
         for re in (2.1, 2.4, 2.6, 2.8, 3.0, 3.1):
             print(f"{name:9s} {re:7.1f}  {area_ratio(re, w):.4f}")
+    print()
+    print("mps kernel, rows under a flat surface (row 1 = the surface): n / n0, asymmetry")
+    for re in (2.1, 2.8, 3.0):
+        cells = "  ".join(f"row {d + 1}: {n:.3f}, {f:.3f}"
+                          for d, (n, f) in enumerate(surface_rows(re, mps)))
+        print(f"re {re:.1f} l0  {cells}")
 
 
 if __name__ == "__main__":
