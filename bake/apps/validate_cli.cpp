@@ -27,6 +27,8 @@ std::optional<int> parseValidateCommandLine(int argc, const char* const* argv,
     dam->add_option("--until", cl.damUntil, "stop at this T = t sqrt(2g/a)")
         ->check(cli::finiteRange(0.0, 1e6));
     dam->add_option("--csv", cl.csv, "write the front series T,Z to this file");
+    dam->add_option("--records", cl.records,
+                    "write Martin & Moyce's two series (series,T,Z) to this file");
 
     auto* lob = app.add_subcommand(
         "lobovsky", "run the Lobovsky et al. (2014) H = 300 mm dam break and compare the water "
@@ -36,6 +38,8 @@ std::optional<int> parseValidateCommandLine(int argc, const char* const* argv,
     lob->add_option("--until", cl.lobovskyUntil, "stop at this time (s)")
         ->check(cli::finiteRange(0.0, 1e6));
     lob->add_option("--csv", cl.csv, "write the height series t,h_H1..h_H4 (m) to this file");
+    lob->add_option("--records", cl.records,
+                    "write the experimental gauge records (gauge,x,t,h; m, s) to this file");
 
     auto* still = app.add_subcommand("still-tank", "run a still-tank scene and check hydrostatics");
     still->add_option("scene", cl.scene, "scene JSON (the first water rectangle sets H)")

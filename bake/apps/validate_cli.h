@@ -21,6 +21,7 @@ struct ValidateCommandLine {
     double damUntil = 3.2;      ///< dam-break --until (T = t sqrt(2g/a))
     double lobovskyUntil = 1.5; ///< lobovsky --until (s)
     std::string csv;            ///< dam-break / lobovsky --csv
+    std::string records;        ///< dam-break / lobovsky --records
     double settle = 2.0;        ///< still-tank --settle (s)
     long steps = -1;            ///< still-tank --steps; -1: end_time / dt
     long trace = 0;             ///< still-tank --trace

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -26,6 +27,7 @@
 #include "swell/bake/regular_wave.h"
 #include "swell/bake/scene.h"
 #include "swell/bake/validation.h"
+#include "swell/cache/checked_write.h"
 
 using namespace swell::bake;
 using nlohmann::json;
@@ -472,6 +474,22 @@ json regularWaveEnsemble(Scene scene, int n, double from, double to) {
     return out;
 }
 
+/// Writes `text` to `path` whole or not at all: to a temporary name in the same folder,
+/// renamed when complete. Throws std::runtime_error naming the file and the error.
+void writeTextFile(const std::filesystem::path& path, const std::string& text) {
+    std::filesystem::path tmp = path;
+    tmp += fmt::format(".tmp-{}", ::getpid());
+    const int rc = swell::cache::writeFile(tmp, text.data(), text.size());
+    std::error_code ec;
+    if (rc == 0)
+        std::filesystem::rename(tmp, path, ec);
+    if (rc != 0 || ec) {
+        std::filesystem::remove(tmp, ec);
+        throw std::runtime_error(fmt::format("--records {}: cannot write: {}", path.string(),
+                                             std::strerror(rc != 0 ? rc : ec.value())));
+    }
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
@@ -485,6 +503,9 @@ int main(int argc, char** argv) {
         const auto start = std::chrono::steady_clock::now();
         using Run = ValidateCommandLine::Run;
         const Scene scene = loadValidateScene(cl);
+        if (!cl.records.empty()) // before the run: a bad path fails now, not after it
+            writeTextFile(cl.records,
+                          cl.run == Run::DamBreak ? martinMoyceRecordsCsv() : lobovskyRecordsCsv());
         if (cl.run == Run::DamBreak) {
             out = damBreak(scene, cl.damUntil, cl.csv);
         } else if (cl.run == Run::Lobovsky) {

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include <fmt/format.h>
@@ -218,6 +220,25 @@ HarmonicFit fitHarmonic(std::span<const double> t, std::span<const double> v, do
         x[r] = s / M[r][r];
     }
     return HarmonicFit{std::hypot(x[0], x[1]), std::atan2(x[1], x[0]), x[2]};
+}
+
+std::string martinMoyceRecordsCsv() {
+    std::string out = "series,T,Z\n";
+    for (const auto& [name, series] :
+         {std::pair{"a2.25in", martinMoyceA225()}, std::pair{"a1.125in", martinMoyceA1125()}}) {
+        for (const FrontPoint& p : series)
+            out += fmt::format("{},{},{}\n", name, p.T, p.Z);
+    }
+    return out;
+}
+
+std::string lobovskyRecordsCsv() {
+    std::string out = "gauge,x,t,h\n";
+    for (const LevelGauge& g : lobovskyH300Gauges()) {
+        for (const LevelPoint& p : g.series)
+            out += fmt::format("{},{},{},{}\n", g.name, g.x, p.t, p.h);
+    }
+    return out;
 }
 
 } // namespace swell::bake

@@ -77,6 +77,10 @@ TEST(CommandLine, SwellValidateRefusesNonsenseValues) {
                   "swell-validate", "--to");
     expectRefused(validate({"--threads", "-3", "dam-break", "s.json"}), "swell-validate",
                   "--threads");
+    EXPECT_FALSE(validate({"dam-break", "s.json", "--records", "mm.csv"}).rc.has_value());
+    EXPECT_FALSE(validate({"lobovsky", "s.json", "--records", "lob.csv"}).rc.has_value());
+    expectRefused(validate({"still-tank", "s.json", "--records", "r.csv"}), "swell-validate",
+                  "--records");
     EXPECT_FALSE(validate({"regular-wave", "s.json", "--ensemble", "4"}).rc.has_value());
     expectRefused(validate({"regular-wave", "s.json", "--ensemble", "0"}), "swell-validate",
                   "--ensemble");

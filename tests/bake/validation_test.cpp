@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <fstream>
 #include <span>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -192,6 +193,56 @@ TEST(Validation, LobovskyScenesMatchTheExperimentGeometry) {
 }
 
 // Pooling the two Martin & Moyce series weights their means by their point counts.
+namespace {
+/// The rows of a CSV text after its header, split at commas.
+std::vector<std::vector<std::string>> csvRows(const std::string& text, const std::string& header) {
+    std::istringstream in(text);
+    std::string line;
+    std::getline(in, line);
+    EXPECT_EQ(line, header);
+    std::vector<std::vector<std::string>> rows;
+    while (std::getline(in, line)) {
+        std::vector<std::string> cells;
+        std::istringstream cellsIn(line);
+        for (std::string c; std::getline(cellsIn, c, ',');)
+            cells.push_back(c);
+        rows.push_back(cells);
+    }
+    return rows;
+}
+} // namespace
+
+TEST(Validation, RecordsCsvHoldEveryExperimentalPointAsCompared) {
+    // swell-validate --records: the plots must show the very points the checks compare with.
+    const auto mm = csvRows(martinMoyceRecordsCsv(), "series,T,Z");
+    const auto a225 = martinMoyceA225();
+    const auto a1125 = martinMoyceA1125();
+    ASSERT_EQ(mm.size(), a225.size() + a1125.size());
+    for (std::size_t k = 0; k < mm.size(); ++k) {
+        const bool first = k < a225.size();
+        const FrontPoint& p = first ? a225[k] : a1125[k - a225.size()];
+        ASSERT_EQ(mm[k].size(), 3u);
+        EXPECT_EQ(mm[k][0], first ? "a2.25in" : "a1.125in");
+        EXPECT_DOUBLE_EQ(std::stod(mm[k][1]), p.T);
+        EXPECT_DOUBLE_EQ(std::stod(mm[k][2]), p.Z);
+    }
+    const auto lob = csvRows(lobovskyRecordsCsv(), "gauge,x,t,h");
+    std::size_t k = 0;
+    for (const LevelGauge& g : lobovskyH300Gauges()) {
+        for (const LevelPoint& p : g.series) {
+            ASSERT_LT(k, lob.size());
+            ASSERT_EQ(lob[k].size(), 4u);
+            EXPECT_EQ(lob[k][0], g.name);
+            EXPECT_DOUBLE_EQ(std::stod(lob[k][1]), g.x);
+            EXPECT_DOUBLE_EQ(std::stod(lob[k][2]), p.t);
+            EXPECT_DOUBLE_EQ(std::stod(lob[k][3]), p.h);
+            ++k;
+        }
+    }
+    EXPECT_EQ(k, lob.size());
+    EXPECT_GT(k, 4u * 10u); // four gauges, each a record, not a stub
+}
+
 TEST(Validation, PooledFrontErrorsWeighByPoints) {
     const FrontError a{0.1, 0.3, 0.1, 3};
     const FrontError b{0.2, 0.25, -0.2, 1};

@@ -1,5 +1,6 @@
 #pragma once
 #include <span>
+#include <string>
 #include <vector>
 
 #include "swell/bake/lobovsky2014.h"
@@ -20,6 +21,11 @@ struct FrontPoint {
 std::span<const FrontPoint> martinMoyceA225();
 /// Same figure and source, a = 1.125 in ("mm_data_1").
 std::span<const FrontPoint> martinMoyceA1125();
+
+/// Both Martin & Moyce series as CSV text, "series,T,Z" then one row per point, series
+/// "a2.25in" (martinMoyceA225) before "a1.125in" (martinMoyceA1125): the records the dam-break
+/// check compares with, for plots (swell-validate dam-break --records).
+std::string martinMoyceRecordsCsv();
 
 /// Surge front: the largest x of a water particle that is not splash (n >= d1 n0,
 /// paper eq. (4)), minus `x0` (the column's back face). Returns 0 if none qualifies.
@@ -82,6 +88,11 @@ struct LevelError {
 /// does not cover the record's times in [tLo, tHi].
 LevelError compareLevel(std::span<const LevelPoint> simulated, std::span<const LevelPoint> record,
                         double tLo, double tHi);
+
+/// The Lobovsky et al. (2014) gauge records as CSV text, "gauge,x,t,h" (x, t, h in m and s as
+/// in lobovskyH300Gauges) then one row per point, gauges in the order H1..H4: the records the
+/// lobovsky check compares with, for plots (swell-validate lobovsky --records).
+std::string lobovskyRecordsCsv();
 
 /// Least-squares fit v(t) ~ a cos(omega t) + b sin(omega t) + c of a gauge record at a
 /// known angular frequency (regular-wave validation): amplitude sqrt(a^2 + b^2) and phase

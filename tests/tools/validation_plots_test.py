@@ -1,0 +1,55 @@
+#!/usr/bin/env python3
+"""tools/validation_plots.py --quick: both plots written from stable runs of the CI scenes,
+every experimental point of the records in its CSV, a clear error for a missing binary.
+
+    /usr/bin/python3 tests/tools/validation_plots_test.py BIN_DIR
+"""
+import csv
+import json
+import pathlib
+import subprocess
+import sys
+import tempfile
+import unittest
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+TOOL = ROOT / "tools" / "validation_plots.py"
+BIN = pathlib.Path(sys.argv.pop(1) if len(sys.argv) > 1 else ROOT / "build" / "bin")
+
+
+class ValidationPlots(unittest.TestCase):
+    def test_quick_run_writes_both_plots_from_stable_runs(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            out = pathlib.Path(tmp)
+            p = subprocess.run([sys.executable, str(TOOL), "--quick", "--threads", "1",
+                                "--bin", str(BIN), "--out", str(out)],
+                               capture_output=True, text=True)
+            self.assertEqual(p.returncode, 0, p.stderr)
+            for name in ("dam_break_front.png", "lobovsky_gauges.png"):
+                data = (out / name).read_bytes()
+                self.assertEqual(data[:8], b"\x89PNG\r\n\x1a\n", name)
+                self.assertGreater(len(data), 20_000, name)  # axes, points and lines drawn
+            summary = json.loads((out / "validation_plots.json").read_text())
+            kinds = [(r["kind"], r["label"]) for r in summary["runs"]]
+            self.assertEqual(kinds, [("dam-break", "a/20"), ("lobovsky", "H/15")])
+            for r in summary["runs"]:
+                self.assertEqual(r["result"]["outcome"], "stable", r["command"])
+                self.assertIn("swell-validate", r["command"])
+            with open(out / "dam-break_records.csv", newline="") as f:
+                series = {row["series"] for row in csv.DictReader(f)}
+            self.assertEqual(series, {"a2.25in", "a1.125in"})
+            with open(out / "lobovsky_records.csv", newline="") as f:
+                gauges = {row["gauge"] for row in csv.DictReader(f)}
+            self.assertEqual(gauges, {"H1", "H2", "H3", "H4"})
+
+    def test_missing_binary_is_one_clear_line(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            p = subprocess.run([sys.executable, str(TOOL), "--quick", "--bin", tmp,
+                                "--out", tmp], capture_output=True, text=True)
+            self.assertEqual(p.returncode, 1)
+            self.assertEqual(len(p.stderr.strip().splitlines()), 1, p.stderr)
+            self.assertIn("no swell-validate", p.stderr)
+
+
+if __name__ == "__main__":
+    unittest.main()

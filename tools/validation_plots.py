@@ -1,0 +1,183 @@
+#!/usr/bin/env python3
+"""Plots of the bake against the experiments it is validated on (docs/validation.md 7.2):
+the dam-break surge front against Martin & Moyce (1952), raw and on the experiment's time
+origin, and the Lobovsky et al. (2014) water levels at gauges H1..H4, each at several
+resolutions, from swell-validate runs of the shipped scenes.
+
+    /usr/bin/python3 tools/validation_plots.py [--bin build/bin] [--out out/validation]
+        [--threads N] [--quick]
+
+Writes OUT/dam_break_front.png, OUT/lobovsky_gauges.png and OUT/validation_plots.json (each
+run's command, its swell-validate JSON, the commit). --quick runs the CI resolutions only
+(a/20, H/15; seconds) instead of a/20, a/50, a/80 and H/15, H/30, H/60 (a few minutes).
+The experimental points come from `swell-validate ... --records`, i.e. the very records the
+checks compare with. Exit status 1 with one line on stderr when a run fails.
+"""
+import argparse
+import csv
+import json
+import pathlib
+import subprocess
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+ROOT = pathlib.Path(__file__).resolve().parents[1]
+
+# (label, scene, --set overrides): the shipped scenes and finer spacings of the same scenes.
+DAM_BREAK = [
+    ("a/20", "dam_break_small.json", []),
+    ("a/50", "dam_break.json", []),
+    ("a/80", "dam_break_small.json",
+     ["geometry.particle_spacing=0.00125", "solver.dt=0.000125"]),
+]
+LOBOVSKY = [
+    ("H/15", "lobovsky_small.json", []),
+    ("H/30", "lobovsky.json", []),
+    ("H/60", "lobovsky.json", ["geometry.particle_spacing=0.005", "solver.dt=0.0004"]),
+]
+COLOURS = ["tab:blue", "tab:orange", "tab:green"]
+
+
+def fail(message):
+    print(f"validation_plots: {message}", file=sys.stderr)
+    sys.exit(1)
+
+
+def read_csv(path):
+    with open(path, newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def run(binary, threads, kind, label, scene, sets, out):
+    """One swell-validate run; returns (command, its JSON, series rows, records rows)."""
+    stem = f"{kind}_{label.replace('/', '_')}"
+    series, records = out / f"{stem}.csv", out / f"{kind}_records.csv"
+    cmd = [str(binary / "swell-validate"), "--json"]
+    if threads:
+        cmd += ["--threads", str(threads)]
+    for s in sets:
+        cmd += ["--set", s]
+    cmd += [kind, str(ROOT / "scenes" / scene), "--csv", str(series), "--records", str(records)]
+    p = subprocess.run(cmd, capture_output=True, text=True)
+    if p.returncode != 0:
+        last = (p.stderr.strip().splitlines() or ["(no message)"])[-1]
+        fail(f"{kind} {label} ({scene}) failed with status {p.returncode}: {last}")
+    result = json.loads(p.stdout.strip().splitlines()[-1])
+    return {"label": label, "command": " ".join(cmd), "result": result,
+            "series": read_csv(series), "records": read_csv(records)}
+
+
+def plot_dam_break(runs, path):
+    records = runs[0]["records"]
+    exp = {}
+    for r in records:
+        exp.setdefault(r["series"], ([], []))
+        exp[r["series"]][0].append(float(r["T"]))
+        exp[r["series"]][1].append(float(r["Z"]))
+    markers = {"a2.25in": ("s", "Martin & Moyce, a = 2.25 in"),
+               "a1.125in": ("o", "Martin & Moyce, a = 1.125 in")}
+    fig, (raw, aligned) = plt.subplots(1, 2, figsize=(11, 4.6), sharey=True)
+    for ax in (raw, aligned):
+        for name, (T, Z) in exp.items():
+            m, text = markers.get(name, ("x", name))
+            ax.plot(T, Z, m, mfc="none", color="black", label=text)
+        ax.axvspan(0.8, 3.0, color="0.93", zorder=0)
+        ax.set_xlim(0.0, 3.4)
+        ax.set_ylim(1.0, 4.6)
+        ax.set_xlabel("T = t sqrt(2 g / a)")
+        ax.grid(alpha=0.3)
+    for run_, colour in zip(runs, COLOURS):
+        T = [float(r["T"]) for r in run_["series"]]
+        Z = [float(r["Z"]) for r in run_["series"]]
+        res = run_["result"]
+        raw.plot(T, Z, color=colour,
+                 label=f"{run_['label']}: mean |dZ| {res['front_error_mean']:.3f} a")
+        for name, style in (("a225", "-"), ("a1125", "--")):
+            shift = res[f"aligned_shift_T_{name}"]
+            aligned.plot([t + shift for t in T], Z, style, color=colour,
+                         label=(f"{run_['label']}: mean {res['aligned_front_error_mean']:.3f} a,"
+                                f" max {res['aligned_front_error_max']:.3f} a"
+                                if name == "a225" else None))
+    raw.set_ylabel("Z = z / a (surge front)")
+    raw.set_title("raw: t = 0 at the gate release\n", fontsize=10)
+    aligned.set_title("shifted onto each record's first point\n(solid: the a = 2.25 in record's, "
+                      "dashed: the 1.125 in record's)", fontsize=10)
+    scatter = runs[0]["result"]
+    aligned.text(0.05, 4.45, f"the records against each other: mean "
+                 f"{scatter['experiment_scatter_mean']:.3f} a, max "
+                 f"{scatter['experiment_scatter_max']:.3f} a", fontsize=8, va="top")
+    raw.legend(fontsize=8, loc="lower right")
+    aligned.legend(fontsize=8, loc="lower right")
+    fig.suptitle("Dam break, column 2a high: surge front (grey: compared window T in [0.8, 3])")
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+def plot_lobovsky(runs, path):
+    H = runs[0]["result"]["H"]
+    gauges = {}
+    for r in runs[0]["records"]:
+        g = gauges.setdefault(r["gauge"], {"x": float(r["x"]), "t": [], "h": []})
+        g["t"].append(float(r["t"]))
+        g["h"].append(float(r["h"]) / H)
+    fig, axes = plt.subplots(2, 2, figsize=(11, 7), sharex=True)
+    for ax, (name, g) in zip(axes.flat, gauges.items()):
+        ax.plot(g["t"], g["h"], ".", color="black", ms=4, label="Lobovsky et al. 2014")
+        for run_, colour in zip(runs, COLOURS):
+            t = [float(r["t"]) for r in run_["series"]]
+            h = [float(r[f"h_{name}"]) / H for r in run_["series"]]
+            err = next(e for e in run_["result"]["gauges"] if e["name"] == name)
+            ax.plot(t, h, color=colour, lw=1.2,
+                    label=f"{run_['label']}: mean |dh| {100 * err['mean_abs_error_over_H']:.1f} % H")
+        ax.axvline(0.9, color="0.5", ls=":", lw=1)
+        ax.axvspan(0.0, 1.5, color="0.95", zorder=0)
+        ax.set_xlim(0.0, 1.6)
+        ax.set_title(f"{name}, x = {g['x']:.4g} m")
+        ax.set_ylabel("h / H")
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=7, loc="upper left")
+    for ax in axes[1]:
+        ax.set_xlabel("t (s)")
+    fig.suptitle("Lobovsky et al. (2014) dam break, H = 0.3 m: water level at the gauges "
+                 "(grey: compared window [0, 1.5] s; dotted: 0.9 s)")
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--bin", default=str(ROOT / "build" / "bin"))
+    ap.add_argument("--out", default=str(ROOT / "out" / "validation"))
+    ap.add_argument("--threads", type=int, default=0, help="swell-validate --threads (0: all)")
+    ap.add_argument("--quick", action="store_true", help="CI resolutions only (a/20, H/15)")
+    args = ap.parse_args()
+    if args.threads < 0:
+        fail(f"--threads {args.threads}: must be 0 (all) or more")
+    binary, out = pathlib.Path(args.bin), pathlib.Path(args.out)
+    if not (binary / "swell-validate").is_file():
+        fail(f"--bin {binary}: no swell-validate there (run tools/build)")
+    out.mkdir(parents=True, exist_ok=True)
+    cases = (DAM_BREAK[:1], LOBOVSKY[:1]) if args.quick else (DAM_BREAK, LOBOVSKY)
+    dam = [run(binary, args.threads, "dam-break", *c, out) for c in cases[0]]
+    lob = [run(binary, args.threads, "lobovsky", *c, out) for c in cases[1]]
+    plot_dam_break(dam, out / "dam_break_front.png")
+    plot_lobovsky(lob, out / "lobovsky_gauges.png")
+    commit = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"],
+                            capture_output=True, text=True).stdout.strip() or "unknown"
+    summary = {"commit": commit, "quick": args.quick,
+               "runs": [{"kind": kind, "label": r["label"], "command": r["command"],
+                         "result": r["result"]}
+                        for kind, rs in (("dam-break", dam), ("lobovsky", lob)) for r in rs]}
+    (out / "validation_plots.json").write_text(json.dumps(summary, indent=1) + "\n")
+    print(f"wrote {out / 'dam_break_front.png'}, {out / 'lobovsky_gauges.png'}, "
+          f"{out / 'validation_plots.json'}")
+
+
+if __name__ == "__main__":
+    main()
