@@ -140,7 +140,7 @@ MpsSolver::MpsSolver(const PhysicsParams& physics, const SolverParams& solver, P
     require(m_phys.density > 0.0, "density must be positive");
     require(m_phys.kinematicViscosity >= 0.0, "viscosity must not be negative");
     require(time.dt > 0.0, "dt must be positive");
-    require(model.reDensity > 1.0 && model.reLaplacian > 1.0,
+    require(model.reDensity > 1.0 && model.reLaplacian > 1.0 && effectiveReRelaxation(model) > 1.0,
             "kernel radii must exceed one spacing");
     require(ppe.tolerance > 0.0 && ppe.maxIterations > 0,
             "PPE tolerance and iterations must be positive");
@@ -160,18 +160,21 @@ MpsSolver::MpsSolver(const PhysicsParams& physics, const SolverParams& solver, P
     m_reN = model.reDensity * m_l0;
     m_reL = model.reLaplacian * m_l0;
     m_collide = model.collisionDistance * m_l0;
-    m_reList = std::max({m_reN, m_reL, m_collide}) + lists.skin * m_l0;
+    m_reR = effectiveReRelaxation(model) * m_l0;
+    m_ownRelaxation = m_reR != m_reN;
+    m_reList = std::max({m_reN, m_reL, m_collide, m_reR}) + lists.skin * m_l0;
     // The number-density kernel (density, gradient, p_min) and the collisions reach only
     // re_N: they scan a short sub-list, half as long as the full one at the textbook radii.
     m_reShort = std::min(m_reList, std::max(m_reN, m_collide) + lists.skin * m_l0);
     m_latN = latticeConstants(m_l0, m_reN);
     m_latL = latticeConstants(m_l0, m_reL);
+    m_latR = latticeConstants(m_l0, m_reR);
     // Khayyer & Gotoh (2010) higher-order Laplacian, normalized on the lattice (kernel.h).
     m_hlScale = m_latL.higherOrderLaplacian / m_phys.density;
     m_grid.configure(m_domain, m_reList, n, lists.maxNeighbors);
 
     for (auto* v : {&m_xs, &m_ys, &m_xStar, &m_yStar, &m_uStar, &m_vStar, &m_uC, &m_vC, &m_divU,
-                    &m_fx, &m_fy, &m_shiftX, &m_shiftY}) {
+                    &m_fx, &m_fy, &m_shiftX, &m_shiftY, &m_nRelax}) {
         v->assign(n, 0.0);
     }
     m_surface.assign(n, 0);
@@ -476,6 +479,12 @@ void MpsSolver::numberDensityAndSurface() {
     const double asymmetric = model.distributionThreshold * m_latN.flatSurfaceAsymmetry;
     const double fScale = 1.0 / (m_latN.n0 * m_l0);
     const bool shifting = model.shifting > 0.0;
+    // With a relaxation kernel of its own (re_relaxation), its sum takes the full list, which
+    // reaches it; the short list is its sub-list in the same order, so the re_N sums below see
+    // the same neighbours in the same order either way.
+    const bool ownR = m_ownRelaxation;
+    const double reR2 = m_reR * m_reR;
+    const double scan2 = ownR ? std::max(reN2, reR2) : reN2;
     std::size_t surface = 0;
 #pragma omp parallel for schedule(static) reduction(+ : surface) if (n >= kParallelMin)
     for (std::size_t i = 0; i < n; ++i) {
@@ -483,10 +492,17 @@ void MpsSolver::numberDensityAndSurface() {
         double div = 0.0;
         double fx = 0.0, fy = 0.0;
         double cx = 0.0, cy = 0.0;
+        double sR = 0.0;
         const bool shiftSums = shifting && !isFixed(m_p.kind[i]); // fixed particles never shift
         forNeighbours(
-            m_grid.shortNeighbors(i), m_xStar, m_yStar, i, reN2,
+            ownR ? m_grid.neighbors(i) : m_grid.shortNeighbors(i), m_xStar, m_yStar, i, scan2,
             [&](std::uint32_t j, double dx, double dy, double r2) {
+                if (ownR) {
+                    if (r2 < reR2)
+                        sR += mpsWeight(std::sqrt(r2), m_reR);
+                    if (r2 >= reN2)
+                        return;
+                }
                 const double w = mpsWeight(std::sqrt(r2), m_reN);
                 s += w;       // K&O 1996 particle number density n* = sum_j w(|r*_j - r*_i|)
                 fx += dx * w; // neighbour distribution (Khayyer, Gotoh & Shao 2009)
@@ -502,6 +518,7 @@ void MpsSolver::numberDensityAndSurface() {
                 }
             });
         m_p.n[i] = s;
+        m_nRelax[i] = ownR ? sR : s;
         m_divU[i] = coefD * div;
         m_fx[i] = fx * fScale;
         m_fy[i] = fy * fScale;
@@ -568,7 +585,7 @@ void MpsSolver::assemblePressureEquation(double dt) {
     const double minR = 0.5 * m_l0; // HL: the r^-3 weight is capped below half a spacing
     const double compress = m_par.pressure.compressibility / (dt * dt);
     const double gamma = m_par.pressure.relaxation;
-    const double n0 = m_latN.n0;
+    const double n0 = m_latR.n0;
     const bool mixed = m_par.pressure.sourceTerm == SourceTerm::Mixed;
     std::vector<double>& b = m_ppe.rhs();
     std::vector<double>& x = m_ppe.solution();
@@ -604,8 +621,9 @@ void MpsSolver::assemblePressureEquation(double dt) {
         A.val[static_cast<std::size_t>(diag)] = diagValue;
         A.diagPos[static_cast<std::size_t>(r)] = diag;
         // K&O 1996 PPE source, relaxed (textbook): gamma / dt^2 (n* - n0) / n0. Mixed
-        // (Tanaka & Masunaga 2010): - div(u*) / dt + gamma / dt^2 (n* - n0) / n0.
-        double rhs = gamma / (dt * dt) * (m_p.n[i] - n0) / n0;
+        // (Tanaka & Masunaga 2010): - div(u*) / dt + gamma / dt^2 (n* - n0) / n0. n* and n0
+        // on the relaxation's kernel (re_relaxation; re_density unless set).
+        double rhs = gamma / (dt * dt) * (m_nRelax[i] - n0) / n0;
         if (mixed)
             rhs -= m_divU[i] / dt;
         b[static_cast<std::size_t>(r)] = rhs;

@@ -263,6 +263,8 @@ Scene parseScene(const json& j) {
             s.number("expected_speed", run.expectedSpeed, 0.0, kInf, false, " (m/s)");
         m.reDensity = s.number("re_density", m.reDensity, 1.0, 10.0, true, " (l0)");
         m.reLaplacian = s.number("re_laplacian", m.reLaplacian, 1.0, 10.0, true, " (l0)");
+        m.reRelaxation =
+            s.number("re_relaxation", effectiveReRelaxation(m), 1.0, 10.0, true, " (l0)");
         m.surfaceThreshold = s.number("surface_threshold", m.surfaceThreshold, 0.0, 1.0, true);
         e.relaxation = s.number("relaxation", e.relaxation, 0.0, 1.0, true);
         e.compressibility =
@@ -486,6 +488,7 @@ json toJson(const Scene& sc) {
           {"expected_speed", sc.run.expectedSpeed},
           {"re_density", s.model.reDensity},
           {"re_laplacian", s.model.reLaplacian},
+          {"re_relaxation", effectiveReRelaxation(s.model)},
           {"surface_threshold", s.model.surfaceThreshold},
           {"relaxation", s.pressure.relaxation},
           {"compressibility", s.pressure.compressibility},

@@ -345,6 +345,8 @@ TEST(Scene, SchemeSetsTheModelAndKeysOverrideIt) {
     EXPECT_DOUBLE_EQ(byDefault.solver.model.collisionDistance, 0.8);
     EXPECT_DOUBLE_EQ(byDefault.solver.model.restitution, 0.0);
     EXPECT_DOUBLE_EQ(byDefault.solver.model.reDensity, 2.8);
+    EXPECT_DOUBLE_EQ(effectiveReRelaxation(byDefault.solver.model), 3.0);
+    EXPECT_DOUBLE_EQ(toJson(byDefault)["solver"]["re_relaxation"].get<double>(), 3.0);
     j["solver"]["scheme"] = "textbook";
     const Scene textbook = parseScene(j);
     EXPECT_EQ(textbook.solver.model.gradient, GradientModel::MinimumPressure);
@@ -355,6 +357,18 @@ TEST(Scene, SchemeSetsTheModelAndKeysOverrideIt) {
     EXPECT_DOUBLE_EQ(textbook.solver.model.collisionDistance, 0.5);
     EXPECT_DOUBLE_EQ(textbook.solver.model.restitution, 0.2);
     EXPECT_DOUBLE_EQ(textbook.solver.model.reDensity, 2.1);
+    // The textbook code has one number-density kernel: the relaxation follows re_density.
+    EXPECT_DOUBLE_EQ(effectiveReRelaxation(textbook.solver.model), 2.1);
+    EXPECT_DOUBLE_EQ(toJson(textbook)["solver"]["re_relaxation"].get<double>(), 2.1);
+    {
+        json k = j;
+        k["solver"]["re_relaxation"] = 2.5;
+        EXPECT_DOUBLE_EQ(effectiveReRelaxation(parseScene(k).solver.model), 2.5);
+        k["solver"]["re_relaxation"] = 1.0; // must exceed one spacing
+        EXPECT_THROW((void)parseScene(k), SceneError);
+        k["solver"]["re_relaxation"] = "3";
+        EXPECT_THROW((void)parseScene(k), SceneError);
+    }
     j["solver"]["gradient_correction"] = true; // a key overrides its scheme's value
     EXPECT_EQ(parseScene(j).solver.model.gradient, GradientModel::MinimumPressureCorrected);
     EXPECT_EQ(toJson(parseScene(j))["solver"]["scheme"], "textbook");

@@ -428,9 +428,11 @@ TEST(Validation, StillTankHydrostaticPressureWithTheDefaultScheme) {
     RecordProperty("bottom_pressure_ratio", fmt::format("{:.4f}", r.pressureRatio));
     RecordProperty("max_speed_ratio", fmt::format("{:.4f}", r.maxSpeedRatio));
     RecordProperty("max_excursion_l0", fmt::format("{:.3f}", r.excursion));
-    EXPECT_NEAR(r.pressureRatio, 1.0, 0.02);
-    EXPECT_LT(r.maxSpeedRatio, 0.15);
-    EXPECT_LT(r.excursion, 3.0); // measured 2.49 l0 with the 2.8 l0 kernel (2.03 with 2.1)
+    // Issue 14's target: measured 0.9919 with the relaxation on 3.0 l0 (0.9852 on 2.8 l0,
+    // where a hexagonal packing holds n0 in 1.6 % less area and the water shrinks).
+    EXPECT_NEAR(r.pressureRatio, 1.0, 0.01);
+    EXPECT_LT(r.maxSpeedRatio, 0.15); // measured 0.098
+    EXPECT_LT(r.excursion, 2.0);      // measured 1.55 l0 (2.49 with the relaxation on 2.8 l0)
 }
 
 // The lidded tank (closed_tank_small.json: no free surface): what moves there comes from the
