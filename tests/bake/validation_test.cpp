@@ -278,8 +278,9 @@ TEST(Validation, DamBreakFrontFollowsMartinMoyceAtCiResolution) {
     RecordProperty("front_error_mean", fmt::format("{:.4f}", raw.mean));
     EXPECT_LT(raw.mean, 0.35)
         << "mean |dZ| over T in [0.8, 3.0] (bound: 0.35 a, docs/validation.md)";
-    // On the time origin tied to the first recorded front (alignedFront): measured 0.040 a mean,
-    // 0.101 a max with the default scheme (docs/validation.md section 7).
+    // On the time origin tied to the first recorded front (alignedFront): measured 0.057 a mean,
+    // 0.118 a max with the default scheme (0.047 / 0.101 with the relaxation on 2.8 l0;
+    // docs/validation.md 7.7).
     const FrontError aligned = pooled(alignedFront(run.series, martinMoyceA225()).error,
                                       alignedFront(run.series, martinMoyceA1125()).error);
     ASSERT_EQ(aligned.points, 7);
@@ -447,7 +448,9 @@ TEST(Validation, LiddedTankBulkStaysCalmWithTheDefaultScheme) {
     EXPECT_EQ(r.steps, 10000);
     EXPECT_EQ(r.escaped, 0u);
     RecordProperty("max_speed_ratio", fmt::format("{:.4f}", r.maxSpeedRatio));
-    EXPECT_LT(r.maxSpeedRatio, 0.12);
+    // Measured 0.0195 with the relaxation on 3.0 l0, 0.092 on 2.8 l0 (its row under the lid
+    // slid), 0.021 with the 2.1 l0 kernel (docs/validation.md 7.7).
+    EXPECT_LT(r.maxSpeedRatio, 0.04);
 }
 
 // The goal is max |u| < 1 % of sqrt(g H) after settling. The textbook (p_j - p_i^min)
