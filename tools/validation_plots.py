@@ -37,11 +37,7 @@ DAM_BREAK = [
 LOBOVSKY = [
     ("H/15", "lobovsky_small.json", []),
     ("H/30", "lobovsky.json", []),
-    # At H/60 a splash particle of the returning jet reaches 6.4 m/s at t = 1.48 s, Courant 0.51:
-    # the default limit 0.5 stops the run there; 0.8 lets sub-steps follow it, as surging.json
-    # does (docs/scenes.md, substep_courant; docs/validation.md 7.7).
-    ("H/60", "lobovsky.json", ["geometry.particle_spacing=0.005", "solver.dt=0.0004",
-                               "solver.courant_limit=0.8"]),
+    ("H/60", "lobovsky.json", ["geometry.particle_spacing=0.005", "solver.dt=0.0004"]),
 ]
 COLOURS = ["tab:blue", "tab:orange", "tab:green"]
 

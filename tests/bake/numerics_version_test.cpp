@@ -40,8 +40,6 @@ const std::map<int, std::string> kDigests = {
     // 3 split steps into sub-steps where a scene raises solver.courant_limit above
     // solver.substep_courant (0.5); the guard keeps the default limit, so its state is that of 2.
     {3, "437508a02c584e2f"},
-    // 4: the swell scheme's density relaxation on its own 3.0 l0 kernel (re_relaxation).
-    {4, "45e50d42eefff6e3"},
 };
 
 json guardScene() {

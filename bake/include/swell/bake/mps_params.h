@@ -193,12 +193,9 @@ inline SolverParams schemeParams(Scheme scheme) {
         // and measured across every validation case it keeps progressive waves from decaying
         // (docs/validation.md section 7.5).
         p.model.reDensity = 2.8;
-        // The density relaxation holds n at n0, and n0 is the square lattice's. On the 2.8 l0
-        // kernel a hexagonal packing reaches n0 in 1.6 % less area, so water that the flow
-        // and the shifting reorder shrinks by up to that much (the still tank's bed pressure);
-        // on 3.0 l0 both packings reach n0 in the same area (tools/packing_density.py), so the
-        // relaxation measures the density there (docs/validation.md section 7.7).
-        p.model.reRelaxation = 3.0;
+        // reRelaxation stays at re_density: 3.0 l0 keeps the still tank's volume (a hexagonal
+        // packing holds n0 in the square lattice's area there) but costs the held-out waves
+        // (docs/validation.md section 7.7).
     }
     return p;
 }

@@ -15,7 +15,6 @@ namespace swell::bake {
 /// Bump whenever the solver's results change (anything that moves a particle, by one bit or
 /// more, in tests/bake/numerics_version_test.cpp, which then fails and names the new digest to
 /// record). Recorded in checkpoints and in the cache metadata ("numerics_version").
-// 3: sub-steps (solver.substep_courant); 4: the density relaxation on 3.0 l0 (re_relaxation).
-inline constexpr int kNumericsVersion = 4;
+inline constexpr int kNumericsVersion = 3; // 3: sub-steps (solver.substep_courant)
 
 } // namespace swell::bake
