@@ -192,7 +192,6 @@ TEST(Validation, LobovskyScenesMatchTheExperimentGeometry) {
     }
 }
 
-// Pooling the two Martin & Moyce series weights their means by their point counts.
 namespace {
 /// The rows of a CSV text after its header, split at commas.
 std::vector<std::vector<std::string>> csvRows(const std::string& text, const std::string& header) {
@@ -243,6 +242,7 @@ TEST(Validation, RecordsCsvHoldEveryExperimentalPointAsCompared) {
     EXPECT_GT(k, 4u * 10u); // four gauges, each a record, not a stub
 }
 
+// Pooling the two Martin & Moyce series weights their means by their point counts.
 TEST(Validation, PooledFrontErrorsWeighByPoints) {
     const FrontError a{0.1, 0.3, 0.1, 3};
     const FrontError b{0.2, 0.25, -0.2, 1};
