@@ -48,6 +48,22 @@ void accumulate(RunTotals& t, const StepStats& s) {
     t.seconds += s.seconds();
 }
 
+/// Writes `text` to `path` whole or not at all: to a temporary name in the same folder,
+/// renamed when complete. Throws std::runtime_error naming the option, the file and the error.
+void writeTextFile(const std::filesystem::path& path, const std::string& text, const char* option) {
+    std::filesystem::path tmp = path;
+    tmp += fmt::format(".tmp-{}", ::getpid());
+    const int rc = swell::cache::writeFile(tmp, text.data(), text.size());
+    std::error_code ec;
+    if (rc == 0)
+        std::filesystem::rename(tmp, path, ec);
+    if (rc != 0 || ec) {
+        std::filesystem::remove(tmp, ec);
+        throw std::runtime_error(fmt::format("{} {}: cannot write: {}", option, path.string(),
+                                             std::strerror(rc != 0 ? rc : ec.value())));
+    }
+}
+
 json damBreak(const Scene& scene, double tEnd, const std::string& csv) {
     const Box column = scene.geometry.water.at(0);
     const double a = column.width();
@@ -76,10 +92,10 @@ json damBreak(const Scene& scene, double tEnd, const std::string& csv) {
         out["outcome"] = std::string("stopped: ") + e.what();
     }
     if (!csv.empty()) {
-        std::ofstream f(csv);
-        f << "T,Z\n";
+        std::string text = "T,Z\n";
         for (const auto& p : series)
-            f << fmt::format("{:.5f},{:.5f}\n", p.T, p.Z);
+            text += fmt::format("{:.5f},{:.5f}\n", p.T, p.Z);
+        writeTextFile(csv, text, "--csv");
     }
     if (out["outcome"] == "stable") {
         const FrontError e225 = compareFront(series, martinMoyceA225(), 0.8, 3.0);
@@ -172,17 +188,17 @@ json lobovsky(const Scene& scene, double tEnd, const std::string& csv) {
         out["outcome"] = std::string("stopped: ") + e.what();
     }
     if (!csv.empty()) {
-        std::ofstream f(csv);
-        f << "t";
+        std::string text = "t";
         for (const LevelGauge& g : gauges)
-            f << ",h_" << g.name;
-        f << "\n";
+            text += fmt::format(",h_{}", g.name);
+        text += "\n";
         for (std::size_t k = 0; k < series[0].size(); ++k) {
-            f << fmt::format("{:.5f}", series[0][k].t);
+            text += fmt::format("{:.5f}", series[0][k].t);
             for (const auto& s : series)
-                f << fmt::format(",{:.5f}", s[k].h);
-            f << "\n";
+                text += fmt::format(",{:.5f}", s[k].h);
+            text += "\n";
         }
+        writeTextFile(csv, text, "--csv");
     }
     if (out["outcome"] == "stable") {
         const double tLo = 0.0;
@@ -474,22 +490,6 @@ json regularWaveEnsemble(Scene scene, int n, double from, double to) {
     return out;
 }
 
-/// Writes `text` to `path` whole or not at all: to a temporary name in the same folder,
-/// renamed when complete. Throws std::runtime_error naming the file and the error.
-void writeTextFile(const std::filesystem::path& path, const std::string& text) {
-    std::filesystem::path tmp = path;
-    tmp += fmt::format(".tmp-{}", ::getpid());
-    const int rc = swell::cache::writeFile(tmp, text.data(), text.size());
-    std::error_code ec;
-    if (rc == 0)
-        std::filesystem::rename(tmp, path, ec);
-    if (rc != 0 || ec) {
-        std::filesystem::remove(tmp, ec);
-        throw std::runtime_error(fmt::format("--records {}: cannot write: {}", path.string(),
-                                             std::strerror(rc != 0 ? rc : ec.value())));
-    }
-}
-
 } // namespace
 
 int main(int argc, char** argv) {
@@ -505,7 +505,8 @@ int main(int argc, char** argv) {
         const Scene scene = loadValidateScene(cl);
         if (!cl.records.empty()) // before the run: a bad path fails now, not after it
             writeTextFile(cl.records,
-                          cl.run == Run::DamBreak ? martinMoyceRecordsCsv() : lobovskyRecordsCsv());
+                          cl.run == Run::DamBreak ? martinMoyceRecordsCsv() : lobovskyRecordsCsv(),
+                          "--records");
         if (cl.run == Run::DamBreak) {
             out = damBreak(scene, cl.damUntil, cl.csv);
         } else if (cl.run == Run::Lobovsky) {

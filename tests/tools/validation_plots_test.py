@@ -42,6 +42,17 @@ class ValidationPlots(unittest.TestCase):
                 gauges = {row["gauge"] for row in csv.DictReader(f)}
             self.assertEqual(gauges, {"H1", "H2", "H3", "H4"})
 
+    def test_unwritable_csv_and_records_are_one_clear_line_each(self):
+        scene = str(ROOT / "scenes" / "lobovsky_small.json")
+        for option in ("--csv", "--records"):
+            p = subprocess.run([str(BIN / "swell-validate"), "--threads", "1", "lobovsky", scene,
+                                "--until", "0.01", option, "/nonexistent/dir/x.csv"],
+                               capture_output=True, text=True)
+            self.assertEqual(p.returncode, 1, option)
+            lines = p.stderr.strip().splitlines()
+            self.assertEqual(len(lines), 1, p.stderr)
+            self.assertIn(f"{option} /nonexistent/dir/x.csv: cannot write", lines[0])
+
     def test_missing_binary_is_one_clear_line(self):
         with tempfile.TemporaryDirectory() as tmp:
             p = subprocess.run([sys.executable, str(TOOL), "--quick", "--bin", tmp,
