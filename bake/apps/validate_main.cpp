@@ -28,6 +28,7 @@
 #include "swell/bake/scene.h"
 #include "swell/bake/validation.h"
 #include "swell/cache/checked_write.h"
+#include "swell/cache/output_lock.h"
 
 using namespace swell::bake;
 using nlohmann::json;
@@ -51,8 +52,7 @@ void accumulate(RunTotals& t, const StepStats& s) {
 /// Writes `text` to `path` whole or not at all: to a temporary name in the same folder,
 /// renamed when complete. Throws std::runtime_error naming the option, the file and the error.
 void writeTextFile(const std::filesystem::path& path, const std::string& text, const char* option) {
-    std::filesystem::path tmp = path;
-    tmp += fmt::format(".tmp-{}", ::getpid());
+    const std::filesystem::path tmp = swell::cache::temporaryPath(path);
     const int rc = swell::cache::writeFile(tmp, text.data(), text.size());
     std::error_code ec;
     if (rc == 0)

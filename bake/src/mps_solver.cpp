@@ -161,7 +161,6 @@ MpsSolver::MpsSolver(const PhysicsParams& physics, const SolverParams& solver, P
     m_reL = model.reLaplacian * m_l0;
     m_collide = model.collisionDistance * m_l0;
     m_reR = effectiveReRelaxation(model) * m_l0;
-    m_ownRelaxation = m_reR != m_reN;
     m_reList = std::max({m_reN, m_reL, m_collide, m_reR}) + lists.skin * m_l0;
     // The number-density kernel (density, gradient, p_min) and the collisions reach only
     // re_N: they scan a short sub-list, half as long as the full one at the textbook radii.
@@ -482,7 +481,7 @@ void MpsSolver::numberDensityAndSurface() {
     // With a relaxation kernel of its own (re_relaxation), its sum takes the full list, which
     // reaches it; the short list is its sub-list in the same order, so the re_N sums below see
     // the same neighbours in the same order either way.
-    const bool ownR = m_ownRelaxation;
+    const bool ownR = m_reR != m_reN;
     const double reR2 = m_reR * m_reR;
     const double scan2 = ownR ? std::max(reN2, reR2) : reN2;
     std::size_t surface = 0;

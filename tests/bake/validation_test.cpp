@@ -433,12 +433,6 @@ TEST(Validation, StillTankHydrostaticPressureWithTheDefaultScheme) {
     EXPECT_LT(r.excursion, 3.0); // measured 2.49 l0 with the 2.8 l0 kernel (2.03 with 2.1)
 }
 
-// The lidded tank (closed_tank_small.json: no free surface): what moves there comes from the
-// bulk scheme. 10,000 steps, max |u| after 5 s: measured 0.092 of sqrt(g H) with the default
-// scheme (its fastest particles are those of the row under the lid, sliding along it; with
-// the 2.1 l0 number-density kernel of the scheme before, 0.021); the first swell scheme
-// (relaxed source) churned at 0.48 and the textbook scheme at 2.8 after 10 s
-// (docs/validation.md sections 7.1 and 7.5).
 TEST(Validation, StillTankWithTheRelaxationOnThreeSpacingsKeepsItsBedPressureWithinOnePercent) {
     // solver.re_relaxation = 3.0 (docs/validation.md 7.7): a hexagonal packing holds n0 in the
     // square lattice's area on 3.0 l0, so the water keeps its volume. Measured 0.9919 (the
@@ -452,6 +446,12 @@ TEST(Validation, StillTankWithTheRelaxationOnThreeSpacingsKeepsItsBedPressureWit
     EXPECT_LT(r.excursion, 2.0);
 }
 
+// The lidded tank (closed_tank_small.json: no free surface): what moves there comes from the
+// bulk scheme. 10,000 steps, max |u| after 5 s: measured 0.092 of sqrt(g H) with the default
+// scheme (its fastest particles are those of the row under the lid, sliding along it; with
+// the 2.1 l0 number-density kernel of the scheme before, 0.021); the first swell scheme
+// (relaxed source) churned at 0.48 and the textbook scheme at 2.8 after 10 s
+// (docs/validation.md sections 7.1 and 7.5).
 TEST(Validation, LiddedTankBulkStaysCalmWithTheDefaultScheme) {
     const Scene scene = loadScene(kScenes / "closed_tank_small.json");
     const StillTankResult r = runStillTank(scene, 10000, 5.0);

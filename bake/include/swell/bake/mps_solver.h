@@ -127,7 +127,6 @@ private:
     LatticeConstants m_latL;
     double m_reN, m_reL, m_reList, m_reShort, m_collide;
     double m_reR;           // the density relaxation's kernel radius (m)
-    bool m_ownRelaxation;   // m_reR != m_reN: its number density is a sum of its own (m_nRelax)
     double m_hlScale = 0.0; // higher-order Laplacian: k / rho (times re / r^3 per pair)
     double m_time = 0.0;
     long m_step = 0;
@@ -138,9 +137,9 @@ private:
     // work arrays (structure of arrays, sized once)
     std::vector<double> m_xs, m_ys;                         // positions at the last neighbour build
     std::vector<double> m_xStar, m_yStar, m_uStar, m_vStar; // predicted state
-    std::vector<double> m_divU;             // velocity divergence (mixed source term)
-    std::vector<double> m_fx, m_fy;         // neighbour distribution / (n0 l0) at r*
-    std::vector<double> m_nRelax;           // number density at r* on m_reR (m_ownRelaxation)
+    std::vector<double> m_divU;     // velocity divergence (mixed source term)
+    std::vector<double> m_fx, m_fy; // neighbour distribution / (n0 l0) at r*
+    std::vector<double> m_nRelax;   // number density at r* on m_reR (n* where m_reR = m_reN)
     std::vector<double> m_shiftX, m_shiftY; // shifting: sum (r_j - r_i) / r^2 w at r*
     std::vector<std::uint8_t> m_surface;    // 1 free surface (p = 0), 0 inside, kNotInPpe
     std::vector<std::uint8_t> m_layer;      // 1 on the surface layer (classification)
