@@ -28,7 +28,6 @@
 #include "swell/bake/scene.h"
 #include "swell/bake/validation.h"
 #include "swell/cache/checked_write.h"
-#include "swell/cache/output_lock.h"
 
 using namespace swell::bake;
 using nlohmann::json;
@@ -52,15 +51,11 @@ void accumulate(RunTotals& t, const StepStats& s) {
 /// Writes `text` to `path` whole or not at all: to a temporary name in the same folder,
 /// renamed when complete. Throws std::runtime_error naming the option, the file and the error.
 void writeTextFile(const std::filesystem::path& path, const std::string& text, const char* option) {
-    const std::filesystem::path tmp = swell::cache::temporaryPath(path);
-    const int rc = swell::cache::writeFile(tmp, text.data(), text.size());
-    std::error_code ec;
-    if (rc == 0)
-        std::filesystem::rename(tmp, path, ec);
-    if (rc != 0 || ec) {
-        std::filesystem::remove(tmp, ec);
-        throw std::runtime_error(fmt::format("{} {}: cannot write: {}", option, path.string(),
-                                             std::strerror(rc != 0 ? rc : ec.value())));
+    if (const swell::cache::ReplaceResult r =
+            swell::cache::replaceFile(path, text.data(), text.size());
+        r.error != 0) {
+        throw std::runtime_error(
+            fmt::format("{} {}: cannot write: {}", option, path.string(), std::strerror(r.error)));
     }
 }
 

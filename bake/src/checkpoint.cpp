@@ -1,15 +1,11 @@
 #include "swell/bake/checkpoint.h"
 
 #include <cerrno>
-#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <iterator>
 #include <limits>
 #include <span>
-
-#include <fcntl.h>
-#include <unistd.h>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -17,7 +13,6 @@
 #include <zstd.h>
 
 #include "swell/cache/checked_write.h"
-#include "swell/cache/output_lock.h"
 
 namespace swell::bake {
 namespace {
@@ -267,22 +262,12 @@ std::uint64_t writeCheckpoint(const fs::path& path, const Checkpoint& c) {
     put<std::uint64_t>(h + 32, XXH3_64bits(file.data() + kHeaderSize, n));
     put<std::uint64_t>(h + 40, XXH3_64bits(h, 40));
 
-    const fs::path tmp = cache::temporaryPath(path);
-    const auto fail = [&](const std::string& what, int err) {
-        std::error_code ec;
-        fs::remove(tmp, ec);
+    if (const cache::ReplaceResult r = cache::replaceFile(path, file.data(), file.size());
+        r.error != 0) {
         throw CheckpointError(fmt::format("{}: cannot write the checkpoint ({} {}): {}; the "
                                           "previous checkpoint, if any, is unchanged",
-                                          where(path), what, tmp.string(), std::strerror(err)));
-    };
-    if (const int err = cache::writeFile(tmp, file.data(), file.size()); err != 0)
-        fail("write", err);
-    if (std::rename(tmp.c_str(), path.c_str()) != 0)
-        fail("rename", errno);
-    const fs::path dir = path.has_parent_path() ? path.parent_path() : fs::path(".");
-    if (int dfd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY); dfd >= 0) {
-        ::fsync(dfd); // the rename itself survives a power cut
-        ::close(dfd);
+                                          where(path), r.step, r.temporary.string(),
+                                          std::strerror(r.error)));
     }
     return file.size();
 }

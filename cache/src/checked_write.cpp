@@ -6,7 +6,10 @@
 #include <stdexcept>
 #include <vector>
 
+#include <fcntl.h>
 #include <unistd.h>
+
+#include "swell/cache/output_lock.h"
 
 namespace swell::cache {
 namespace {
@@ -129,6 +132,30 @@ int writeFile(const std::filesystem::path& path, const void* data, std::size_t s
     if (std::fclose(f) != 0 && err == 0)
         err = errno != 0 ? errno : EIO;
     return err;
+}
+
+ReplaceResult replaceFile(const std::filesystem::path& path, const void* data, std::size_t size) {
+    ReplaceResult r;
+    r.temporary = temporaryPath(path);
+    r.error = writeFile(r.temporary, data, size);
+    r.step = "write";
+    if (r.error == 0) {
+        r.step = "rename";
+        if (std::rename(r.temporary.c_str(), path.c_str()) != 0)
+            r.error = errno != 0 ? errno : EIO;
+    }
+    if (r.error != 0) {
+        std::error_code ignored;
+        std::filesystem::remove(r.temporary, ignored);
+        return r;
+    }
+    r.step = "";
+    const std::filesystem::path dir = path.has_parent_path() ? path.parent_path() : ".";
+    if (const int fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY); fd >= 0) {
+        ::fsync(fd); // the rename itself survives a power cut
+        ::close(fd);
+    }
+    return r;
 }
 
 } // namespace swell::cache

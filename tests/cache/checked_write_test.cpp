@@ -13,6 +13,7 @@
 #include "cache_test_util.h"
 #include "swell/cache/checked_write.h"
 #include "swell/cache/error.h"
+#include "swell/cache/output_lock.h"
 #include "swell/cache/writer.h"
 
 using namespace swell::cache;
@@ -72,6 +73,37 @@ TEST_F(CheckedWrite, MatchPicksTheFilesThatFail) {
     armWriteFault({EIO, 0, ".ckpt"});
     EXPECT_EQ(writeFile(m_tmp.path() / "a.swell", "abc", 3), 0);
     EXPECT_EQ(writeFile(m_tmp.path() / "a.swell.ckpt.tmp-1", "abc", 3), EIO);
+}
+
+// replaceFile: the new bytes whole, or the old file untouched and no temporary, with the step
+// that failed named.
+TEST_F(CheckedWrite, ReplaceFileSwapsInTheWholeFileOrLeavesTheOldOne) {
+    const fs::path p = m_tmp.path() / "t.txt";
+    ReplaceResult r = replaceFile(p, "first", 5);
+    EXPECT_EQ(r.error, 0);
+    EXPECT_EQ(contents(p), "first");
+    r = replaceFile(p, "second", 6);
+    EXPECT_EQ(r.error, 0);
+    EXPECT_EQ(contents(p), "second");
+    EXPECT_EQ(filesIn(m_tmp.path()), 1u);
+
+    armWriteFault({ENOSPC, 3, ""});
+    r = replaceFile(p, "third!", 6);
+    disarmWriteFault();
+    EXPECT_EQ(r.error, ENOSPC);
+    EXPECT_STREQ(r.step, "write");
+    EXPECT_EQ(r.temporary, temporaryPath(p));
+    EXPECT_EQ(contents(p), "second");
+    EXPECT_EQ(filesIn(m_tmp.path()), 1u) << "a temporary was left";
+
+    // A folder in the way: the write succeeds, the rename over it fails.
+    const fs::path dir = m_tmp.path() / "d";
+    fs::create_directories(dir / "inside");
+    r = replaceFile(dir, "x", 1);
+    EXPECT_NE(r.error, 0);
+    EXPECT_STREQ(r.step, "rename");
+    EXPECT_TRUE(fs::is_directory(dir));
+    EXPECT_EQ(filesIn(m_tmp.path()), 2u) << "a temporary was left";
 }
 
 // A full disk while a cache is written: CacheError naming the cache and the reason, the

@@ -28,6 +28,20 @@ int writeAll(std::FILE* file, const void* data, std::size_t size,
 /// (callers write to a temporary name and remove it).
 int writeFile(const std::filesystem::path& path, const void* data, std::size_t size);
 
+/// What replaceFile did: error 0, or the errno of the failed step and that step's name
+/// ("write" the temporary, "rename" it over the file), for the caller's message.
+struct ReplaceResult {
+    int error = 0;
+    const char* step = "";
+    std::filesystem::path temporary; ///< the temporary name it wrote (removed on failure)
+};
+
+/// Replaces the file at `path` with `size` bytes of `data`, whole or not at all: writes them to
+/// temporaryPath(path) with writeFile, renames that over `path` and fsyncs the folder, so the
+/// rename itself survives a power cut. On failure the temporary is removed and `path` keeps
+/// what it held (or stays absent).
+ReplaceResult replaceFile(const std::filesystem::path& path, const void* data, std::size_t size);
+
 /// An injected fault: writes to files whose path contains `match` fail with `error` (ENOSPC,
 /// EIO) once `afterBytes` bytes have been written to such files.
 struct WriteFault {
