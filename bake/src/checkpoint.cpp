@@ -12,12 +12,15 @@
 #include <xxhash.h>
 #include <zstd.h>
 
+#include "swell/cache/byte_fields.h"
 #include "swell/cache/checked_write.h"
 
 namespace swell::bake {
 namespace {
 
 namespace fs = std::filesystem;
+using cache::getField;
+using cache::putField;
 
 // Header: magic, u32 version, u32 flags (0), u64 payload bytes (compressed), u64 payload
 // bytes (raw), u64 XXH3-64 of the compressed payload, u64 XXH3-64 of the 40 bytes before it.
@@ -219,15 +222,6 @@ Checkpoint decodePayload(std::span<const std::uint8_t> raw, const fs::path& path
     return c;
 }
 
-template <class T> void put(std::uint8_t* p, T v) {
-    std::memcpy(p, &v, sizeof(T));
-}
-template <class T> T get(const std::uint8_t* p) {
-    T v;
-    std::memcpy(&v, p, sizeof(T));
-    return v;
-}
-
 std::string shorten(const nlohmann::json& v) {
     std::string s = v.dump();
     if (s.size() > 80)
@@ -255,12 +249,12 @@ std::uint64_t writeCheckpoint(const fs::path& path, const Checkpoint& c) {
     file.resize(kHeaderSize + n);
     std::uint8_t* h = file.data();
     std::memcpy(h, kMagic, sizeof kMagic);
-    put<std::uint32_t>(h + 8, kVersion);
-    put<std::uint32_t>(h + 12, 0);
-    put<std::uint64_t>(h + 16, n);
-    put<std::uint64_t>(h + 24, raw.size());
-    put<std::uint64_t>(h + 32, XXH3_64bits(file.data() + kHeaderSize, n));
-    put<std::uint64_t>(h + 40, XXH3_64bits(h, 40));
+    putField<std::uint32_t>(h + 8, kVersion);
+    putField<std::uint32_t>(h + 12, 0);
+    putField<std::uint64_t>(h + 16, n);
+    putField<std::uint64_t>(h + 24, raw.size());
+    putField<std::uint64_t>(h + 32, XXH3_64bits(file.data() + kHeaderSize, n));
+    putField<std::uint64_t>(h + 40, XXH3_64bits(h, 40));
 
     if (const cache::ReplaceResult r = cache::replaceFile(path, file.data(), file.size());
         r.error != 0) {
@@ -301,20 +295,20 @@ Checkpoint readCheckpoint(const fs::path& path) {
         throw CheckpointError(
             fmt::format("{}: not a swell-bake checkpoint (wrong magic bytes)", where(path)));
     }
-    if (get<std::uint64_t>(h + 40) != XXH3_64bits(h, 40))
+    if (getField<std::uint64_t>(h + 40) != XXH3_64bits(h, 40))
         damaged("header checksum mismatch");
-    if (const auto v = get<std::uint32_t>(h + 8); v != kVersion) {
+    if (const auto v = getField<std::uint32_t>(h + 8); v != kVersion) {
         throw CheckpointError(
             fmt::format("{}: checkpoint format version {}; this swell-bake reads version {}",
                         where(path), v, kVersion));
     }
-    const auto packed = get<std::uint64_t>(h + 16);
-    const auto rawSize = get<std::uint64_t>(h + 24);
+    const auto packed = getField<std::uint64_t>(h + 16);
+    const auto rawSize = getField<std::uint64_t>(h + 24);
     if (packed != file.size() - kHeaderSize) {
         damaged(fmt::format("{} payload bytes, the header says {} (truncated?)",
                             file.size() - kHeaderSize, packed));
     }
-    if (get<std::uint64_t>(h + 32) != XXH3_64bits(h + kHeaderSize, packed))
+    if (getField<std::uint64_t>(h + 32) != XXH3_64bits(h + kHeaderSize, packed))
         damaged("payload checksum mismatch");
     // Sizes are checked before the payload is allocated: a damaged (or forged) header must not
     // make the reader allocate gigabytes. The writer's zstd frame records the raw size, and

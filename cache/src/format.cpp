@@ -25,12 +25,14 @@ template <class U>
 void deltaSection(std::uint8_t* base, std::size_t n, std::size_t stride, bool inverse) {
     if (inverse) {
         for (std::size_t i = stride; i < n; ++i)
-            put<U>(base + i * sizeof(U), static_cast<U>(get<U>(base + i * sizeof(U)) +
-                                                        get<U>(base + (i - stride) * sizeof(U))));
+            putField<U>(base + i * sizeof(U),
+                        static_cast<U>(getField<U>(base + i * sizeof(U)) +
+                                       getField<U>(base + (i - stride) * sizeof(U))));
     } else {
         for (std::size_t i = n; i-- > stride;)
-            put<U>(base + i * sizeof(U), static_cast<U>(get<U>(base + i * sizeof(U)) -
-                                                        get<U>(base + (i - stride) * sizeof(U))));
+            putField<U>(base + i * sizeof(U),
+                        static_cast<U>(getField<U>(base + i * sizeof(U)) -
+                                       getField<U>(base + (i - stride) * sizeof(U))));
     }
 }
 
@@ -66,16 +68,16 @@ void encodeRecord(const Header& h, const Frame& f, std::vector<std::uint8_t>& ou
     const Domain& d = h.domain;
     std::uint8_t* p = out.data();
     for (std::size_t i = 0; i < ns; ++i, p += 4) {
-        put(p, quantize(f.surface[2 * i], d.xMin, d.xMax));
-        put(p + 2, quantize(f.surface[2 * i + 1], d.yMin, d.yMax));
+        putField(p, quantize(f.surface[2 * i], d.xMin, d.xMax));
+        putField(p + 2, quantize(f.surface[2 * i + 1], d.yMin, d.yMax));
     }
     for (std::size_t i = 0; i < nsp; ++i, p += 4) {
-        put(p, quantize(f.splash[4 * i], d.xMin, d.xMax));
-        put(p + 2, quantize(f.splash[4 * i + 1], d.yMin, d.yMax));
+        putField(p, quantize(f.splash[4 * i], d.xMin, d.xMax));
+        putField(p + 2, quantize(f.splash[4 * i + 1], d.yMin, d.yMax));
     }
     for (std::size_t i = 0; i < nsp; ++i, p += 8) {
-        put(p, f.splash[4 * i + 2]);
-        put(p + 4, f.splash[4 * i + 3]);
+        putField(p, f.splash[4 * i + 2]);
+        putField(p + 4, f.splash[4 * i + 3]);
     }
 }
 
@@ -92,16 +94,16 @@ Frame decodeRecord(const Header& h, std::span<const std::uint8_t> raw, std::uint
     const Domain& d = h.domain;
     const std::uint8_t* p = raw.data();
     for (std::size_t i = 0; i < ns; ++i, p += 4) {
-        f.surface[2 * i] = dequantize(get<std::uint16_t>(p), d.xMin, d.xMax);
-        f.surface[2 * i + 1] = dequantize(get<std::uint16_t>(p + 2), d.yMin, d.yMax);
+        f.surface[2 * i] = dequantize(getField<std::uint16_t>(p), d.xMin, d.xMax);
+        f.surface[2 * i + 1] = dequantize(getField<std::uint16_t>(p + 2), d.yMin, d.yMax);
     }
     for (std::size_t i = 0; i < nsp; ++i, p += 4) {
-        f.splash[4 * i] = dequantize(get<std::uint16_t>(p), d.xMin, d.xMax);
-        f.splash[4 * i + 1] = dequantize(get<std::uint16_t>(p + 2), d.yMin, d.yMax);
+        f.splash[4 * i] = dequantize(getField<std::uint16_t>(p), d.xMin, d.xMax);
+        f.splash[4 * i + 1] = dequantize(getField<std::uint16_t>(p + 2), d.yMin, d.yMax);
     }
     for (std::size_t i = 0; i < nsp; ++i, p += 8) {
-        f.splash[4 * i + 2] = get<float>(p);
-        f.splash[4 * i + 3] = get<float>(p + 4);
+        f.splash[4 * i + 2] = getField<float>(p);
+        f.splash[4 * i + 3] = getField<float>(p + 4);
     }
     return f;
 }

@@ -1,19 +1,16 @@
 #pragma once
 // On-disk layout of a .swell file (docs/cache-format.md). Private to swell_cache.
 
+#include "swell/cache/byte_fields.h"
 #include "swell/cache/frame.h"
 #include "swell/cache/header.h"
 
-#include <bit>
 #include <cstdint>
-#include <cstring>
 #include <span>
 #include <string>
 #include <vector>
 
 namespace swell::cache::format {
-
-static_assert(std::endian::native == std::endian::little, "swell caches are little-endian");
 
 /// PNG-style magic: non-ASCII first byte, CR LF and ^Z catch text-mode mangling.
 inline constexpr std::uint8_t kMagic[8] = {0x89, 'S', 'W', 'L', '\r', '\n', 0x1a, '\n'};
@@ -44,15 +41,6 @@ enum Offset : std::size_t {
     kOffIndexOffset = 80,
     kOffHeaderChecksum = 88,
 };
-
-template <class T> void put(std::uint8_t* p, T v) {
-    std::memcpy(p, &v, sizeof(T));
-}
-template <class T> T get(const std::uint8_t* p) {
-    T v;
-    std::memcpy(&v, p, sizeof(T));
-    return v;
-}
 
 /// Bytes of the decoded record of a frame with these counts.
 std::uint64_t rawRecordSize(Encoding enc, std::uint64_t surfaceCount, std::uint64_t splashCount);

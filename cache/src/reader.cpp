@@ -117,13 +117,13 @@ Reader::Reader(fs::path path) : m_path(std::move(path)) {
         throw fail("cannot read the header");
     if (std::memcmp(head.data(), kMagic, sizeof kMagic) != 0)
         throw fail("not a swell cache (bad magic)");
-    m_version = get<std::uint32_t>(&head[kOffVersion]);
+    m_version = getField<std::uint32_t>(&head[kOffVersion]);
     if (m_version == 0 || m_version > kFormatVersion)
         throw fail("format version " + std::to_string(m_version) +
                    " is not readable by this program (reads up to " +
                    std::to_string(kFormatVersion) + ")");
-    const auto metaLen = get<std::uint32_t>(&head[kOffMetadataLength]);
-    const auto headerSize = get<std::uint32_t>(&head[kOffHeaderSize]);
+    const auto metaLen = getField<std::uint32_t>(&head[kOffMetadataLength]);
+    const auto headerSize = getField<std::uint32_t>(&head[kOffHeaderSize]);
     if (metaLen > kMaxMetadataBytes || headerSize != kFixedHeaderSize + metaLen)
         throw fail("header damaged: metadata length " + std::to_string(metaLen) +
                    " disagrees with header size " + std::to_string(headerSize));
@@ -132,38 +132,38 @@ Reader::Reader(fs::path path) : m_path(std::move(path)) {
     head.resize(headerSize);
     if (!readAt(fd.get(), head.data() + kFixedHeaderSize, metaLen, kFixedHeaderSize))
         throw fail("cannot read the header metadata");
-    if (headerChecksum(head) != get<std::uint64_t>(&head[kOffHeaderChecksum]))
+    if (headerChecksum(head) != getField<std::uint64_t>(&head[kOffHeaderChecksum]))
         throw fail("header checksum mismatch (header damaged, or the file was never finished)");
 
     Header& h = m_header;
-    const auto enc = get<std::uint32_t>(&head[kOffEncoding]);
+    const auto enc = getField<std::uint32_t>(&head[kOffEncoding]);
     if (enc > static_cast<std::uint32_t>(Encoding::Quantized16))
         throw fail("unknown encoding " + std::to_string(enc));
     h.encoding = static_cast<Encoding>(enc);
-    const auto flags = get<std::uint32_t>(&head[kOffFlags]);
+    const auto flags = getField<std::uint32_t>(&head[kOffFlags]);
     if (flags & ~(kFlagShuffle | kFlagDelta))
         throw fail("unknown flags " + std::to_string(flags));
     h.shuffle = (flags & kFlagShuffle) != 0;
     h.delta = (flags & kFlagDelta) != 0;
-    h.domain = {get<float>(&head[kOffDomain]), get<float>(&head[kOffDomain + 4]),
-                get<float>(&head[kOffDomain + 8]), get<float>(&head[kOffDomain + 12])};
+    h.domain = {getField<float>(&head[kOffDomain]), getField<float>(&head[kOffDomain + 4]),
+                getField<float>(&head[kOffDomain + 8]), getField<float>(&head[kOffDomain + 12])};
     const Domain& d = h.domain;
     if (!(std::isfinite(d.xMin) && std::isfinite(d.xMax) && std::isfinite(d.yMin) &&
           std::isfinite(d.yMax) && d.xMax > d.xMin && d.yMax > d.yMin))
         throw fail("header damaged: invalid domain bounds");
-    h.dt = get<double>(&head[kOffDt]);
-    h.frameInterval = get<std::uint32_t>(&head[kOffFrameInterval]);
+    h.dt = getField<double>(&head[kOffDt]);
+    h.frameInterval = getField<std::uint32_t>(&head[kOffFrameInterval]);
     if (!(h.dt > 0.0 && std::isfinite(h.dt)) || h.frameInterval == 0)
         throw fail("header damaged: invalid dt or frame interval");
-    h.compressionLevel = static_cast<int>(get<std::uint32_t>(&head[kOffLevel]));
-    h.seed = get<std::uint64_t>(&head[kOffSeed]);
+    h.compressionLevel = static_cast<int>(getField<std::uint32_t>(&head[kOffLevel]));
+    h.seed = getField<std::uint64_t>(&head[kOffSeed]);
     h.metadataJson.assign(reinterpret_cast<const char*>(head.data() + kFixedHeaderSize), metaLen);
     if (!nlohmann::json::accept(h.metadataJson))
         throw fail("header metadata is not valid JSON");
 
     // --- frame index (at the end: count * 40 bytes, then its checksum)
-    const auto count = get<std::uint64_t>(&head[kOffFrameCount]);
-    const auto indexOffset = get<std::uint64_t>(&head[kOffIndexOffset]);
+    const auto count = getField<std::uint64_t>(&head[kOffFrameCount]);
+    const auto indexOffset = getField<std::uint64_t>(&head[kOffIndexOffset]);
     if (indexOffset < headerSize || indexOffset > m_fileSize)
         throw fail("index offset " + std::to_string(indexOffset) + " outside the file (" +
                    std::to_string(m_fileSize) + " bytes)");
@@ -179,7 +179,7 @@ Reader::Reader(fs::path path) : m_path(std::move(path)) {
     if (!readAt(fd.get(), index.data(), index.size(), indexOffset))
         throw fail("cannot read the frame index");
     if (checksum(index.data(), count * kIndexEntrySize) !=
-        get<std::uint64_t>(&index[count * kIndexEntrySize]))
+        getField<std::uint64_t>(&index[count * kIndexEntrySize]))
         throw fail("frame index checksum mismatch (index damaged)");
 
     m_index.resize(count);
@@ -187,8 +187,9 @@ Reader::Reader(fs::path path) : m_path(std::move(path)) {
     for (std::size_t i = 0; i < count; ++i) {
         const std::uint8_t* p = &index[i * kIndexEntrySize];
         FrameInfo& e = m_index[i];
-        e = {get<std::uint64_t>(p),      get<std::uint64_t>(p + 8),  get<std::uint64_t>(p + 16),
-             get<std::uint32_t>(p + 24), get<std::uint32_t>(p + 28), get<std::uint64_t>(p + 32)};
+        e = {getField<std::uint64_t>(p),      getField<std::uint64_t>(p + 8),
+             getField<std::uint64_t>(p + 16), getField<std::uint32_t>(p + 24),
+             getField<std::uint32_t>(p + 28), getField<std::uint64_t>(p + 32)};
         auto bad = [&](const std::string& what) {
             return fail("frame " + std::to_string(i) + ": " + what);
         };

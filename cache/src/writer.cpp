@@ -93,23 +93,25 @@ Writer::Writer(fs::path path, Header header)
     std::vector<std::uint8_t> head(format::kFixedHeaderSize, 0);
     std::memcpy(head.data(), format::kMagic, sizeof format::kMagic);
     using namespace format;
-    put<std::uint32_t>(&head[kOffVersion], kFormatVersion);
-    put<std::uint32_t>(&head[kOffHeaderSize],
-                       static_cast<std::uint32_t>(kFixedHeaderSize + m_header.metadataJson.size()));
-    put<std::uint32_t>(&head[kOffEncoding], static_cast<std::uint32_t>(m_header.encoding));
-    put<std::uint32_t>(&head[kOffFlags],
-                       (m_header.shuffle ? kFlagShuffle : 0u) | (m_header.delta ? kFlagDelta : 0u));
-    put<float>(&head[kOffDomain + 0], m_header.domain.xMin);
-    put<float>(&head[kOffDomain + 4], m_header.domain.yMin);
-    put<float>(&head[kOffDomain + 8], m_header.domain.xMax);
-    put<float>(&head[kOffDomain + 12], m_header.domain.yMax);
-    put<double>(&head[kOffDt], m_header.dt);
-    put<std::uint32_t>(&head[kOffFrameInterval], m_header.frameInterval);
-    put<std::uint32_t>(&head[kOffLevel], static_cast<std::uint32_t>(m_header.compressionLevel));
-    put<std::uint64_t>(&head[kOffSeed], m_header.seed);
-    put<float>(&head[kOffMaxError], m_header.maxPositionError());
-    put<std::uint32_t>(&head[kOffMetadataLength],
-                       static_cast<std::uint32_t>(m_header.metadataJson.size()));
+    putField<std::uint32_t>(&head[kOffVersion], kFormatVersion);
+    putField<std::uint32_t>(
+        &head[kOffHeaderSize],
+        static_cast<std::uint32_t>(kFixedHeaderSize + m_header.metadataJson.size()));
+    putField<std::uint32_t>(&head[kOffEncoding], static_cast<std::uint32_t>(m_header.encoding));
+    putField<std::uint32_t>(&head[kOffFlags], (m_header.shuffle ? kFlagShuffle : 0u) |
+                                                  (m_header.delta ? kFlagDelta : 0u));
+    putField<float>(&head[kOffDomain + 0], m_header.domain.xMin);
+    putField<float>(&head[kOffDomain + 4], m_header.domain.yMin);
+    putField<float>(&head[kOffDomain + 8], m_header.domain.xMax);
+    putField<float>(&head[kOffDomain + 12], m_header.domain.yMax);
+    putField<double>(&head[kOffDt], m_header.dt);
+    putField<std::uint32_t>(&head[kOffFrameInterval], m_header.frameInterval);
+    putField<std::uint32_t>(&head[kOffLevel],
+                            static_cast<std::uint32_t>(m_header.compressionLevel));
+    putField<std::uint64_t>(&head[kOffSeed], m_header.seed);
+    putField<float>(&head[kOffMaxError], m_header.maxPositionError());
+    putField<std::uint32_t>(&head[kOffMetadataLength],
+                            static_cast<std::uint32_t>(m_header.metadataJson.size()));
     try {
         writeBytes(head.data(), head.size());
         writeBytes(m_header.metadataJson.data(), m_header.metadataJson.size());
@@ -184,12 +186,12 @@ void Writer::finish() {
     for (std::size_t i = 0; i < m_index.size(); ++i) {
         std::uint8_t* p = &index[i * kIndexEntrySize];
         const FrameInfo& e = m_index[i];
-        put<std::uint64_t>(p, e.offset);
-        put<std::uint64_t>(p + 8, e.compressedSize);
-        put<std::uint64_t>(p + 16, e.rawSize);
-        put<std::uint32_t>(p + 24, e.surfaceCount);
-        put<std::uint32_t>(p + 28, e.splashCount);
-        put<std::uint64_t>(p + 32, e.checksum);
+        putField<std::uint64_t>(p, e.offset);
+        putField<std::uint64_t>(p + 8, e.compressedSize);
+        putField<std::uint64_t>(p + 16, e.rawSize);
+        putField<std::uint32_t>(p + 24, e.surfaceCount);
+        putField<std::uint32_t>(p + 28, e.splashCount);
+        putField<std::uint64_t>(p + 32, e.checksum);
     }
     writeBytes(index.data(), index.size());
     const std::uint64_t indexSum = checksum(index.data(), index.size());
@@ -197,8 +199,8 @@ void Writer::finish() {
 
     // Patch frame count and index offset, then checksum the header + metadata.
     std::uint8_t patch[16];
-    put<std::uint64_t>(patch, m_index.size());
-    put<std::uint64_t>(patch + 8, indexOffset);
+    putField<std::uint64_t>(patch, m_index.size());
+    putField<std::uint64_t>(patch + 8, indexOffset);
     std::vector<std::uint8_t> head(kFixedHeaderSize + m_header.metadataJson.size());
     int err = 0;
     auto fail = [&](const char* what) {
