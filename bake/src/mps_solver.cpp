@@ -161,19 +161,22 @@ MpsSolver::MpsSolver(const PhysicsParams& physics, const SolverParams& solver, P
     m_reL = model.reLaplacian * m_l0;
     m_collide = model.collisionDistance * m_l0;
     m_reR = effectiveReRelaxation(model) * m_l0;
-    m_reList = std::max({m_reN, m_reL, m_collide, m_reR}) + lists.skin * m_l0;
+    m_reP = model.rePacking * m_l0;
+    m_reList = std::max({m_reN, m_reL, m_collide, m_reR, m_reP}) + lists.skin * m_l0;
     // The number-density kernel (density, gradient, p_min) and the collisions reach only
     // re_N: they scan a short sub-list, half as long as the full one at the textbook radii.
     m_reShort = std::min(m_reList, std::max(m_reN, m_collide) + lists.skin * m_l0);
     m_latN = latticeConstants(m_l0, m_reN);
     m_latL = latticeConstants(m_l0, m_reL);
     m_latR = latticeConstants(m_l0, m_reR);
+    if (m_reP > 0.0)
+        m_latP = latticeConstants(m_l0, m_reP);
     // Khayyer & Gotoh (2010) higher-order Laplacian, normalized on the lattice (kernel.h).
     m_hlScale = m_latL.higherOrderLaplacian / m_phys.density;
     m_grid.configure(m_domain, m_reList, n, lists.maxNeighbors);
 
     for (auto* v : {&m_xs, &m_ys, &m_xStar, &m_yStar, &m_uStar, &m_vStar, &m_uC, &m_vC, &m_divU,
-                    &m_fx, &m_fy, &m_shiftX, &m_shiftY, &m_nRelax}) {
+                    &m_fx, &m_fy, &m_shiftX, &m_shiftY, &m_nRelax, &m_nPack}) {
         v->assign(n, 0.0);
     }
     m_surface.assign(n, 0);
@@ -478,12 +481,15 @@ void MpsSolver::numberDensityAndSurface() {
     const double asymmetric = model.distributionThreshold * m_latN.flatSurfaceAsymmetry;
     const double fScale = 1.0 / (m_latN.n0 * m_l0);
     const bool shifting = model.shifting > 0.0;
-    // With a relaxation kernel of its own (re_relaxation), its sum takes the full list, which
-    // reaches it; the short list is its sub-list in the same order, so the re_N sums below see
-    // the same neighbours in the same order either way.
+    // With a relaxation kernel of its own (re_relaxation) or a packing kernel (re_packing),
+    // their sums take the full list, which reaches them; the short list is its sub-list in the
+    // same order, so the re_N sums below see the same neighbours in the same order either way.
     const bool ownR = m_reR != m_reN;
+    const bool packing = m_reP > 0.0;
+    const bool wide = ownR || packing;
     const double reR2 = m_reR * m_reR;
-    const double scan2 = ownR ? std::max(reN2, reR2) : reN2;
+    const double reP2 = m_reP * m_reP;
+    const double scan2 = std::max({reN2, ownR ? reR2 : 0.0, reP2});
     std::size_t surface = 0;
 #pragma omp parallel for schedule(static) reduction(+ : surface) if (n >= kParallelMin)
     for (std::size_t i = 0; i < n; ++i) {
@@ -492,13 +498,16 @@ void MpsSolver::numberDensityAndSurface() {
         double fx = 0.0, fy = 0.0;
         double cx = 0.0, cy = 0.0;
         double sR = 0.0;
+        double sP = 0.0;
         const bool shiftSums = shifting && !isFixed(m_p.kind[i]); // fixed particles never shift
         forNeighbours(
-            ownR ? m_grid.neighbors(i) : m_grid.shortNeighbors(i), m_xStar, m_yStar, i, scan2,
+            wide ? m_grid.neighbors(i) : m_grid.shortNeighbors(i), m_xStar, m_yStar, i, scan2,
             [&](std::uint32_t j, double dx, double dy, double r2) {
-                if (ownR) {
-                    if (r2 < reR2)
+                if (wide) {
+                    if (ownR && r2 < reR2)
                         sR += mpsWeight(std::sqrt(r2), m_reR);
+                    if (packing && r2 < reP2)
+                        sP += mpsWeight(std::sqrt(r2), m_reP);
                     if (r2 >= reN2)
                         return;
                 }
@@ -518,6 +527,7 @@ void MpsSolver::numberDensityAndSurface() {
             });
         m_p.n[i] = s;
         m_nRelax[i] = ownR ? sR : s;
+        m_nPack[i] = sP;
         m_divU[i] = coefD * div;
         m_fx[i] = fx * fScale;
         m_fy[i] = fy * fScale;
@@ -544,6 +554,32 @@ void MpsSolver::numberDensityAndSurface() {
         }
     }
     m_stats.surfaceParticles = surface;
+    m_packing = packing ? measurePacking() : 1.0;
+}
+
+double MpsSolver::measurePacking() const {
+    // P = mean(n_R / n0_R) / mean(n_P / n0_P) over the water particles whose neighbourhoods are
+    // full on both kernels: off the free surface and the surface layer, and with a neighbour
+    // distribution below kFull, half of what a flat lattice's second row has on 2.8 l0
+    // (0.123; tools/packing_density.py), so rows that a surface truncates do not count. On
+    // the square lattice the water starts on, P = 1; as the flow and the shifting reorder it
+    // towards a hexagonal packing, P falls below 1 (0.984 for a hexagonal packing on
+    // R = 2.8 l0 and a 3.0 l0 packing kernel), and n0 P is the density the relaxation's
+    // kernel reads for water of the starting volume. Summed in index order: the same P with
+    // any thread count.
+    constexpr double kFull = 0.05;
+    const std::size_t n = m_p.size();
+    double sumR = 0.0, sumP = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+        if (m_p.kind[i] != ParticleKind::Water || m_surface[i] != 0 || m_layer[i] != 0 ||
+            std::hypot(m_fx[i], m_fy[i]) >= kFull)
+            continue;
+        sumR += m_nRelax[i];
+        sumP += m_nPack[i];
+    }
+    if (sumR <= 0.0 || sumP <= 0.0)
+        return 1.0; // no full neighbourhood (a spray of particles): aim at n0
+    return (sumR / m_latR.n0) / (sumP / m_latP.n0);
 }
 
 void MpsSolver::assemblePressureEquation(double dt) {
@@ -585,6 +621,7 @@ void MpsSolver::assemblePressureEquation(double dt) {
     const double compress = m_par.pressure.compressibility / (dt * dt);
     const double gamma = m_par.pressure.relaxation;
     const double n0 = m_latR.n0;
+    const double target = n0 * m_packing;
     const bool mixed = m_par.pressure.sourceTerm == SourceTerm::Mixed;
     std::vector<double>& b = m_ppe.rhs();
     std::vector<double>& x = m_ppe.solution();
@@ -622,7 +659,9 @@ void MpsSolver::assemblePressureEquation(double dt) {
         // K&O 1996 PPE source, relaxed (textbook): gamma / dt^2 (n* - n0) / n0. Mixed
         // (Tanaka & Masunaga 2010): - div(u*) / dt + gamma / dt^2 (n* - n0) / n0. n* and n0
         // on the relaxation's kernel (re_relaxation; re_density unless set).
-        double rhs = gamma / (dt * dt) * (m_nRelax[i] - n0) / n0;
+        // With re_packing the target is n0 P (measurePacking), the density of water that
+        // keeps its starting volume in the packing it has now.
+        double rhs = gamma / (dt * dt) * (m_nRelax[i] - target) / n0;
         if (mixed)
             rhs -= m_divU[i] / dt;
         b[static_cast<std::size_t>(r)] = rhs;

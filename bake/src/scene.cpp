@@ -265,6 +265,12 @@ Scene parseScene(const json& j) {
         m.reLaplacian = s.number("re_laplacian", m.reLaplacian, 1.0, 10.0, true, " (l0)");
         m.reRelaxation =
             s.number("re_relaxation", effectiveReRelaxation(m), 1.0, 10.0, true, " (l0)");
+        m.rePacking = s.number("re_packing", m.rePacking, 0.0, 10.0, false, " (l0)");
+        if (m.rePacking > 0.0 && m.rePacking <= 1.0) {
+            throw SceneError(
+                "solver.re_packing",
+                fmt::format("{:g} is out of range: must be 0 (off) or > 1 (l0)", m.rePacking));
+        }
         m.surfaceThreshold = s.number("surface_threshold", m.surfaceThreshold, 0.0, 1.0, true);
         e.relaxation = s.number("relaxation", e.relaxation, 0.0, 1.0, true);
         e.compressibility =
@@ -489,6 +495,7 @@ json toJson(const Scene& sc) {
           {"re_density", s.model.reDensity},
           {"re_laplacian", s.model.reLaplacian},
           {"re_relaxation", effectiveReRelaxation(s.model)},
+          {"re_packing", s.model.rePacking},
           {"surface_threshold", s.model.surfaceThreshold},
           {"relaxation", s.pressure.relaxation},
           {"compressibility", s.pressure.compressibility},

@@ -157,6 +157,37 @@ TEST(MpsSolver, DensityRelaxationTakesItsOwnKernelOnlyWhereItDiffers) {
     EXPECT_EQ(differ(unset, run(3.0)), unset.count(ParticleKind::Water)); // every water particle
 }
 
+TEST(MpsSolver, PackingFactorIsOneOnTheStartLatticeAndOnlyActsWhenSet) {
+    // re_packing unset: P = 1 and the default's bits. Set: P is 1 on the square lattice the
+    // water starts on (to round-off) and moves once the dam break reorders the particles.
+    Scene scene = smallDamBreak();
+    scene.solver = schemeParams(Scheme::Swell);
+    scene.solver.time.dt = 0.001;
+    const auto run = [&](double rePacking, int steps, double* packing) {
+        Scene s = scene;
+        s.solver.model.rePacking = rePacking;
+        MpsSolver solver = makeSolver(s);
+        for (int k = 0; k < steps; ++k)
+            solver.step();
+        *packing = solver.packingFactor();
+        return solver.exportState().particles;
+    };
+    const auto differ = [](const Particles& a, const Particles& b) {
+        std::size_t d = 0;
+        for (std::size_t i = 0; i < a.size(); ++i)
+            d += a.x[i] != b.x[i] || a.y[i] != b.y[i] || a.vx[i] != b.vx[i] || a.vy[i] != b.vy[i];
+        return d;
+    };
+    double p0 = 0.0, p1 = 0.0, pOff = 0.0;
+    (void)run(3.0, 1, &p1);
+    EXPECT_NEAR(p1, 1.0, 1e-3) << "the start lattice, after one step";
+    const Particles off = run(0.0, 80, &pOff);
+    EXPECT_EQ(pOff, 1.0);
+    const Particles on = run(3.0, 80, &p0);
+    EXPECT_NE(p0, 1.0);
+    EXPECT_GT(differ(off, on), 0u);
+}
+
 TEST(MpsSolver, PreconditionersCutIterations) {
     int iterations[4] = {0, 0, 0, 0};
     int k = 0;

@@ -369,6 +369,23 @@ TEST(Scene, SchemeSetsTheModelAndKeysOverrideIt) {
         k["solver"]["re_relaxation"] = "3";
         EXPECT_THROW((void)parseScene(k), SceneError);
     }
+    {
+        json k = j;
+        EXPECT_DOUBLE_EQ(toJson(parseScene(k))["solver"]["re_packing"].get<double>(), 0.0);
+        k["solver"]["re_packing"] = 3.0;
+        EXPECT_DOUBLE_EQ(parseScene(k).solver.model.rePacking, 3.0);
+        EXPECT_DOUBLE_EQ(toJson(parseScene(k))["solver"]["re_packing"].get<double>(), 3.0);
+        for (const double bad : {0.5, 1.0, -1.0, 11.0}) { // 0 (off) or above one spacing
+            k["solver"]["re_packing"] = bad;
+            try {
+                (void)parseScene(k);
+                ADD_FAILURE() << bad << " accepted";
+            } catch (const SceneError& e) {
+                EXPECT_NE(std::string(e.what()).find("solver.re_packing"), std::string::npos)
+                    << e.what();
+            }
+        }
+    }
     j["solver"]["gradient_correction"] = true; // a key overrides its scheme's value
     EXPECT_EQ(parseScene(j).solver.model.gradient, GradientModel::MinimumPressureCorrected);
     EXPECT_EQ(toJson(parseScene(j))["solver"]["scheme"], "textbook");

@@ -120,6 +120,14 @@ struct ModelParams {
     /// re (l0) of the number density in the PPE source's density term, gamma / dt^2
     /// (n - n0) / n0; 0: re_density, the textbook code's one number-density kernel.
     double reRelaxation = 0.0;
+    /// re (l0) of the kernel that reads how the particles are packed; 0 turns it off. When
+    /// set, the density term aims at n0 P instead of n0, with one P for the whole particle set:
+    /// the mean of n / n0 on the relaxation's kernel over the mean on this one, over the water
+    /// particles with full neighbourhoods (packingFactor). On a kernel on which a hexagonal and
+    /// a square packing reach their n0 in the same area (3.0 l0), the water then keeps the
+    /// volume it started with when the flow reorders it, while every local density error is
+    /// still read on the relaxation's kernel.
+    double rePacking = 0.0;
     double surfaceThreshold = 0.97; ///< beta: n* < beta n0 is free surface, p = 0 (eq. (3))
     double collisionDistance = 0.5; ///< pairs closer than this (l0) collide (textbook code)
     double restitution = 0.2;       ///< coefficient of restitution of collisions (-), textbook code

@@ -87,6 +87,9 @@ public:
     Eigen::Map<const Eigen::VectorXd> ppeSolution() const;
     /// Particle of each PPE row of the last step (for tests).
     std::vector<std::uint32_t> ppeRowParticles() const;
+    /// The packing factor P the last step's density term aimed at, n0 P (1 without
+    /// re_packing; ModelParams::rePacking).
+    double packingFactor() const { return m_packing; }
     /// Free-surface flags of the last step (1 = p fixed at 0).
     const std::vector<std::uint8_t>& surfaceFlags() const { return m_surface; }
     /// Surface-layer flags of the last step for the classification of eq. (4) (1 = on the
@@ -107,6 +110,7 @@ private:
     void predictVelocity(double dt);
     void resolveCollisions(double dt);
     void numberDensityAndSurface();
+    double measurePacking() const;
     void assemblePressureEquation(double dt);
     void solvePressure();
     void correctVelocity(double dt);
@@ -125,8 +129,11 @@ private:
     LatticeConstants m_latN;
     LatticeConstants m_latR; // re = effectiveReRelaxation (the PPE's density term)
     LatticeConstants m_latL;
+    LatticeConstants m_latP; // re = rePacking (when set)
     double m_reN, m_reL, m_reList, m_reShort, m_collide;
     double m_reR;           // the density relaxation's kernel radius (m)
+    double m_reP;           // the packing kernel's radius (m), 0 when off
+    double m_packing = 1.0; // P of the last step: the density term aims at n0 P
     double m_hlScale = 0.0; // higher-order Laplacian: k / rho (times re / r^3 per pair)
     double m_time = 0.0;
     long m_step = 0;
@@ -140,6 +147,7 @@ private:
     std::vector<double> m_divU;     // velocity divergence (mixed source term)
     std::vector<double> m_fx, m_fy; // neighbour distribution / (n0 l0) at r*
     std::vector<double> m_nRelax;   // number density at r* on m_reR (n* where m_reR = m_reN)
+    std::vector<double> m_nPack;    // number density at r* on m_reP (when set)
     std::vector<double> m_shiftX, m_shiftY; // shifting: sum (r_j - r_i) / r^2 w at r*
     std::vector<std::uint8_t> m_surface;    // 1 free surface (p = 0), 0 inside, kNotInPpe
     std::vector<std::uint8_t> m_layer;      // 1 on the surface layer (classification)
