@@ -230,7 +230,11 @@ Conservation measureConservation(const MpsSolver& solver, const Scene& scene, do
         c.potentialEnergy += mass * g * (P.y[i] - bed);
     }
     const double nMean = interior ? nSum / static_cast<double>(interior) : n0;
-    c.volume = static_cast<double>(c.water) * l0 * l0 * (nMean > 0.0 ? n0 / nMean : 1.0);
+    // Read on the packing kernel where the scheme has one (re_packing): the density kernel
+    // reads a hexagonal packing as denser than a square one of the same area, by the packing
+    // factor the solver aims its density term at (MpsSolver::packingFactor, 1 without).
+    c.volume = static_cast<double>(c.water) * l0 * l0 * (nMean > 0.0 ? n0 / nMean : 1.0) *
+               solver.packingFactor();
     return c;
 }
 

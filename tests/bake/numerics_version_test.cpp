@@ -40,6 +40,8 @@ const std::map<int, std::string> kDigests = {
     // 3 split steps into sub-steps where a scene raises solver.courant_limit above
     // solver.substep_courant (0.5); the guard keeps the default limit, so its state is that of 2.
     {3, "437508a02c584e2f"},
+    // 4: the default scheme's density term aims at n0 times the packing factor (re_packing).
+    {4, "2010c855bbab618b"},
 };
 
 json guardScene() {

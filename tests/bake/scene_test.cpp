@@ -347,6 +347,7 @@ TEST(Scene, SchemeSetsTheModelAndKeysOverrideIt) {
     EXPECT_DOUBLE_EQ(byDefault.solver.model.reDensity, 2.8);
     EXPECT_DOUBLE_EQ(effectiveReRelaxation(byDefault.solver.model), 2.8); // re_density's
     EXPECT_DOUBLE_EQ(toJson(byDefault)["solver"]["re_relaxation"].get<double>(), 2.8);
+    EXPECT_DOUBLE_EQ(byDefault.solver.model.rePacking, 3.0);
     j["solver"]["scheme"] = "textbook";
     const Scene textbook = parseScene(j);
     EXPECT_EQ(textbook.solver.model.gradient, GradientModel::MinimumPressure);
@@ -360,6 +361,7 @@ TEST(Scene, SchemeSetsTheModelAndKeysOverrideIt) {
     // The textbook code has one number-density kernel: the relaxation follows re_density.
     EXPECT_DOUBLE_EQ(effectiveReRelaxation(textbook.solver.model), 2.1);
     EXPECT_DOUBLE_EQ(toJson(textbook)["solver"]["re_relaxation"].get<double>(), 2.1);
+    EXPECT_DOUBLE_EQ(textbook.solver.model.rePacking, 0.0);
     {
         json k = j;
         k["solver"]["re_relaxation"] = 2.5;

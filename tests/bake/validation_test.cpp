@@ -413,12 +413,12 @@ StillTankResult runStillTank(Scene scene, long steps, double settle) {
 } // namespace
 
 // Still tank, 20,000 steps at dt = 1 ms, H = 0.1 m, l0 = H/10, water's viscosity, default
-// scheme: measured 0.985 rho g H (docs/validation.md sections 7 and 7.5; the textbook scheme
-// reads 1.054). Max |u| after 2 s: 0.134 of sqrt(g H) (the textbook scheme and the corrected
-// gradient with the relaxed source keep churning at 0.5); the 1 % goal is not met. The
-// particles move far less than those speeds say: measured, no water particle gets further
-// than 2.49 l0 from where it was at 2 s in the next 18 s (the textbook scheme's particles
-// wander 16.5 l0 in 10 s, swell-validate still-tank).
+// scheme: measured 0.9975 rho g H (docs/validation.md section 7.8; without the packing factor
+// 0.985, below; the textbook scheme reads 1.054). Max |u| after 2 s: 0.098 of sqrt(g H) (the
+// textbook scheme and the corrected gradient with the relaxed source keep churning at 0.5);
+// the 1 % goal is not met. The particles move far less than those speeds say: measured, no
+// water particle gets further than 1.71 l0 from where it was at 2 s in the next 18 s (the
+// textbook scheme's particles wander 16.5 l0 in 10 s, swell-validate still-tank).
 TEST(Validation, StillTankHydrostaticPressureWithTheDefaultScheme) {
     const Scene scene = loadScene(kScenes / "still_tank_small.json");
     ASSERT_EQ(scene.solver.scheme, Scheme::Swell);
@@ -428,9 +428,9 @@ TEST(Validation, StillTankHydrostaticPressureWithTheDefaultScheme) {
     RecordProperty("bottom_pressure_ratio", fmt::format("{:.4f}", r.pressureRatio));
     RecordProperty("max_speed_ratio", fmt::format("{:.4f}", r.maxSpeedRatio));
     RecordProperty("max_excursion_l0", fmt::format("{:.3f}", r.excursion));
-    EXPECT_NEAR(r.pressureRatio, 1.0, 0.02);
-    EXPECT_LT(r.maxSpeedRatio, 0.15);
-    EXPECT_LT(r.excursion, 3.0); // measured 2.49 l0 with the 2.8 l0 kernel (2.03 with 2.1)
+    EXPECT_NEAR(r.pressureRatio, 1.0, 0.01);
+    EXPECT_LT(r.maxSpeedRatio, 0.12);
+    EXPECT_LT(r.excursion, 2.2); // measured 1.71 l0 (2.49 without the packing factor)
 }
 
 TEST(Validation, StillTankWithTheRelaxationOnThreeSpacingsKeepsItsBedPressureWithinOnePercent) {
@@ -446,23 +446,26 @@ TEST(Validation, StillTankWithTheRelaxationOnThreeSpacingsKeepsItsBedPressureWit
     EXPECT_LT(r.excursion, 2.0);
 }
 
-TEST(Validation, StillTankWithThePackingFactorKeepsItsBedPressureWithinOnePercent) {
-    // solver.re_packing = 3.0 (docs/validation.md 7.7): the density term on 2.8 l0 aims at
-    // n0 P, P the packing read on 3.0 l0, so water the flow reorders keeps its volume.
-    // Measured 0.9975 here (`swell-validate still-tank --settle 10`: 0.9982); the default reads
-    // 0.985 here, which this bound fails.
-    Scene scene = loadScene(kScenes / "still_tank_small.json", {"solver.re_packing=3.0"});
+TEST(Validation, StillTankWithoutThePackingFactorShrinks) {
+    // What the default's packing factor (solver.re_packing = 3.0, docs/validation.md 7.8)
+    // does: without it the density term holds n at the square lattice's n0 on 2.8 l0 while
+    // the water reorders towards a hexagonal packing, which reaches that n0 in 1.6 % less
+    // area, so the water settles shorter and its bed pressure lower. Measured 0.985 (the
+    // default: 0.9975, above).
+    Scene scene = loadScene(kScenes / "still_tank_small.json", {"solver.re_packing=0"});
     const StillTankResult r = runStillTank(scene, 20000, 2.0);
     EXPECT_EQ(r.escaped, 0u);
     RecordProperty("bottom_pressure_ratio", fmt::format("{:.4f}", r.pressureRatio));
-    EXPECT_NEAR(r.pressureRatio, 1.0, 0.01);
-    EXPECT_LT(r.maxSpeedRatio, 0.15);
+    EXPECT_LT(r.pressureRatio, 0.99);
+    EXPECT_GT(r.pressureRatio, 0.97);
+    EXPECT_LT(r.maxSpeedRatio, 0.15); // measured 0.134
 }
 
 // The lidded tank (closed_tank_small.json: no free surface): what moves there comes from the
-// bulk scheme. 10,000 steps, max |u| after 5 s: measured 0.092 of sqrt(g H) with the default
-// scheme (its fastest particles are those of the row under the lid, sliding along it; with
-// the 2.1 l0 number-density kernel of the scheme before, 0.021); the first swell scheme
+// bulk scheme. 10,000 steps, max |u| after 5 s: measured 0.030 of sqrt(g H) with the default
+// scheme (0.092 without its packing factor, whose fastest particles were those of the row
+// under the lid, sliding along it; with the 2.1 l0 number-density kernel of the scheme
+// before, 0.021); the first swell scheme
 // (relaxed source) churned at 0.48 and the textbook scheme at 2.8 after 10 s
 // (docs/validation.md sections 7.1 and 7.5).
 TEST(Validation, LiddedTankBulkStaysCalmWithTheDefaultScheme) {
@@ -471,7 +474,7 @@ TEST(Validation, LiddedTankBulkStaysCalmWithTheDefaultScheme) {
     EXPECT_EQ(r.steps, 10000);
     EXPECT_EQ(r.escaped, 0u);
     RecordProperty("max_speed_ratio", fmt::format("{:.4f}", r.maxSpeedRatio));
-    EXPECT_LT(r.maxSpeedRatio, 0.12);
+    EXPECT_LT(r.maxSpeedRatio, 0.05);
 }
 
 // The goal is max |u| < 1 % of sqrt(g H) after settling. The textbook (p_j - p_i^min)

@@ -15,6 +15,7 @@ namespace swell::bake {
 /// Bump whenever the solver's results change (anything that moves a particle, by one bit or
 /// more, in tests/bake/numerics_version_test.cpp, which then fails and names the new digest to
 /// record). Recorded in checkpoints and in the cache metadata ("numerics_version").
-inline constexpr int kNumericsVersion = 3; // 3: sub-steps (solver.substep_courant)
+// 3: sub-steps (solver.substep_courant); 4: the default scheme's packing factor (re_packing).
+inline constexpr int kNumericsVersion = 4;
 
 } // namespace swell::bake
