@@ -63,6 +63,14 @@ std::string runUntilFailure(MpsSolver& solver, int steps) {
     return "";
 }
 
+/// Particles whose position or velocity differs by any bit between two runs of one scene.
+std::size_t particlesThatDiffer(const Particles& a, const Particles& b) {
+    std::size_t d = 0;
+    for (std::size_t i = 0; i < a.size(); ++i)
+        d += a.x[i] != b.x[i] || a.y[i] != b.y[i] || a.vx[i] != b.vx[i] || a.vy[i] != b.vy[i];
+    return d;
+}
+
 } // namespace
 
 TEST(MpsSolver, PpeMatrixIsSymmetricDiagonallyDominantAndSolvedExactly) {
@@ -146,15 +154,10 @@ TEST(MpsSolver, DensityRelaxationTakesItsOwnKernelOnlyWhereItDiffers) {
             solver.step();
         return solver.exportState().particles;
     };
-    const auto differ = [](const Particles& a, const Particles& b) {
-        std::size_t d = 0;
-        for (std::size_t i = 0; i < a.size(); ++i)
-            d += a.x[i] != b.x[i] || a.y[i] != b.y[i] || a.vx[i] != b.vx[i] || a.vy[i] != b.vy[i];
-        return d;
-    };
     const Particles unset = run(0.0);
-    EXPECT_EQ(differ(unset, run(scene.solver.model.reDensity)), 0u);
-    EXPECT_EQ(differ(unset, run(3.0)), unset.count(ParticleKind::Water)); // every water particle
+    EXPECT_EQ(particlesThatDiffer(unset, run(scene.solver.model.reDensity)), 0u);
+    EXPECT_EQ(particlesThatDiffer(unset, run(3.0)),
+              unset.count(ParticleKind::Water)); // every water particle
 }
 
 TEST(MpsSolver, PackingFactorIsOneOnTheStartLatticeAndOnlyActsWhenSet) {
@@ -172,12 +175,6 @@ TEST(MpsSolver, PackingFactorIsOneOnTheStartLatticeAndOnlyActsWhenSet) {
         *packing = solver.packingFactor();
         return solver.exportState().particles;
     };
-    const auto differ = [](const Particles& a, const Particles& b) {
-        std::size_t d = 0;
-        for (std::size_t i = 0; i < a.size(); ++i)
-            d += a.x[i] != b.x[i] || a.y[i] != b.y[i] || a.vx[i] != b.vx[i] || a.vy[i] != b.vy[i];
-        return d;
-    };
     double p0 = 0.0, p1 = 0.0, pOff = 0.0;
     (void)run(3.0, 1, &p1);
     EXPECT_NEAR(p1, 1.0, 1e-3) << "the start lattice, after one step";
@@ -185,7 +182,7 @@ TEST(MpsSolver, PackingFactorIsOneOnTheStartLatticeAndOnlyActsWhenSet) {
     EXPECT_EQ(pOff, 1.0);
     const Particles on = run(3.0, 80, &p0);
     EXPECT_NE(p0, 1.0);
-    EXPECT_GT(differ(off, on), 0u);
+    EXPECT_GT(particlesThatDiffer(off, on), 0u);
 }
 
 TEST(MpsSolver, PreconditionersCutIterations) {
