@@ -560,10 +560,10 @@ void MpsSolver::numberDensityAndSurface() {
 double MpsSolver::measurePacking() const {
     // P = mean(n_R / n0_R) / mean(n_P / n0_P) over the water particles whose neighbourhoods are
     // full on both kernels: off the free surface and the surface layer, and with a neighbour
-    // distribution below kFull, half of what a flat lattice's second row has on 2.8 l0
+    // distribution below kFull, under half of what a flat lattice's second row has on 2.8 l0
     // (0.123; tools/packing_density.py), so rows that a surface truncates do not count. On
     // the square lattice the water starts on, P = 1; as the flow and the shifting reorder it
-    // towards a hexagonal packing, P falls below 1 (0.984 for a hexagonal packing on
+    // towards a hexagonal packing, P falls below 1 (about 0.984 for a hexagonal packing on
     // R = 2.8 l0 and a 3.0 l0 packing kernel), and n0 P is the density the relaxation's
     // kernel reads for water of the starting volume. Summed in index order: the same P with
     // any thread count.
