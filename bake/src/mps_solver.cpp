@@ -383,7 +383,7 @@ void MpsSolver::advance(double dt) {
     timer.lap(Phase::PpeSolve);
     correctVelocity(dt); // 4. pressure gradient correction
     if (m_par.model.shifting > 0.0)
-        shiftParticles();
+        shiftParticles(dt);
     checkState(dt);
     timer.lap(Phase::Correction);
 }
@@ -619,7 +619,9 @@ void MpsSolver::assemblePressureEquation(double dt) {
     const bool higher = m_par.model.higherOrderLaplacian;
     const double minR = 0.5 * m_l0; // HL: the r^-3 weight is capped below half a spacing
     const double compress = m_par.pressure.compressibility / (dt * dt);
-    const double gamma = m_par.pressure.relaxation;
+    // gamma is given per reference_step and scaled to this step's dt, so the relaxation acts
+    // at one rate per second whatever the step (coefficientScale).
+    const double gamma = m_par.pressure.relaxation * coefficientScale(m_par.time, dt);
     const double n0 = m_latR.n0;
     const double target = n0 * m_packing;
     const bool mixed = m_par.pressure.sourceTerm == SourceTerm::Mixed;
@@ -775,7 +777,8 @@ void MpsSolver::correctVelocity(double dt) {
     m_stats.maxSpeed = std::sqrt(maxSpeed2);
     m_stats.courant = std::max(m_stats.courant, m_stats.maxSpeed * dt / m_l0);
 }
-void MpsSolver::shiftParticles() {
+
+void MpsSolver::shiftParticles(double dt) {
     // Particle shifting (Xu et al. 2009; Lind et al. 2012's Fickian form in MPS operators):
     // dr = -C l0^2 grad c with grad c_i = 2d/n0 sum_j (r_j - r_i) / r^2 w (the gradient of a
     // uniform concentration, zero on a regular lattice), so crowded particles spread out. The
@@ -783,7 +786,10 @@ void MpsSolver::shiftParticles() {
     // Free-surface particles move only along the surface (the normal is minus their
     // neighbour distribution), so shifting neither lifts nor sinks the surface.
     const std::size_t n = m_p.size();
-    const double d = m_par.model.shifting * m_l0 * m_l0 * 2.0 * kDim / m_latN.n0;
+    // C is given per reference_step and scaled to this step's dt: a diffusion of
+    // C l0^2 / reference_step per second whatever the step (coefficientScale).
+    const double c = m_par.model.shifting * coefficientScale(m_par.time, dt);
+    const double d = c * m_l0 * m_l0 * 2.0 * kDim / m_latN.n0;
     const double maxShift = 0.2 * m_l0;
 #pragma omp parallel for schedule(static) if (n >= kParallelMin)
     for (std::size_t i = 0; i < n; ++i) {

@@ -1,5 +1,6 @@
 #include "swell/bake/scene.h"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <limits>
@@ -259,6 +260,7 @@ Scene parseScene(const json& j) {
         t.courantTarget = s.number("courant_target", t.courantTarget, 0.0, 1.0, true);
         t.courantLimit = s.number("courant_limit", t.courantLimit, 0.0, 2.0, true);
         t.substepCourant = s.number("substep_courant", t.substepCourant, 0.0, 1.0);
+        t.referenceStep = s.number("reference_step", t.referenceStep, 0.0, kInf, false, " (s)");
         run.expectedSpeed =
             s.number("expected_speed", run.expectedSpeed, 0.0, kInf, false, " (m/s)");
         m.reDensity = s.number("re_density", m.reDensity, 1.0, 10.0, true, " (l0)");
@@ -294,6 +296,18 @@ Scene parseScene(const json& j) {
                                          "along the surface normal that test finds); set "
                                          "solver.shifting to 0 to use another surface test",
                                          m.shifting));
+        }
+        // gamma and C are per reference_step; a longer step multiplies them, and neither may
+        // act as more than 1 per step (their own ranges).
+        const double scale = coefficientScale(t, t.dt);
+        if (scale > 1.0 && std::max(e.relaxation, m.shifting) * scale > 1.0) {
+            throw SceneError(
+                "solver.dt",
+                fmt::format("{:g} s is {:g} times solver.reference_step ({:g} s), so the density "
+                            "relaxation ({:g}) and the shifting ({:g}) would act as {:g} and {:g} "
+                            "per step, above 1; take a smaller dt or a longer reference_step",
+                            t.dt, scale, t.referenceStep, e.relaxation, m.shifting,
+                            e.relaxation * scale, m.shifting * scale));
         }
         const bool corrected = s.boolean("gradient_correction", usesCorrectiveMatrix(m.gradient));
         const bool symmetric = s.boolean("symmetric_gradient", usesSymmetricPairs(m.gradient));
@@ -491,6 +505,7 @@ json toJson(const Scene& sc) {
           {"courant_target", s.time.courantTarget},
           {"courant_limit", s.time.courantLimit},
           {"substep_courant", s.time.substepCourant},
+          {"reference_step", s.time.referenceStep},
           {"expected_speed", sc.run.expectedSpeed},
           {"re_density", s.model.reDensity},
           {"re_laplacian", s.model.reLaplacian},

@@ -185,6 +185,38 @@ TEST(MpsSolver, PackingFactorIsOneOnTheStartLatticeAndOnlyActsWhenSet) {
     EXPECT_GT(particlesThatDiffer(off, on), 0u);
 }
 
+TEST(MpsSolver, RelaxationAndShiftingArePerReferenceStep) {
+    // With reference_step = 1 ms, gamma and C are given per millisecond: a 2 ms step applies
+    // twice each, exactly what per-step coefficients (reference_step 0, the default) of twice
+    // the value do. So the relaxation and the shifting act at one rate per second whatever
+    // the step.
+    Scene scene = smallDamBreak();
+    scene.solver = schemeParams(Scheme::Swell);
+    EXPECT_EQ(scene.solver.time.referenceStep, 0.0); // the default: per step
+    scene.solver.time.dt = 0.002;
+    const auto run = [&](double referenceStep, double gamma, double shifting) {
+        Scene s = scene;
+        s.solver.time.referenceStep = referenceStep;
+        s.solver.pressure.relaxation = gamma;
+        s.solver.model.shifting = shifting;
+        MpsSolver solver = makeSolver(s);
+        for (int k = 0; k < 60; ++k)
+            solver.step();
+        return solver.exportState().particles;
+    };
+    const Particles scaled = run(0.001, 0.02, 0.02);
+    EXPECT_EQ(particlesThatDiffer(scaled, run(0.0, 0.04, 0.04)), 0u);
+    // The step equal to reference_step: the per-step bits.
+    EXPECT_EQ(particlesThatDiffer(run(0.002, 0.02, 0.02), run(0.0, 0.02, 0.02)), 0u);
+    // And the scale acts on both: doubling only one of them is another result.
+    EXPECT_GT(particlesThatDiffer(scaled, run(0.0, 0.04, 0.02)), 0u);
+    EXPECT_GT(particlesThatDiffer(scaled, run(0.0, 0.02, 0.04)), 0u);
+    TimeStepParams perMillisecond;
+    perMillisecond.referenceStep = 0.001;
+    EXPECT_DOUBLE_EQ(coefficientScale(perMillisecond, 0.0005), 0.5);
+    EXPECT_EQ(coefficientScale(TimeStepParams{}, 0.0005), 1.0); // per step
+}
+
 TEST(MpsSolver, PreconditionersCutIterations) {
     int iterations[4] = {0, 0, 0, 0};
     int k = 0;

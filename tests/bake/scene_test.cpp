@@ -333,6 +333,35 @@ TEST(Scene, RippleScenesLoadAndRecyclingErrorsNameTheKey) {
     EXPECT_EQ(errorKey(j), "recycling");
 }
 
+TEST(Scene, ReferenceStepScalesTheRelaxationAndShiftingAndRejectsAStepTooLongForThem) {
+    json j = minimal();
+    const Scene byDefault = parseScene(j);
+    EXPECT_DOUBLE_EQ(byDefault.solver.time.referenceStep, 0.0); // per step
+    EXPECT_DOUBLE_EQ(toJson(byDefault)["solver"]["reference_step"].get<double>(), 0.0);
+    j["solver"]["reference_step"] = 0.0005;
+    EXPECT_DOUBLE_EQ(toJson(parseScene(j))["solver"]["reference_step"].get<double>(), 0.0005);
+    EXPECT_DOUBLE_EQ(parseScene(j).solver.time.referenceStep, 0.0005);
+    EXPECT_DOUBLE_EQ(coefficientScale(parseScene(j).solver.time, 0.001), 2.0);
+    j["solver"]["reference_step"] = -0.001;
+    EXPECT_EQ(errorKey(j), "solver.reference_step");
+    j["solver"]["reference_step"] = "1 ms";
+    EXPECT_EQ(errorKey(j), "solver.reference_step");
+    // A step 60 times the reference would apply gamma = C = 0.02 as 1.2 per step. (A slow
+    // scene, so that the Courant check of dt at the expected speed passes.)
+    j["solver"]["reference_step"] = 0.001;
+    j["solver"]["expected_speed"] = 0.01;
+    j["solver"]["dt"] = 0.06;
+    EXPECT_EQ(errorKey(j), "solver.dt");
+    j["solver"]["dt"] = 0.05; // exactly 1 per step: allowed
+    EXPECT_EQ(errorKey(j), "<accepted>");
+    j["solver"]["dt"] = 0.06;
+    j["solver"]["reference_step"] = 0.0; // per step
+    EXPECT_EQ(errorKey(j), "<accepted>");
+    json t = minimal();
+    t["solver"]["scheme"] = "textbook";
+    EXPECT_DOUBLE_EQ(parseScene(t).solver.time.referenceStep, 0.0);
+}
+
 TEST(Scene, SchemeSetsTheModelAndKeysOverrideIt) {
     json j = minimal();
     const Scene byDefault = parseScene(j);

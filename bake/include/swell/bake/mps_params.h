@@ -108,7 +108,22 @@ struct TimeStepParams {
     /// taken as k = ceil(C / substepCourant) equal sub-steps (at most kMaxSubsteps), so a fast
     /// splash is followed in finer steps while frames stay evenly spaced; 0 turns it off (-).
     double substepCourant = 0.5;
+    /// The step (s) at which the density relaxation (PressureParams::relaxation, gamma) and
+    /// the particle shifting (ModelParams::shifting, C) are given. A step of dt applies
+    /// gamma dt / referenceStep and C dt / referenceStep (coefficientScale), so both act at
+    /// the same rate per second whatever the step: a halved dt, a sub-step, an adaptive step.
+    /// 0 (both schemes' default): per step, whatever its length, as the textbook code has it,
+    /// so halving dt doubles their rate per second. Measured (docs/validation.md 7.9): per
+    /// second, a still tank stays as calm at half its step (per step it churns), but the
+    /// dam-break error then grows with resolution (per step it holds).
+    double referenceStep = 0.0;
 };
+
+/// The factor on the per-step relaxation and shifting coefficients for a step of dt:
+/// dt / referenceStep, or 1 when referenceStep is 0 (per step). Exactly 1 at dt = referenceStep.
+constexpr double coefficientScale(const TimeStepParams& t, double dt) {
+    return t.referenceStep > 0.0 ? dt / t.referenceStep : 1.0;
+}
 
 /// Most sub-steps one step is split into (TimeStepParams::substepCourant); a flow that needs
 /// more is stopped by the detector's Courant limit.

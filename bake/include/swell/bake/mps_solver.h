@@ -114,7 +114,7 @@ private:
     void assemblePressureEquation(double dt);
     void solvePressure();
     void correctVelocity(double dt);
-    void shiftParticles();
+    void shiftParticles(double dt);
     void checkState(double dt);
     double chooseDt() const;
     int substepsFor(double dt) const;
