@@ -619,8 +619,8 @@ void MpsSolver::assemblePressureEquation(double dt) {
     const bool higher = m_par.model.higherOrderLaplacian;
     const double minR = 0.5 * m_l0; // HL: the r^-3 weight is capped below half a spacing
     const double compress = m_par.pressure.compressibility / (dt * dt);
-    // gamma is given per reference_step and scaled to this step's dt, so the relaxation acts
-    // at one rate per second whatever the step (coefficientScale).
+    // gamma per step, or, with reference_step set, per reference_step scaled to this step's
+    // dt, so the relaxation acts at one rate per second whatever the step (coefficientScale).
     const double gamma = m_par.pressure.relaxation * coefficientScale(m_par.time, dt);
     const double n0 = m_latR.n0;
     const double target = n0 * m_packing;
@@ -786,8 +786,8 @@ void MpsSolver::shiftParticles(double dt) {
     // Free-surface particles move only along the surface (the normal is minus their
     // neighbour distribution), so shifting neither lifts nor sinks the surface.
     const std::size_t n = m_p.size();
-    // C is given per reference_step and scaled to this step's dt: a diffusion of
-    // C l0^2 / reference_step per second whatever the step (coefficientScale).
+    // C per step, or, with reference_step set, per reference_step scaled to this step's dt: a
+    // diffusion of C l0^2 / reference_step per second whatever the step (coefficientScale).
     const double c = m_par.model.shifting * coefficientScale(m_par.time, dt);
     const double d = c * m_l0 * m_l0 * 2.0 * kDim / m_latN.n0;
     const double maxShift = 0.2 * m_l0;
