@@ -298,9 +298,10 @@ Scene parseScene(const json& j) {
                                          m.shifting));
         }
         // gamma and C are per reference_step; a longer step multiplies them, and neither may
-        // act as more than 1 per step (their own ranges).
+        // act as more than 1 per step (their own ranges, so a step no longer than
+        // reference_step always passes).
         const double scale = coefficientScale(t, t.dt);
-        if (scale > 1.0 && std::max(e.relaxation, m.shifting) * scale > 1.0) {
+        if (std::max(e.relaxation, m.shifting) * scale > 1.0) {
             throw SceneError(
                 "solver.dt",
                 fmt::format("{:g} s is {:g} times solver.reference_step ({:g} s), so the density "

@@ -339,9 +339,10 @@ TEST(Scene, ReferenceStepScalesTheRelaxationAndShiftingAndRejectsAStepTooLongFor
     EXPECT_DOUBLE_EQ(byDefault.solver.time.referenceStep, 0.0); // per step
     EXPECT_DOUBLE_EQ(toJson(byDefault)["solver"]["reference_step"].get<double>(), 0.0);
     j["solver"]["reference_step"] = 0.0005;
-    EXPECT_DOUBLE_EQ(toJson(parseScene(j))["solver"]["reference_step"].get<double>(), 0.0005);
-    EXPECT_DOUBLE_EQ(parseScene(j).solver.time.referenceStep, 0.0005);
-    EXPECT_DOUBLE_EQ(coefficientScale(parseScene(j).solver.time, 0.001), 2.0);
+    const Scene set = parseScene(j);
+    EXPECT_DOUBLE_EQ(set.solver.time.referenceStep, 0.0005);
+    EXPECT_DOUBLE_EQ(toJson(set)["solver"]["reference_step"].get<double>(), 0.0005);
+    EXPECT_DOUBLE_EQ(coefficientScale(set.solver.time, 0.001), 2.0);
     j["solver"]["reference_step"] = -0.001;
     EXPECT_EQ(errorKey(j), "solver.reference_step");
     j["solver"]["reference_step"] = "1 ms";
