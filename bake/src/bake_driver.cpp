@@ -21,6 +21,7 @@
 #include "swell/bake/numerics_version.h"
 #include "swell/bake/probes.h"
 #include "swell/bake/replay_window.h"
+#include "swell/bake/spill.h"
 #include "swell/bake/wave_theory.h"
 #include "swell/cache/checked_write.h"
 #include "swell/cache/output_lock.h"
@@ -120,6 +121,36 @@ std::size_t recycle(MpsSolver& solver, const Scene& scene) {
         nearY.push_back(y);
     }
     return moved;
+}
+
+/// Water gone over the tank's walls leaves the run (spill.h); returns how many particles went.
+/// Water found outside the tank lower than a wall's top went through a solid: the bake stops
+/// there, as at any other divergence.
+std::size_t removeSpilledWater(MpsSolver& solver, const TankOutline& tank) {
+    const std::vector<EscapedWater> escaped = findEscapedWater(solver.particles(), tank);
+    if (escaped.empty())
+        return 0;
+    const Particles& P = solver.particles();
+    std::vector<std::size_t> gone;
+    for (const EscapedWater& e : escaped) {
+        const std::size_t i = e.particle;
+        if (!spilled(e.route)) {
+            const Box& t = tank.inner;
+            throw DivergenceError(
+                solver.stepCount(), solver.time(), i,
+                fmt::format("water particle at ({:.6g}, {:.6g}) m, velocity ({:.4g}, {:.4g}) m/s, "
+                            "went {} of the tank [{:.6g}, {:.6g}] x [{:.6g}, {:.6g}] m",
+                            P.x[i], P.y[i], P.vx[i], P.vy[i], toString(e.route), t.x0, t.x1, t.y0,
+                            t.y1));
+        }
+        gone.push_back(i);
+    }
+    if (gone.size() >= P.count(ParticleKind::Water)) {
+        throw DivergenceError(solver.stepCount(), solver.time(), gone.front(),
+                              "all the water has gone over the tank's walls");
+    }
+    solver.removeWater(gone);
+    return gone.size();
 }
 
 /// A bake killed with SIGKILL leaves its temporary cache (CACHE.tmp-<pid>), maybe a
@@ -277,6 +308,7 @@ json toJson(const BakeSummary& s) {
         {"split_steps", s.splitSteps},
         {"substeps", s.substeps},
         {"recycled", s.recycled},
+        {"spilled", s.spilled},
         {"cache_bytes", s.cacheBytes},
         {"raw_bytes", s.rawBytes},
         {"resumed_from_step", s.resumedFromStep},
@@ -444,11 +476,20 @@ BakeSummary runBake(const Scene& scene, const BakeOptions& opt) {
     } else {
         store(); // frame 0: the initial state
     }
+    const std::optional<TankOutline> outline =
+        scene.geometry.tank ? std::optional(tankOutline(scene.geometry)) : std::nullopt;
     const auto solveStart = Clock::now();
     for (long k = first + 1; k <= steps; ++k) {
         const StepStats& st = solver.step();
         if (scene.recycling)
             tot.recycled += recycle(solver, scene);
+        if (outline) {
+            if (const std::size_t gone = removeSpilledWater(solver, *outline); gone > 0) {
+                if (tot.spilled == 0)
+                    tot.firstSpillTime = solver.time();
+                tot.spilled += gone;
+            }
+        }
         tot.solverSeconds += st.seconds();
         tot.ppeIterations += st.ppeIterations;
         tot.maxCourant = std::max(tot.maxCourant, st.courant);
@@ -486,6 +527,14 @@ BakeSummary runBake(const Scene& scene, const BakeOptions& opt) {
         std::filesystem::remove(ckptPath, ec); // the cache is complete: nothing left to resume
     }
     sum.recycled = tot.recycled;
+    sum.spilled = tot.spilled;
+    if (tot.spilled > 0) {
+        sum.warnings.push_back(fmt::format(
+            "{} water particle(s) went over the tank's walls and left the run, the first at t = "
+            "{:.3f} s (conservation.water_lost counts them; higher walls, geometry.tank.y1, keep "
+            "them)",
+            tot.spilled, tot.firstSpillTime));
+    }
     sum.maxCourant = tot.maxCourant;
     sum.splitSteps = tot.splitSteps;
     sum.substeps = tot.substeps;

@@ -25,7 +25,8 @@ using cache::putField;
 // Header: magic, u32 version, u32 flags (0), u64 payload bytes (compressed), u64 payload
 // bytes (raw), u64 XXH3-64 of the compressed payload, u64 XXH3-64 of the 40 bytes before it.
 constexpr std::uint8_t kMagic[8] = {0x89, 'S', 'W', 'K', '\r', '\n', 0x1a, '\n'};
-constexpr std::uint32_t kVersion = 2; // 2: the sub-step counters
+constexpr std::uint32_t kVersion = 3;       // 2: the sub-step counters; 3: water removed, spills
+constexpr std::uint32_t kOldestVersion = 2; // read as having removed and spilled no water
 constexpr std::size_t kHeaderSize = 48;
 constexpr std::uint64_t kMaxRawPayload = std::uint64_t{64}
                                          << 30; // 64 GiB: a damaged size fails fast
@@ -166,10 +167,15 @@ std::vector<std::uint8_t> encodePayload(const Checkpoint& c) {
     o.pod<std::uint64_t>(c.probeRows.size());
     for (const std::string& r : c.probeRows)
         o.str(r);
+    // Version 3 appends:
+    o.vec(s.removedWater);
+    o.pod(t.spilled);
+    o.pod(t.firstSpillTime);
     return std::move(o.bytes());
 }
 
-Checkpoint decodePayload(std::span<const std::uint8_t> raw, const fs::path& path) {
+Checkpoint decodePayload(std::span<const std::uint8_t> raw, const fs::path& path,
+                         std::uint32_t version) {
     In in(raw, path);
     Checkpoint c;
     c.fingerprint = in.str();
@@ -210,6 +216,11 @@ Checkpoint decodePayload(std::span<const std::uint8_t> raw, const fs::path& path
     c.probeRows.resize(static_cast<std::size_t>(rows));
     for (std::string& r : c.probeRows)
         r = in.str();
+    if (version >= 3) {
+        s.removedWater = in.vec<std::uint32_t>();
+        t.spilled = in.pod<std::uint64_t>();
+        t.firstSpillTime = in.pod<double>();
+    }
     in.end();
     if (s.step < 0 || c.checkpointEvery < 0)
         in.damaged("negative step or checkpoint interval");
@@ -297,10 +308,11 @@ Checkpoint readCheckpoint(const fs::path& path) {
     }
     if (getField<std::uint64_t>(h + 40) != XXH3_64bits(h, 40))
         damaged("header checksum mismatch");
-    if (const auto v = getField<std::uint32_t>(h + 8); v != kVersion) {
+    const auto version = getField<std::uint32_t>(h + 8);
+    if (version < kOldestVersion || version > kVersion) {
         throw CheckpointError(
-            fmt::format("{}: checkpoint format version {}; this swell-bake reads version {}",
-                        where(path), v, kVersion));
+            fmt::format("{}: checkpoint format version {}; this swell-bake reads versions {} to {}",
+                        where(path), version, kOldestVersion, kVersion));
     }
     const auto packed = getField<std::uint64_t>(h + 16);
     const auto rawSize = getField<std::uint64_t>(h + 24);
@@ -321,7 +333,7 @@ Checkpoint readCheckpoint(const fs::path& path) {
     const std::size_t n = ZSTD_decompress(raw.data(), raw.size(), h + kHeaderSize, packed);
     if (ZSTD_isError(n) || n != raw.size())
         damaged("payload does not decompress to its recorded size");
-    return decodePayload(raw, path);
+    return decodePayload(raw, path, version);
 }
 
 void checkFingerprint(const fs::path& path, const std::string& stored, const std::string& current) {

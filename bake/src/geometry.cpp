@@ -169,8 +169,7 @@ GeneratedGeometry generateGeometry(const GeometryParams& g) {
         const long nIn = std::lround(t.width() / l0);
         const long nUp = std::lround(t.height() / l0);
         // Bed extension behind the back wall (piston travel), in whole spacings.
-        const long back =
-            static_cast<long>(std::ceil(std::max(0.0, g.bedExtensionBack) / l0 - 1e-6));
+        const long back = bedExtensionCells(g);
         for (long k = 0; k < layers; ++k) { // bed rows, corners included
             const double y = t.y0 - (static_cast<double>(k) + 0.5) * l0;
             for (long i = -layers - back; i < nIn + layers; ++i) {
@@ -264,6 +263,11 @@ GeneratedGeometry generateGeometry(const GeometryParams& g) {
                                      g.domain ? "" : " (it grows with the rectangles' extent)"));
     }
     return out;
+}
+
+long bedExtensionCells(const GeometryParams& g) {
+    return static_cast<long>(
+        std::ceil(std::max(0.0, g.bedExtensionBack) / g.particleSpacing - 1e-6));
 }
 
 void jitterWater(Particles& particles, double amplitude, std::uint64_t seed) {

@@ -183,6 +183,9 @@ MpsSolver::MpsSolver(const PhysicsParams& physics, const SolverParams& solver, P
     m_layer.assign(n, 0);
     m_row.assign(n, -1);
     m_rowParticle.assign(n, 0);
+    m_id.resize(n);
+    for (std::size_t i = 0; i < n; ++i)
+        m_id[i] = static_cast<std::uint32_t>(i);
     // One PPE row per particle at most, each with room for a full neighbour list + diagonal.
     m_ppe = PressureSolver(ppe.preconditioner, ppe.tolerance, ppe.maxIterations, n,
                            static_cast<std::size_t>(lists.maxNeighbors) + 1, m_grid.cellsX(),

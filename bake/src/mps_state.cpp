@@ -1,7 +1,9 @@
-// MpsSolver::exportState / importState (checkpoint / resume, docs/scenes.md "Checkpoints"). Kept
-// apart from the numerics in mps_solver.cpp: plain copies of the state that survives from step to
-// step.
+// MpsSolver::exportState / importState (checkpoint / resume, docs/scenes.md "Checkpoints") and
+// removeWater. Kept apart from the numerics in mps_solver.cpp: plain copies and edits of the state
+// that survives from step to step.
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -20,15 +22,101 @@ MpsState MpsSolver::exportState() const {
     s.neighborY = m_ys;
     if (!m_moving.empty())
         s.wallRestX = m_restX;
+    s.removedWater = m_removed;
     return s;
 }
 
-void MpsSolver::importState(const MpsState& s) {
+namespace {
+/// Keeps the entries of `v` whose `drop` flag is 0, in order.
+template <class T> void compact(std::vector<T>& v, const std::vector<std::uint8_t>& drop) {
+    std::size_t k = 0;
+    for (std::size_t i = 0; i < v.size(); ++i) {
+        if (!drop[i])
+            v[k++] = v[i];
+    }
+    v.resize(k);
+}
+} // namespace
+
+void MpsSolver::removeWater(std::span<const std::size_t> indices) {
     const std::size_t n = m_p.size();
+    const auto bad = [](const std::string& what) {
+        throw std::invalid_argument("MpsSolver::removeWater: " + what);
+    };
+    std::vector<std::uint8_t> drop(n, 0);
+    for (std::size_t i : indices) {
+        if (i >= n || m_p.kind[i] != ParticleKind::Water)
+            bad(fmt::format("particle {} is not water", i));
+        if (drop[i])
+            bad(fmt::format("particle {} is named twice", i));
+        drop[i] = 1;
+    }
+    if (indices.empty())
+        return;
+    if (indices.size() >= m_p.count(ParticleKind::Water))
+        bad("no water would remain");
+    for (std::size_t i = 0; i < n; ++i) {
+        if (drop[i])
+            m_removed.push_back(m_id[i]);
+    }
+    std::sort(m_removed.begin(), m_removed.end());
+    std::vector<std::uint32_t> newIndex(n, 0);
+    for (std::size_t i = 0, k = 0; i < n; ++i) {
+        if (!drop[i])
+            newIndex[i] = static_cast<std::uint32_t>(k++);
+    }
+    for (std::uint32_t& i : m_wall.particles) // fixed particles: never removed
+        i = newIndex[i];
+
+    // The state that lasts from step to step, and the last step's flags (classification).
+    for (auto* v : {&m_p.x, &m_p.y, &m_p.vx, &m_p.vy, &m_p.p, &m_p.n, &m_xs, &m_ys})
+        compact(*v, drop);
+    compact(m_p.kind, drop);
+    compact(m_id, drop);
+    compact(m_surface, drop);
+    compact(m_layer, drop);
+    if (!m_moving.empty()) {
+        compact(m_moving, drop);
+        compact(m_restX, drop);
+    }
+    // Work arrays of one step: only their length follows.
+    const std::size_t k = m_p.size();
+    for (auto* v : {&m_xStar, &m_yStar, &m_uStar, &m_vStar, &m_uC, &m_vC, &m_divU, &m_fx, &m_fy,
+                    &m_shiftX, &m_shiftY, &m_nRelax, &m_nPack}) {
+        v->resize(k);
+    }
+    m_row.resize(k);
+
+    // The neighbour lists name particles by index: build them again from the positions of the
+    // last build (the Verlet reference stays). A particle moved since (NaN, relocateWater)
+    // makes the next step rebuild from the current positions anyway.
+    if (std::all_of(m_xs.begin(), m_xs.end(), [](double v) { return std::isfinite(v); }) &&
+        std::all_of(m_ys.begin(), m_ys.end(), [](double v) { return std::isfinite(v); })) {
+        const std::vector<double> x = m_xs, y = m_ys; // rebuildNeighbors copies into m_xs
+        rebuildNeighbors(x, y);
+    } else {
+        m_xs[0] = std::numeric_limits<double>::quiet_NaN();
+    }
+}
+
+void MpsSolver::importState(const MpsState& s) {
+    const std::size_t before = m_p.size();
     const auto bad = [](const std::string& what) {
         throw std::invalid_argument("MpsSolver::importState: " + what);
     };
     const Particles& q = s.particles;
+    // Water the exporting solver removed goes here too (this solver must have removed none).
+    if (s.removedWater != m_removed) {
+        if (!m_removed.empty())
+            bad("the state and the solver have removed different water");
+        if (q.size() + s.removedWater.size() != before || !q.consistent()) {
+            bad(fmt::format("state of {} particles and {} removed, solver has {}", q.size(),
+                            s.removedWater.size(), before));
+        }
+        std::vector<std::size_t> gone(s.removedWater.begin(), s.removedWater.end());
+        removeWater(gone);
+    }
+    const std::size_t n = m_p.size();
     if (q.size() != n || !q.consistent()) {
         bad(fmt::format("state of {} particles, solver has {}", q.size(), n));
     }

@@ -1,13 +1,18 @@
 // Checkpoint files: every field round-trips, writing is atomic (no temporary left, an old
 // checkpoint replaced whole), and a missing, truncated, damaged or foreign file is refused
-// with an error naming it; a different bake is refused naming the value that differs.
+// with an error naming it; a different bake is refused naming the value that differs. Format
+// version 2 (before water could be removed) still reads.
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
+#include <xxhash.h>
+#include <zstd.h>
 
 #include "expect_same_particles.h"
 #include "swell/bake/checkpoint.h"
@@ -41,7 +46,8 @@ Checkpoint sample() {
     c.frames[1].surface = {0.1f, 0.2f, 0.3f, 0.4f};
     c.frames[2].splash = {0.5f, 0.6f, 1.0f, -1.0f};
     c.probeRows = {"0,1,2", "0.02,1,nan", "0.04,1,2", "0.06,1,3"};
-    c.totals = BakeTotals{10.0, 2.0, 7, 96, 1.5, 300.0, 0.12, 3, 5, 12};
+    c.totals = BakeTotals{10.0, 2.0, 7, 96, 1.5, 300.0, 0.12, 3, 5, 12, 2, 0.25};
+    s.removedWater = {1, 4};
     return c;
 }
 
@@ -109,6 +115,56 @@ TEST_F(CheckpointFile, EveryFieldRoundTrips) {
     EXPECT_EQ(r.totals.recycled, 3u);
     EXPECT_EQ(r.totals.splitSteps, 5u);
     EXPECT_EQ(r.totals.substeps, 12u);
+    EXPECT_EQ(r.solver.removedWater, (std::vector<std::uint32_t>{1, 4}));
+    EXPECT_EQ(r.totals.spilled, 2u);
+    EXPECT_EQ(r.totals.firstSpillTime, 0.25);
+}
+
+TEST_F(CheckpointFile, VersionTwoCheckpointReadsAsHavingRemovedNoWater) {
+    // Format version 2 is version 3 without what 3 appends (the removed water, the spill
+    // counters): made here from a version 3 file with none of either, header and all.
+    Checkpoint c = sample();
+    c.solver.removedWater.clear();
+    c.totals.spilled = 0;
+    c.totals.firstSpillTime = 0.0;
+    writeCheckpoint(m_path, c);
+    const std::string v3 = bytes(m_path);
+    constexpr std::size_t kHeader = 48;
+    std::vector<char> raw(ZSTD_getFrameContentSize(v3.data() + kHeader, v3.size() - kHeader));
+    ASSERT_EQ(ZSTD_decompress(raw.data(), raw.size(), v3.data() + kHeader, v3.size() - kHeader),
+              raw.size());
+    raw.resize(raw.size() - 3 * 8); // an empty vector's length, a count and a time
+    std::string v2(kHeader + ZSTD_compressBound(raw.size()), '\0');
+    const std::size_t packed =
+        ZSTD_compress(v2.data() + kHeader, v2.size() - kHeader, raw.data(), raw.size(), 3);
+    v2.resize(kHeader + packed);
+    const auto put = [&](std::size_t at, auto value) {
+        std::memcpy(&v2[at], &value, sizeof value);
+    };
+    std::memcpy(v2.data(), v3.data(), 8); // magic
+    put(8, std::uint32_t{2});
+    put(12, std::uint32_t{0});
+    put(16, std::uint64_t{packed});
+    put(24, std::uint64_t{raw.size()});
+    put(32, std::uint64_t{XXH3_64bits(v2.data() + kHeader, packed)});
+    put(40, std::uint64_t{XXH3_64bits(v2.data(), 40)});
+    writeBytes(m_path, v2);
+
+    const Checkpoint r = readCheckpoint(m_path);
+    EXPECT_EQ(r.solver.step, 150);
+    expectSameParticles(r.solver.particles, c.solver.particles);
+    EXPECT_EQ(r.frames, c.frames);
+    EXPECT_EQ(r.probeRows, c.probeRows);
+    EXPECT_EQ(r.totals.substeps, 12u);
+    EXPECT_TRUE(r.solver.removedWater.empty());
+    EXPECT_EQ(r.totals.spilled, 0u);
+
+    put(8, std::uint32_t{4}); // a version from the future
+    put(40, std::uint64_t{XXH3_64bits(v2.data(), 40)});
+    writeBytes(m_path, v2);
+    EXPECT_NE(readError().find("format version 4; this swell-bake reads versions 2 to 3"),
+              std::string::npos)
+        << readError();
 }
 
 TEST_F(CheckpointFile, WritingReplacesTheOldFileWholeAndLeavesNoTemporary) {

@@ -87,9 +87,12 @@ struct BakeSummary {
     std::uint64_t substeps = 0;   ///< sub-steps those steps were split into, all together
     std::uint64_t recycled =
         0; ///< water particles moved from the outflow to the inflow (Sec. 3.3.2)
-    std::uint64_t cacheBytes = 0;      ///< size of the cache file
-    std::uint64_t rawBytes = 0;        ///< float32 bytes of the stored particles before compression
-    std::vector<std::string> warnings; ///< e.g. a piston wave steeper than the breaking limit
+    std::uint64_t spilled = 0;    ///< water particles gone over the tank's walls (spill.h)
+    std::uint64_t cacheBytes = 0; ///< size of the cache file
+    std::uint64_t rawBytes = 0;   ///< float32 bytes of the stored particles before compression
+    /// The scene's warnings (sceneWarnings), then the run's: e.g. a piston wave steeper than the
+    /// breaking limit, water gone over the tank's walls.
+    std::vector<std::string> warnings;
     ReplayWindow replay;               ///< water extent and steady start, as in the cache metadata
     long resumedFromStep = 0;          ///< step of the checkpoint this run resumed from (0: none)
     std::size_t checkpoints = 0;       ///< checkpoints written by this run

@@ -36,6 +36,8 @@ struct BakeTotals {
     std::uint64_t recycled = 0;   ///< water particles recycled outflow -> inflow
     std::uint64_t splitSteps = 0; ///< steps taken in sub-steps
     std::uint64_t substeps = 0;   ///< sub-steps of those steps
+    std::uint64_t spilled = 0;    ///< water particles gone over the tank's walls (spill.h)
+    double firstSpillTime = 0.0;  ///< when the first of them went (s); 0 without any
 };
 
 /// What a checkpoint holds.

@@ -60,6 +60,9 @@ struct GeneratedGeometry {
 /// kMaxParticles particles or a domain larger than kMaxDomainCells.
 GeneratedGeometry generateGeometry(const GeometryParams& geometry);
 
+/// Spacings of bed behind the tank's back wall: bedExtensionBack rounded up to whole l0.
+long bedExtensionCells(const GeometryParams& geometry);
+
 /// Moves each water particle by a uniform random offset in [-amplitude, amplitude] (m) along x
 /// and y, from a SplitMix64 stream seeded with `seed`, in particle order (the same offsets on
 /// every platform). Fixed particles stay.

@@ -59,12 +59,22 @@ public:
     /// position outside the domain.
     void relocateWater(std::size_t i, double x, double y, double vx, double vy);
 
+    /// Takes water particles out of the simulation between steps (water that left an open tank
+    /// over its walls, spill.h). The others keep their order, so every later index moves down
+    /// by the number removed before it (the moving wall's indices follow). Throws
+    /// std::invalid_argument for an index out of range, a fixed particle, a repeated index, or
+    /// when no water would remain.
+    void removeWater(std::span<const std::size_t> indices);
+    /// Indices in the solver's initial particles of the water removed so far, ascending.
+    const std::vector<std::uint32_t>& removedWater() const { return m_removed; }
+
     /// Everything a later step depends on (checkpoints); see mps_state.h.
     MpsState exportState() const;
     /// Continues from a state exported by a solver of the same scene (same particles, kinds
-    /// and moving wall; set the moving wall and inflow first, as makeSolver does). The next
-    /// step then gives bit for bit what the exporting solver's next step gave. Throws
-    /// std::invalid_argument (naming what differs) for a state of other particles.
+    /// and moving wall; set the moving wall and inflow first, as makeSolver does). Water the
+    /// exporting solver had removed is removed here first. The next step then gives bit for
+    /// bit what the exporting solver's next step gave. Throws std::invalid_argument (naming
+    /// what differs) for a state of other particles.
     void importState(const MpsState& state);
 
     const Particles& particles() const { return m_p; }
@@ -165,6 +175,9 @@ private:
     // The pressure Poisson equation: rows in neighbour-grid order, each with room for its
     // particle's neighbour list (pressure_solver.h).
     PressureSolver m_ppe;
+
+    std::vector<std::uint32_t> m_id;      // index of each particle in the initial particles
+    std::vector<std::uint32_t> m_removed; // initial indices of the water removed, ascending
 };
 
 } // namespace swell::bake

@@ -4,6 +4,7 @@
 // from the same scene that imports it continues bit for bit as the solver that exported it. Plain
 // data; the checkpoint file format (checkpoint.h) serialises it.
 
+#include <cstdint>
 #include <vector>
 
 #include "swell/bake/particles.h"
@@ -23,6 +24,9 @@ struct MpsState {
     /// Rest x of the moving-wall (piston) particles, index = particle; empty without one.
     /// The wall's motion itself is a pure function of time, rebuilt from the scene.
     std::vector<double> wallRestX;
+    /// Water taken out of the run (MpsSolver::removeWater), as indices in the scene's initial
+    /// particles, ascending; `particles` holds the others in their order.
+    std::vector<std::uint32_t> removedWater;
 };
 
 } // namespace swell::bake
