@@ -46,7 +46,8 @@ std::vector<EscapedWater> findEscapedWater(const Particles& p, const TankOutline
         } else if (x < back) {
             // Behind a piston the water may have gone over it and run off the bed's end: the
             // height there says nothing about how it got behind the piston.
-            const Escape low = tank.bedBehind > 0.0 ? Escape::OffBedBehind : Escape::ThroughBackWall;
+            const Escape low =
+                tank.bedBehind > 0.0 ? Escape::OffBedBehind : Escape::ThroughBackWall;
             out.push_back({i, y >= top ? Escape::OverBackWall : low});
         } else if (y < bed) {
             out.push_back({i, Escape::ThroughBed});

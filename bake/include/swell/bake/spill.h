@@ -19,10 +19,10 @@ namespace swell::bake {
 
 /// The outside of a tank's solid: what water must cross to leave it.
 struct TankOutline {
-    Box inner;                ///< the water side of the walls and bed (geometry.tank)
-    double thickness = 0.0;   ///< wall and dummy layers (m)
-    double bedBehind = 0.0;   ///< bed extension behind the back wall (m, for a piston)
-    double spacing = 0.0;     ///< particle spacing l0 (m)
+    Box inner;              ///< the water side of the walls and bed (geometry.tank)
+    double thickness = 0.0; ///< wall and dummy layers (m)
+    double bedBehind = 0.0; ///< bed extension behind the back wall (m, for a piston)
+    double spacing = 0.0;   ///< particle spacing l0 (m)
 };
 
 /// The outline of `geometry`'s tank as generateGeometry lays it out; geometry.tank must be set.
@@ -30,9 +30,9 @@ TankOutline tankOutline(const GeometryParams& geometry);
 
 /// How a water particle outside the tank's outline got there.
 enum class Escape : std::uint8_t {
-    OverFrontWall,   ///< beyond the front wall, no lower than its top
-    OverBackWall,    ///< beyond the back wall (or the bed behind it), no lower than its top
-    OffBedBehind,    ///< off the end of the bed behind a piston: over or past the piston
+    OverFrontWall,    ///< beyond the front wall, no lower than its top
+    OverBackWall,     ///< beyond the back wall (or the bed behind it), no lower than its top
+    OffBedBehind,     ///< off the end of the bed behind a piston: over or past the piston
     ThroughFrontWall, ///< beyond the front wall, lower than its top
     ThroughBackWall,  ///< beyond the back wall without a bed behind it, lower than its top
     ThroughBed,       ///< below the bed
