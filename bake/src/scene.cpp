@@ -288,6 +288,7 @@ Scene parseScene(const json& j) {
         m.distributionThreshold =
             s.number("distribution_threshold", m.distributionThreshold, 0.0, 10.0, false);
         m.shifting = s.number("shifting", m.shifting, 0.0, 1.0, false);
+        m.shiftingVelocity = s.boolean("shifting_velocity", m.shiftingVelocity);
         m.higherOrderLaplacian = s.boolean("higher_order_laplacian", m.higherOrderLaplacian);
         if (m.shifting > 0.0 && m.surfaceTest != SurfaceTest::Distribution) {
             throw SceneError("solver.shifting",
@@ -296,6 +297,12 @@ Scene parseScene(const json& j) {
                                          "along the surface normal that test finds); set "
                                          "solver.shifting to 0 to use another surface test",
                                          m.shifting));
+        }
+        if (m.shiftingVelocity && !(m.shifting > 0.0)) {
+            throw SceneError("solver.shifting_velocity",
+                             "moves the velocity with the particle shifting, and "
+                             "solver.shifting is 0: set a shifting coefficient or leave this "
+                             "false");
         }
         // gamma and C are per reference_step; a longer step multiplies them, and neither may
         // act as more than 1 per step (their own ranges, so a step no longer than
@@ -524,6 +531,7 @@ json toJson(const Scene& sc) {
           {"sparse_threshold", s.model.sparseThreshold},
           {"distribution_threshold", s.model.distributionThreshold},
           {"shifting", s.model.shifting},
+          {"shifting_velocity", s.model.shiftingVelocity},
           {"higher_order_laplacian", s.model.higherOrderLaplacian},
           {"preconditioner", std::string(toString(s.pressure.preconditioner))},
           {"ppe_tolerance", s.pressure.tolerance},

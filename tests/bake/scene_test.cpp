@@ -172,12 +172,14 @@ TEST(Scene, ToJsonRoundTrips) {
     json j = minimal();
     j["solver"]["preconditioner"] = "incomplete_cholesky";
     j["solver"]["gradient_correction"] = true;
+    j["solver"]["shifting_velocity"] = true;
     j["geometry"]["solids"] = json::array({{{"x0", 0.3}, {"y0", 0.0}, {"x1", 0.35}, {"y1", 0.05}}});
     const Scene a = parseScene(j);
     const Scene b = parseScene(toJson(a));
     EXPECT_EQ(toJson(a), toJson(b));
     EXPECT_EQ(b.solver.pressure.preconditioner, Preconditioner::IncompleteCholesky);
     EXPECT_TRUE(usesCorrectiveMatrix(b.solver.model.gradient));
+    EXPECT_TRUE(b.solver.model.shiftingVelocity);
     ASSERT_EQ(b.geometry.solids.size(), 1u);
 }
 
@@ -455,6 +457,14 @@ TEST(Scene, UnknownSchemeAndUnsupportedCombinationsAreClearErrors) {
     }
     j["solver"]["shifting"] = 0.0;
     EXPECT_EQ(errorKey(j), "<accepted>");
+    // The velocity follows a shift only where there is one.
+    j["solver"]["shifting_velocity"] = true;
+    EXPECT_EQ(errorKey(j), "solver.shifting_velocity");
+    j["solver"]["shifting"] = 0.02;
+    j["solver"]["surface_test"] = "distribution";
+    EXPECT_EQ(errorKey(j), "<accepted>");
+    j["solver"]["shifting_velocity"] = "yes";
+    EXPECT_EQ(errorKey(j), "solver.shifting_velocity");
 }
 
 TEST(Scene, NumberBeyondADoubleIsASceneErrorNamingTheFile) {

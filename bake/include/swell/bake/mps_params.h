@@ -156,6 +156,11 @@ struct ModelParams {
     /// -C l0^2 grad c (c the particle concentration, MPS gradient over re_N), only along the
     /// surface on free-surface particles (Lind et al. 2012); 0 turns shifting off.
     double shifting = 0.0;
+    /// With shifting: each water particle's velocity follows it to its shifted place by a
+    /// first-order Taylor step, u += (dr . grad) u, grad u the MPS gradient over re_N of its
+    /// neighbours' velocities (walls included, dummies not) (Xu et al. 2009; Lind et al. 2012
+    /// correct their variables so). false moves the particle and keeps its velocity.
+    bool shiftingVelocity = false;
     /// Laplacian of the pressure Poisson equation: false, K&O 1996's 2d/(lambda n0) w(r);
     /// true, the higher-order form of Khayyer & Gotoh (2010), pair weight re / r^3 (the
     /// 2D 3 re / r^3 up to its constant), normalized so a lattice gives lap x^2 = 2 exactly.
