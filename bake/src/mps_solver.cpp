@@ -15,6 +15,7 @@
 #include <limits>
 #include <span>
 #include <stdexcept>
+#include <string>
 
 #include <fmt/format.h>
 
@@ -63,6 +64,18 @@ inline void forNeighbours(std::span<const std::uint32_t> list, const std::vector
             continue;
         f(j, dx, dy, r2);
     }
+}
+
+
+/// Which side of `domain` the point (x, y) outside it is on, and what that usually means.
+std::string exitSide(const Box& domain, double x, double y) {
+    if (y > domain.y1) {
+        return "above its top: spray thrown higher than the domain reaches (geometry.domain "
+               "can give it more room)";
+    }
+    if (y < domain.y0)
+        return "below it: water that fell outside the walls or went through the bed";
+    return x < domain.x0 ? "left of it" : "right of it";
 }
 
 } // namespace
@@ -287,9 +300,9 @@ void MpsSolver::rebuildNeighbors(const std::vector<double>& x, const std::vector
         }
         if (!m_domain.contains(x[i], y[i])) {
             fail(i, fmt::format("{} particle at ({:.6g}, {:.6g}) m left the domain [{:.6g}, "
-                                "{:.6g}] x [{:.6g}, {:.6g}] m",
+                                "{:.6g}] x [{:.6g}, {:.6g}] m, {}",
                                 toString(m_p.kind[i]), x[i], y[i], m_domain.x0, m_domain.x1,
-                                m_domain.y0, m_domain.y1));
+                                m_domain.y0, m_domain.y1, exitSide(m_domain, x[i], y[i])));
         }
     }
     if (!m_grid.build(x, y, m_reList, m_reShort)) {
@@ -886,9 +899,9 @@ void MpsSolver::checkState(double dt) {
         fail(firstOut,
              fmt::format(
                  "{} particle(s) left the domain [{:.6g}, {:.6g}] x [{:.6g}, {:.6g}] m; this one "
-                 "is at ({:.6g}, {:.6g}) m",
+                 "is at ({:.6g}, {:.6g}) m, {}",
                  out, m_domain.x0, m_domain.x1, m_domain.y0, m_domain.y1, m_p.x[firstOut],
-                 m_p.y[firstOut]));
+                 m_p.y[firstOut], exitSide(m_domain, m_p.x[firstOut], m_p.y[firstOut])));
     }
     if (m_stats.courant > m_par.time.courantLimit) {
         std::size_t fastest = 0;

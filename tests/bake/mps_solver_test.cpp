@@ -442,6 +442,15 @@ TEST(MpsSolver, DetectorStopsWhenAParticleLeavesTheDomain) {
     ASSERT_FALSE(msg.empty());
     EXPECT_NE(msg.find("particle 5"), std::string::npos) << msg;
     EXPECT_NE(msg.find("domain"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("right of it"), std::string::npos) << msg;
+
+    // Spray that flies out through the top is named as such, with what to change.
+    GeneratedGeometry up = generateGeometry(scene.geometry);
+    up.particles.vy[5] = 400.0;
+    MpsSolver high(PhysicsParams{}, par, up.particles, 0.01, up.domain);
+    const std::string top = runUntilFailure(high, 3);
+    EXPECT_NE(top.find("above its top"), std::string::npos) << top;
+    EXPECT_NE(top.find("geometry.domain"), std::string::npos) << top;
 }
 
 TEST(MpsSolver, DetectorStopsOnAnUnconvergedPressureSolve) {
