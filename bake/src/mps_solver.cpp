@@ -66,7 +66,6 @@ inline void forNeighbours(std::span<const std::uint32_t> list, const std::vector
     }
 }
 
-
 /// Which side of `domain` the point (x, y) outside it is on, and what that usually means.
 std::string exitSide(const Box& domain, double x, double y) {
     if (y > domain.y1) {
