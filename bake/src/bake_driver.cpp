@@ -153,6 +153,30 @@ std::size_t removeSpilledWater(MpsSolver& solver, const TankOutline& tank) {
     return gone.size();
 }
 
+/// Water that starts outside the tank (beyond its walls or bed) would be taken for water gone
+/// over or through them: a SceneError naming the water rectangle instead.
+void requireWaterInTank(const Particles& P, const GeometryParams& g, const TankOutline& tank) {
+    const std::vector<EscapedWater> outside = findEscapedWater(P, tank);
+    if (outside.empty())
+        return;
+    const std::size_t i = outside.front().particle;
+    std::string key = "geometry.water";
+    for (std::size_t w = 0; w < g.water.size(); ++w) {
+        const Box& b = g.water[w];
+        const double m = g.particleSpacing; // the jitter moves particles by less
+        if (P.x[i] >= b.x0 - m && P.x[i] <= b.x1 + m && P.y[i] >= b.y0 - m && P.y[i] <= b.y1 + m) {
+            key = fmt::format("geometry.water[{}]", w);
+            break;
+        }
+    }
+    const Box& t = tank.inner;
+    throw SceneError(key, fmt::format("water at ({:.6g}, {:.6g}) m starts outside the tank: beyond "
+                                      "its walls ({:.6g} to {:.6g} m with the wall layers) or "
+                                      "below its bed ({:.6g} m)",
+                                      P.x[i], P.y[i], t.x0 - tank.thickness - tank.bedBehind,
+                                      t.x1 + tank.thickness, t.y0 - tank.thickness));
+}
+
 /// A bake killed with SIGKILL leaves its temporary cache (CACHE.tmp-<pid>), maybe a
 /// half-written checkpoint (CACHE.ckpt.tmp-<pid>) and probes file (PROBES.tmp-<pid>) behind;
 /// remove those of processes that are gone, never those of a live one. Called with the
@@ -332,6 +356,10 @@ BakeSummary runBake(const Scene& scene, const BakeOptions& opt) {
 
     MpsSolver solver = makeSolver(scene);
     const Particles& P = solver.particles();
+    const std::optional<TankOutline> outline =
+        scene.geometry.tank ? std::optional(tankOutline(scene.geometry)) : std::nullopt;
+    if (outline)
+        requireWaterInTank(P, scene.geometry, *outline);
     // Conservation at the start: the scene's initial state (also when resuming, before the
     // checkpoint's state is imported below).
     double bed =
@@ -476,8 +504,6 @@ BakeSummary runBake(const Scene& scene, const BakeOptions& opt) {
     } else {
         store(); // frame 0: the initial state
     }
-    const std::optional<TankOutline> outline =
-        scene.geometry.tank ? std::optional(tankOutline(scene.geometry)) : std::nullopt;
     const auto solveStart = Clock::now();
     for (long k = first + 1; k <= steps; ++k) {
         const StepStats& st = solver.step();

@@ -221,6 +221,18 @@ TEST_F(BakeDriver, SceneErrorsOfABake) {
     opt.output = m_dir / "s.swell";
     EXPECT_THROW(runBake(parseScene(j), opt), SceneError);
     EXPECT_EQ(filesInDir(), 0u);
+    // Water placed outside the tank would read as water gone over its wall: refused up front.
+    j = toJson(smallSurging(1.0));
+    j["geometry"]["water"].push_back({{"x0", 2.2}, {"y0", 0.0}, {"x1", 2.3}, {"y1", 0.1}});
+    try {
+        runBake(parseScene(j), opt);
+        FAIL();
+    } catch (const SceneError& e) {
+        EXPECT_EQ(e.key(), "geometry.water[1]");
+        EXPECT_NE(std::string(e.what()).find("starts outside the tank"), std::string::npos)
+            << e.what();
+    }
+    EXPECT_EQ(filesInDir(), 0u);
 }
 
 TEST(BakeWarnings, SteepPistonWaveIsReported) {
