@@ -152,8 +152,8 @@ int main(int argc, char** argv) {
     ProgressReporter progress(quiet);
     try {
         const Scene scene = loadBakeScene(cl); // bake-specific scene errors before any warning
-        const std::size_t sceneWarningCount = sceneWarnings(scene).size();
-        for (const std::string& w : sceneWarnings(scene))
+        const std::vector<std::string> before = sceneWarnings(scene);
+        for (const std::string& w : before)
             std::fprintf(stderr, "swell-bake: warning: %s\n", w.c_str());
         BakeOptions opt;
         opt.output = output;
@@ -167,7 +167,7 @@ int main(int argc, char** argv) {
         opt.onProgress = [&](const BakeProgress& p) { progress(p); };
         opt.cancelled = [] { return g_stop != 0; };
         const BakeSummary s = runBake(scene, opt);
-        for (std::size_t i = sceneWarningCount; i < s.warnings.size(); ++i) // the run's own
+        for (std::size_t i = before.size(); i < s.warnings.size(); ++i) // the run's own
             std::fprintf(stderr, "swell-bake: warning: %s\n", s.warnings[i].c_str());
         if (!quiet)
             printSummary(scene, s, output);

@@ -13,7 +13,8 @@ enum class ParticleKind : std::uint8_t { Water, Wall, Dummy };
 
 std::string_view toString(ParticleKind kind);
 
-/// Particle state as a structure of arrays (index = particle id, stable for the run).
+/// Particle state as a structure of arrays (index = particle id, stable for the run but for
+/// water taken out of it, MpsSolver::removeWater, which moves the later indices down).
 struct Particles {
     std::vector<double> x;  ///< position x (m)
     std::vector<double> y;  ///< position y (m), up
