@@ -148,6 +148,27 @@ TEST_F(SwellBakeApp, SmallSurgingBakeVerifiesAndPrintsTheJsonSummary) {
     EXPECT_EQ(lines(slurp(csv)), 27);
 }
 
+TEST_F(SwellBakeApp, WaterOverTheWallIsAWarningAndTheCacheIsWritten) {
+    // A column twice as tall as the walls against the front wall: its top falls over it.
+    const fs::path scene = m_dir / "overfull.json";
+    std::ofstream(scene) << R"({"geometry": {"particle_spacing": 0.005,
+        "tank": {"x0": 0.0, "y0": 0.0, "x1": 0.3, "y1": 0.1},
+        "water": [{"x0": 0.2, "y0": 0.0, "x1": 0.3, "y1": 0.2}],
+        "domain": {"x0": -0.2, "y0": -0.2, "x1": 0.6, "y1": 1.0}},
+        "solver": {"dt": 0.0005, "end_time": 0.2}, "output": {"frame_interval": 0.01}})";
+    const fs::path out = m_dir / "o.swell";
+    const Result r = bake(scene.string() + " -o " + out.string() + " --threads 1 --json");
+    ASSERT_EQ(r.code, 0) << r.err;
+    const nlohmann::json j = nlohmann::json::parse(r.out);
+    EXPECT_GT(j["spilled"].get<int>(), 0);
+    EXPECT_EQ(j["conservation"]["water_lost"], j["spilled"]);
+    EXPECT_NE(r.err.find("swell-bake: warning: " + std::to_string(j["spilled"].get<int>()) +
+                         " water particle(s) went over the tank's walls"),
+              std::string::npos)
+        << r.err;
+    EXPECT_EQ(run(SWELL_CACHE_EXE, "verify " + out.string()).code, 0);
+}
+
 TEST_F(SwellBakeApp, KilledBakeLeavesNoCacheAtTheOutputPath) {
     const fs::path out = m_dir / "k.swell";
     const pid_t pid = startLongBake(out);
