@@ -164,7 +164,7 @@ void requireWaterInTank(const Particles& P, const GeometryParams& g, const TankO
     for (std::size_t w = 0; w < g.water.size(); ++w) {
         const Box& b = g.water[w];
         const double m = g.particleSpacing; // the jitter moves particles by less
-        if (P.x[i] >= b.x0 - m && P.x[i] <= b.x1 + m && P.y[i] >= b.y0 - m && P.y[i] <= b.y1 + m) {
+        if (Box{b.x0 - m, b.y0 - m, b.x1 + m, b.y1 + m}.contains(P.x[i], P.y[i])) {
             key = fmt::format("geometry.water[{}]", w);
             break;
         }

@@ -195,9 +195,6 @@ MpsSolver::MpsSolver(const PhysicsParams& physics, const SolverParams& solver, P
     m_layer.assign(n, 0);
     m_row.assign(n, -1);
     m_rowParticle.assign(n, 0);
-    m_id.resize(n);
-    for (std::size_t i = 0; i < n; ++i)
-        m_id[i] = static_cast<std::uint32_t>(i);
     // One PPE row per particle at most, each with room for a full neighbour list + diagonal.
     m_ppe = PressureSolver(ppe.preconditioner, ppe.tolerance, ppe.maxIterations, n,
                            static_cast<std::size_t>(lists.maxNeighbors) + 1, m_grid.cellsX(),
@@ -806,6 +803,9 @@ void MpsSolver::shiftParticles(double dt) {
     const double c = m_par.model.shifting * coefficientScale(m_par.time, dt);
     const double d = c * m_l0 * m_l0 * 2.0 * kDim / m_latN.n0;
     const double maxShift = 0.2 * m_l0;
+    // With shifting_velocity every particle's shift is kept until all velocity gradients are
+    // taken; without it each particle moves at once.
+    const bool follow = m_par.model.shiftingVelocity;
 #pragma omp parallel for schedule(static) if (n >= kParallelMin)
     for (std::size_t i = 0; i < n; ++i) {
         if (isFixed(m_p.kind[i]))
@@ -827,37 +827,42 @@ void MpsSolver::shiftParticles(double dt) {
             sx *= maxShift / len;
             sy *= maxShift / len;
         }
-        m_shiftX[i] = sx; // the pair sums are used up: the shift itself from here on
-        m_shiftY[i] = sy;
-    }
-    if (m_par.model.shiftingVelocity) {
-        // The velocity field at the shifted place: u_i += (dr_i . grad) u_i, with the MPS
-        // gradient grad u_i = d/n0 sum_j (u_j - u_i) (r_j - r_i) / r^2 w (Xu et al. 2009,
-        // Lind et al. 2012), taken before any particle moves.
-        const double coefG = kDim / m_latN.n0;
-        const double reN2 = m_reN * m_reN;
-#pragma omp parallel for schedule(static) if (n >= kParallelMin)
-        for (std::size_t i = 0; i < n; ++i) {
-            m_uC[i] = m_p.vx[i];
-            m_vC[i] = m_p.vy[i];
-            if (isFixed(m_p.kind[i]))
-                continue;
-            double uxx = 0.0, uxy = 0.0, vyx = 0.0, vyy = 0.0; // d u / d x, d u / d y, ...
-            forNeighbours(m_grid.shortNeighbors(i), m_p.x, m_p.y, i, reN2,
-                          [&](std::uint32_t j, double dx, double dy, double r2) {
-                              if (m_p.kind[j] == ParticleKind::Dummy || r2 <= 0.0)
-                                  return;
-                              const double f = mpsWeight(std::sqrt(r2), m_reN) / r2;
-                              const double du = m_p.vx[j] - m_p.vx[i];
-                              const double dv = m_p.vy[j] - m_p.vy[i];
-                              uxx += f * du * dx;
-                              uxy += f * du * dy;
-                              vyx += f * dv * dx;
-                              vyy += f * dv * dy;
-                          });
-            m_uC[i] += coefG * (m_shiftX[i] * uxx + m_shiftY[i] * uxy);
-            m_vC[i] += coefG * (m_shiftX[i] * vyx + m_shiftY[i] * vyy);
+        if (follow) {
+            m_shiftX[i] = sx; // the pair sums are used up: the shift itself from here on
+            m_shiftY[i] = sy;
+        } else {
+            m_p.x[i] += sx;
+            m_p.y[i] += sy;
         }
+    }
+    if (!follow)
+        return;
+    // The velocity field at the shifted place: u_i += (dr_i . grad) u_i, with the MPS
+    // gradient grad u_i = d/n0 sum_j (u_j - u_i) (r_j - r_i) / r^2 w (Xu et al. 2009,
+    // Lind et al. 2012), taken before any particle moves.
+    const double coefG = kDim / m_latN.n0;
+    const double reN2 = m_reN * m_reN;
+#pragma omp parallel for schedule(static) if (n >= kParallelMin)
+    for (std::size_t i = 0; i < n; ++i) {
+        m_uC[i] = m_p.vx[i];
+        m_vC[i] = m_p.vy[i];
+        if (isFixed(m_p.kind[i]))
+            continue;
+        double uxx = 0.0, uxy = 0.0, vyx = 0.0, vyy = 0.0; // d u / d x, d u / d y, ...
+        forNeighbours(m_grid.shortNeighbors(i), m_p.x, m_p.y, i, reN2,
+                      [&](std::uint32_t j, double dx, double dy, double r2) {
+                          if (m_p.kind[j] == ParticleKind::Dummy || r2 <= 0.0)
+                              return;
+                          const double f = mpsWeight(std::sqrt(r2), m_reN) / r2;
+                          const double du = m_p.vx[j] - m_p.vx[i];
+                          const double dv = m_p.vy[j] - m_p.vy[i];
+                          uxx += f * du * dx;
+                          uxy += f * du * dy;
+                          vyx += f * dv * dx;
+                          vyy += f * dv * dy;
+                      });
+        m_uC[i] += coefG * (m_shiftX[i] * uxx + m_shiftY[i] * uxy);
+        m_vC[i] += coefG * (m_shiftX[i] * vyx + m_shiftY[i] * vyy);
     }
 #pragma omp parallel for schedule(static) if (n >= kParallelMin)
     for (std::size_t i = 0; i < n; ++i) {
@@ -865,10 +870,8 @@ void MpsSolver::shiftParticles(double dt) {
             continue;
         m_p.x[i] += m_shiftX[i];
         m_p.y[i] += m_shiftY[i];
-        if (m_par.model.shiftingVelocity) {
-            m_p.vx[i] = m_uC[i];
-            m_p.vy[i] = m_vC[i];
-        }
+        m_p.vx[i] = m_uC[i];
+        m_p.vy[i] = m_vC[i];
     }
 }
 

@@ -3,7 +3,7 @@
 // that survives from step to step.
 #include <algorithm>
 #include <cmath>
-#include <limits>
+#include <cstddef>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -55,11 +55,17 @@ void MpsSolver::removeWater(std::span<const std::size_t> indices) {
         return;
     if (indices.size() >= m_p.count(ParticleKind::Water))
         bad("no water would remain");
-    for (std::size_t i = 0; i < n; ++i) {
+    // The current particles are the initial ones but for those removed before, in order.
+    std::vector<std::uint32_t> gone;
+    for (std::size_t i = 0, initial = 0, r = 0; i < n; ++i, ++initial) {
+        for (; r < m_removed.size() && m_removed[r] == initial; ++r)
+            ++initial;
         if (drop[i])
-            m_removed.push_back(m_id[i]);
+            gone.push_back(static_cast<std::uint32_t>(initial));
     }
-    std::sort(m_removed.begin(), m_removed.end());
+    const auto middle = static_cast<std::ptrdiff_t>(m_removed.size());
+    m_removed.insert(m_removed.end(), gone.begin(), gone.end());
+    std::inplace_merge(m_removed.begin(), m_removed.begin() + middle, m_removed.end());
     std::vector<std::uint32_t> newIndex(n, 0);
     for (std::size_t i = 0, k = 0; i < n; ++i) {
         if (!drop[i])
@@ -72,7 +78,6 @@ void MpsSolver::removeWater(std::span<const std::size_t> indices) {
     for (auto* v : {&m_p.x, &m_p.y, &m_p.vx, &m_p.vy, &m_p.p, &m_p.n, &m_xs, &m_ys})
         compact(*v, drop);
     compact(m_p.kind, drop);
-    compact(m_id, drop);
     compact(m_surface, drop);
     compact(m_layer, drop);
     if (!m_moving.empty()) {
@@ -88,14 +93,12 @@ void MpsSolver::removeWater(std::span<const std::size_t> indices) {
     m_row.resize(k);
 
     // The neighbour lists name particles by index: build them again from the positions of the
-    // last build (the Verlet reference stays). A particle moved since (NaN, relocateWater)
-    // makes the next step rebuild from the current positions anyway.
+    // last build (the Verlet reference stays). Where a particle was moved since (its NaN
+    // reference, relocateWater), the next step rebuilds from the current positions anyway.
     if (std::all_of(m_xs.begin(), m_xs.end(), [](double v) { return std::isfinite(v); }) &&
         std::all_of(m_ys.begin(), m_ys.end(), [](double v) { return std::isfinite(v); })) {
         const std::vector<double> x = m_xs, y = m_ys; // rebuildNeighbors copies into m_xs
         rebuildNeighbors(x, y);
-    } else {
-        m_xs[0] = std::numeric_limits<double>::quiet_NaN();
     }
 }
 

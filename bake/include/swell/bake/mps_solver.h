@@ -176,7 +176,6 @@ private:
     // particle's neighbour list (pressure_solver.h).
     PressureSolver m_ppe;
 
-    std::vector<std::uint32_t> m_id;      // index of each particle in the initial particles
     std::vector<std::uint32_t> m_removed; // initial indices of the water removed, ascending
 };
 
