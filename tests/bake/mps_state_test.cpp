@@ -23,6 +23,14 @@ Scene sceneFile(const char* name) {
     return loadScene(kScenes / name);
 }
 
+/// Takes `steps` steps with each of two solvers.
+void stepBoth(MpsSolver& a, MpsSolver& b, int steps) {
+    for (int k = 0; k < steps; ++k) {
+        a.step();
+        b.step();
+    }
+}
+
 } // namespace
 
 TEST(MpsState, ImportedStateContinuesBitForBitWithAPistonWall) {
@@ -60,10 +68,7 @@ TEST(MpsState, ParticleMovedBetweenStepsIsCarriedOver) {
     const MpsState s = a.exportState();
     MpsSolver b = makeSolver(scene);
     b.importState(s);
-    for (int k = 0; k < 60; ++k) {
-        a.step();
-        b.step();
-    }
+    stepBoth(a, b, 60);
     expectSameParticles(a.particles(), b.particles());
 }
 
@@ -123,10 +128,7 @@ TEST(MpsState, RemovedWaterLeavesTheRestAsIfItHadNeverBeenThere) {
     EXPECT_EQ(a.particles().count(ParticleKind::Water), water);
     expectSameParticles(a.particles(), b.particles());
     EXPECT_EQ(a.surfaceFlags(), b.surfaceFlags());
-    for (int k = 0; k < 200; ++k) {
-        a.step();
-        b.step();
-    }
+    stepBoth(a, b, 200);
     expectSameParticles(a.particles(), b.particles());
 }
 
@@ -134,16 +136,10 @@ TEST(MpsState, RemovingWaterKeepsThePistonMoving) {
     const Scene scene = sceneFile("surging_small.json");
     MpsSolver a = makeSolver(scene);
     MpsSolver b = makeSolver(scene);
-    for (int k = 0; k < 100; ++k) {
-        a.step();
-        b.step();
-    }
+    stepBoth(a, b, 100);
     const std::vector<std::size_t> gone{0, 7};
     a.removeWater(gone);
-    for (int k = 0; k < 100; ++k) {
-        a.step();
-        b.step();
-    }
+    stepBoth(a, b, 100);
     // The fixed particles (after the water) are where the same piston puts them in both runs.
     const Particles& A = a.particles();
     const Particles& B = b.particles();
@@ -179,10 +175,7 @@ TEST(MpsState, StateWithRemovedWaterIsImportedBitForBit) {
     b.importState(s);
     EXPECT_EQ(b.removedWater(), s.removedWater);
     expectSameParticles(a.particles(), b.particles());
-    for (int k = 0; k < 60; ++k) {
-        a.step();
-        b.step();
-    }
+    stepBoth(a, b, 60);
     expectSameParticles(a.particles(), b.particles());
 
     // A solver that removed other water does not take the state.
