@@ -806,12 +806,14 @@ void MpsSolver::shiftParticles(double dt) {
     // With shifting_velocity every particle's shift is kept until all velocity gradients are
     // taken; without it each particle moves at once.
     const bool follow = m_par.model.shiftingVelocity;
+    const bool damp = m_par.model.shiftDamping;
 #pragma omp parallel for schedule(static) if (n >= kParallelMin)
     for (std::size_t i = 0; i < n; ++i) {
         if (isFixed(m_p.kind[i]))
             continue;
         double sx = -d * m_shiftX[i], sy = -d * m_shiftY[i];
-        if (m_surface[i] == 1) {
+        const bool surface = m_surface[i] == 1;
+        if (surface) {
             const double fn = std::hypot(m_fx[i], m_fy[i]);
             if (fn > 0.0) {
                 const double nx = -m_fx[i] / fn, ny = -m_fy[i] / fn;
@@ -827,6 +829,8 @@ void MpsSolver::shiftParticles(double dt) {
             sx *= maxShift / len;
             sy *= maxShift / len;
         }
+        if (damp && surface)
+            dampAgainstShift(i, sx, sy, std::min(len, maxShift), dt);
         if (follow) {
             m_shiftX[i] = sx; // the pair sums are used up: the shift itself from here on
             m_shiftY[i] = sy;
@@ -873,6 +877,26 @@ void MpsSolver::shiftParticles(double dt) {
         m_p.vx[i] = m_uC[i];
         m_p.vy[i] = m_vC[i];
     }
+}
+
+void MpsSolver::dampAgainstShift(std::size_t i, double sx, double sy, double len, double dt) {
+    // solver.shift_damping (docs/validation.md 7.11). On the free surface the shift holds the
+    // particles evenly spaced along it, while the pressure of the rows below can push a
+    // particle along it steadily: the shift then moves it back every step and its velocity
+    // grows to a value that moves it nowhere. u_s = u . s/|s| < 0 is its velocity against the
+    // shift, rho = |s| / (|u_s| dt) (at most 1) the part of that motion the shift cancels;
+    // u_s -> u_s (1 - rho^3) takes all of it from a particle held in place and almost none
+    // from one the shift barely slows (a surge's front, a wave's crest).
+    if (!(len > 0.0))
+        return;
+    const double ex = sx / len, ey = sy / len;
+    const double against = -(m_p.vx[i] * ex + m_p.vy[i] * ey); // -u_s
+    if (!(against > 0.0))
+        return;
+    const double rho = std::min(1.0, len / (against * dt));
+    const double take = against * rho * rho * rho;
+    m_p.vx[i] += take * ex;
+    m_p.vy[i] += take * ey;
 }
 
 void MpsSolver::checkState(double dt) {

@@ -289,6 +289,7 @@ Scene parseScene(const json& j) {
             s.number("distribution_threshold", m.distributionThreshold, 0.0, 10.0, false);
         m.shifting = s.number("shifting", m.shifting, 0.0, 1.0, false);
         m.shiftingVelocity = s.boolean("shifting_velocity", m.shiftingVelocity);
+        m.shiftDamping = s.boolean("shift_damping", m.shiftDamping);
         m.higherOrderLaplacian = s.boolean("higher_order_laplacian", m.higherOrderLaplacian);
         if (m.shifting > 0.0 && m.surfaceTest != SurfaceTest::Distribution) {
             throw SceneError("solver.shifting",
@@ -297,6 +298,17 @@ Scene parseScene(const json& j) {
                                          "along the surface normal that test finds); set "
                                          "solver.shifting to 0 to use another surface test",
                                          m.shifting));
+        }
+        // Without shifting there is nothing to damp: the scheme's default turns itself off,
+        // and asking for it by name is an error.
+        if (m.shiftDamping && !(m.shifting > 0.0)) {
+            if (s.has("shift_damping")) {
+                throw SceneError("solver.shift_damping",
+                                 "takes from a free-surface particle the velocity its shift "
+                                 "undoes, and solver.shifting is 0: set a shifting coefficient "
+                                 "or set this to false");
+            }
+            m.shiftDamping = false;
         }
         if (m.shiftingVelocity && !(m.shifting > 0.0)) {
             throw SceneError("solver.shifting_velocity",
@@ -532,6 +544,7 @@ json toJson(const Scene& sc) {
           {"distribution_threshold", s.model.distributionThreshold},
           {"shifting", s.model.shifting},
           {"shifting_velocity", s.model.shiftingVelocity},
+          {"shift_damping", s.model.shiftDamping},
           {"higher_order_laplacian", s.model.higherOrderLaplacian},
           {"preconditioner", std::string(toString(s.pressure.preconditioner))},
           {"ppe_tolerance", s.pressure.tolerance},

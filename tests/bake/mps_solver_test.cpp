@@ -225,6 +225,7 @@ TEST(MpsSolver, ShiftingVelocityFollowsTheShiftWithTheVelocityGradient) {
     // uniform field is zero, so the correction changes no bit.
     SolverParams params = schemeParams(Scheme::Swell);
     ASSERT_GT(params.model.shifting, 0.0);
+    params.model.shiftDamping = false; // it would slow the shifted surface particles
     PhysicsParams still;
     still.gravity = 0.0;
     const double l0 = 0.01;
@@ -275,6 +276,40 @@ TEST(MpsSolver, ShiftingVelocityFollowsTheShiftWithTheVelocityGradient) {
     EXPECT_EQ(corrected.y, plain.y);
     EXPECT_EQ(corrected.p, plain.p);
     EXPECT_GT(particlesThatDiffer(corrected, plain), 100u) << "velocities follow the shift";
+}
+
+TEST(MpsSolver, ShiftDampingOnlyTakesSurfaceVelocityAgainstTheShift) {
+    // solver.shift_damping: from the same dam-break state, one step with and one without it
+    // put every particle in the same place with the same pressure; only free-surface
+    // particles' velocities differ, and none of them is faster.
+    Scene scene = smallDamBreak();
+    scene.solver = schemeParams(Scheme::Swell);
+    ASSERT_TRUE(scene.solver.model.shiftDamping);
+    Scene plainScene = scene;
+    plainScene.solver.model.shiftDamping = false;
+    MpsSolver solver = makeSolver(scene);
+    for (int k = 0; k < 40; ++k)
+        solver.step();
+    MpsSolver plainSolver = makeSolver(plainScene);
+    plainSolver.importState(solver.exportState());
+    solver.step();
+    plainSolver.step();
+    const Particles& damped = solver.particles();
+    const Particles& plain = plainSolver.particles();
+    EXPECT_EQ(damped.x, plain.x);
+    EXPECT_EQ(damped.y, plain.y);
+    EXPECT_EQ(damped.p, plain.p);
+    ASSERT_EQ(solver.surfaceFlags(), plainSolver.surfaceFlags());
+    std::size_t changed = 0;
+    for (std::size_t i = 0; i < damped.size(); ++i) {
+        if (damped.vx[i] == plain.vx[i] && damped.vy[i] == plain.vy[i])
+            continue;
+        ++changed;
+        EXPECT_EQ(solver.surfaceFlags()[i], 1) << "particle " << i;
+        EXPECT_LE(std::hypot(damped.vx[i], damped.vy[i]), std::hypot(plain.vx[i], plain.vy[i]))
+            << "particle " << i;
+    }
+    EXPECT_GT(changed, 0u);
 }
 
 TEST(MpsSolver, PreconditionersCutIterations) {

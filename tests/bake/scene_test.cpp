@@ -467,6 +467,35 @@ TEST(Scene, UnknownSchemeAndUnsupportedCombinationsAreClearErrors) {
     EXPECT_EQ(errorKey(j), "solver.shifting_velocity");
 }
 
+TEST(Scene, ShiftDampingIsTheDefaultSchemesAndNeedsShifting) {
+    // The default scheme damps against the shift, the textbook scheme does not; without
+    // shifting the default turns itself off, and asking for it by name is an error.
+    json j = minimal();
+    EXPECT_TRUE(parseScene(j).solver.model.shiftDamping);
+    j["solver"]["shift_damping"] = false;
+    EXPECT_FALSE(parseScene(j).solver.model.shiftDamping);
+    j = minimal();
+    j["solver"]["scheme"] = "textbook";
+    EXPECT_FALSE(parseScene(j).solver.model.shiftDamping);
+    j = minimal();
+    j["solver"]["shifting"] = 0.0;
+    const Scene unshifted = parseScene(j);
+    EXPECT_FALSE(unshifted.solver.model.shiftDamping);
+    EXPECT_EQ(toJson(parseScene(toJson(unshifted))), toJson(unshifted)); // the record reloads
+    j["solver"]["shift_damping"] = true;
+    EXPECT_EQ(errorKey(j), "solver.shift_damping");
+    try {
+        parseScene(j);
+    } catch (const SceneError& e) {
+        EXPECT_NE(std::string(e.what()).find("solver.shifting is 0"), std::string::npos)
+            << e.what();
+    }
+    j["solver"]["shifting"] = 0.02;
+    EXPECT_EQ(errorKey(j), "<accepted>");
+    j["solver"]["shift_damping"] = 1;
+    EXPECT_EQ(errorKey(j), "solver.shift_damping");
+}
+
 TEST(Scene, NumberBeyondADoubleIsASceneErrorNamingTheFile) {
     const swell::test::TempDir dir("swell_big_number_");
     const auto tmp = dir / "big.json";

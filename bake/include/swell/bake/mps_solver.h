@@ -124,6 +124,9 @@ private:
     void assemblePressureEquation(double dt);
     void solvePressure();
     void correctVelocity(double dt);
+    /// solver.shift_damping: takes from free-surface particle i the velocity its shift
+    /// (sx, sy), of length len, undoes in a step of dt.
+    void dampAgainstShift(std::size_t i, double sx, double sy, double len, double dt);
     void shiftParticles(double dt);
     void checkState(double dt);
     double chooseDt() const;

@@ -15,7 +15,8 @@ namespace swell::bake {
 /// Bump whenever the solver's results change (anything that moves a particle, by one bit or
 /// more, in tests/bake/numerics_version_test.cpp, which then fails and names the new digest to
 /// record). Recorded in checkpoints and in the cache metadata ("numerics_version").
-// 3: sub-steps (solver.substep_courant); 4: the default scheme's packing factor (re_packing).
-inline constexpr int kNumericsVersion = 4;
+// 3: sub-steps (solver.substep_courant); 4: the default scheme's packing factor (re_packing);
+// 5: the default scheme's damping against the shift (solver.shift_damping).
+inline constexpr int kNumericsVersion = 5;
 
 } // namespace swell::bake
