@@ -169,12 +169,11 @@ void requireWaterInTank(const Particles& P, const GeometryParams& g, const TankO
             break;
         }
     }
-    const Box& t = tank.inner;
+    const Box o = tank.outer();
     throw SceneError(key, fmt::format("water at ({:.6g}, {:.6g}) m starts outside the tank: beyond "
                                       "its walls ({:.6g} to {:.6g} m with the wall layers) or "
                                       "below its bed ({:.6g} m)",
-                                      P.x[i], P.y[i], t.x0 - tank.thickness - tank.bedBehind,
-                                      t.x1 + tank.thickness, t.y0 - tank.thickness));
+                                      P.x[i], P.y[i], o.x0, o.x1, o.y0));
 }
 
 /// A bake killed with SIGKILL leaves its temporary cache (CACHE.tmp-<pid>), maybe a

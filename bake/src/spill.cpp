@@ -31,25 +31,22 @@ bool spilled(Escape e) {
 }
 
 std::vector<EscapedWater> findEscapedWater(const Particles& p, const TankOutline& tank) {
-    const Box& t = tank.inner;
-    const double front = t.x1 + tank.thickness;
-    const double back = t.x0 - tank.thickness - tank.bedBehind;
-    const double bed = t.y0 - tank.thickness;
-    const double top = t.y1 - tank.spacing; // "over": within one spacing of the top or above
+    const Box o = tank.outer();
+    const double top = o.y1 - tank.spacing; // "over": within one spacing of the top or above
     std::vector<EscapedWater> out;
     for (std::size_t i = 0; i < p.size(); ++i) {
         if (p.kind[i] != ParticleKind::Water)
             continue;
         const double x = p.x[i], y = p.y[i];
-        if (x > front) {
+        if (x > o.x1) {
             out.push_back({i, y >= top ? Escape::OverFrontWall : Escape::ThroughFrontWall});
-        } else if (x < back) {
+        } else if (x < o.x0) {
             // Behind a piston the water may have gone over it and run off the bed's end: the
             // height there says nothing about how it got behind the piston.
             const Escape low =
                 tank.bedBehind > 0.0 ? Escape::OffBedBehind : Escape::ThroughBackWall;
             out.push_back({i, y >= top ? Escape::OverBackWall : low});
-        } else if (y < bed) {
+        } else if (y < o.y0) {
             out.push_back({i, Escape::ThroughBed});
         }
     }

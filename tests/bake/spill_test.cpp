@@ -43,12 +43,11 @@ TEST(Spill, OutlineIsTheOuterFaceOfTheGeneratedWallsAndBed) {
         const TankOutline t = tankOutline(g);
         const Particles p = generateGeometry(g).particles;
         const double l0 = g.particleSpacing;
-        EXPECT_NEAR(*std::max_element(p.x.begin(), p.x.end()) + 0.5 * l0, t.inner.x1 + t.thickness,
-                    1e-12);
-        EXPECT_NEAR(*std::min_element(p.x.begin(), p.x.end()) - 0.5 * l0,
-                    t.inner.x0 - t.thickness - t.bedBehind, 1e-12);
-        EXPECT_NEAR(*std::min_element(p.y.begin(), p.y.end()) - 0.5 * l0, t.inner.y0 - t.thickness,
-                    1e-12);
+        const Box o = t.outer();
+        EXPECT_NEAR(*std::max_element(p.x.begin(), p.x.end()) + 0.5 * l0, o.x1, 1e-12);
+        EXPECT_NEAR(*std::min_element(p.x.begin(), p.x.end()) - 0.5 * l0, o.x0, 1e-12);
+        EXPECT_NEAR(*std::min_element(p.y.begin(), p.y.end()) - 0.5 * l0, o.y0, 1e-12);
+        EXPECT_EQ(o.y1, t.inner.y1);                                // the walls' top
         EXPECT_NEAR(t.bedBehind, behind > 0.0 ? 0.11 : 0.0, 1e-12); // whole spacings
     }
 }

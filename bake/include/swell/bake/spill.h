@@ -23,6 +23,13 @@ struct TankOutline {
     double thickness = 0.0; ///< wall and dummy layers (m)
     double bedBehind = 0.0; ///< bed extension behind the back wall (m, for a piston)
     double spacing = 0.0;   ///< particle spacing l0 (m)
+
+    /// The outer faces: x0 the back wall's (or the end of the bed behind it), x1 the front
+    /// wall's, y0 the bed's underside; y1 the walls' top.
+    Box outer() const {
+        return {inner.x0 - thickness - bedBehind, inner.y0 - thickness, inner.x1 + thickness,
+                inner.y1};
+    }
 };
 
 /// The outline of `geometry`'s tank as generateGeometry lays it out; geometry.tank must be set.
