@@ -524,7 +524,12 @@ int main(int argc, char** argv) {
             for (const auto& [k, v] : out.items())
                 std::printf("%-26s %s\n", k.c_str(), v.dump().c_str());
         }
-        return out["outcome"] == "stable" ? 0 : 2;
+        if (out["outcome"] == "stable")
+            return 0;
+        // A stopped run keeps its figures in the report (stdout) and says why on stderr.
+        std::fprintf(stderr, "swell-validate: %s: %s\n", cl.scene.c_str(),
+                     out["outcome"].get<std::string>().c_str());
+        return 2;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "swell-validate: %s\n", e.what());
         return 1;

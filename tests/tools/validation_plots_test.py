@@ -53,6 +53,23 @@ class ValidationPlots(unittest.TestCase):
             self.assertEqual(len(lines), 1, p.stderr)
             self.assertIn(f"{option} /nonexistent/dir/x.csv: cannot write", lines[0])
 
+    def test_a_stopped_run_says_why_on_stderr(self):
+        # The detector stops the run (a Courant limit below the surge's): status 2, the report
+        # on stdout still, and one line on stderr naming the scene and the stop.
+        scene = str(ROOT / "scenes" / "dam_break_small.json")
+        p = subprocess.run([str(BIN / "swell-validate"), "--json", "--threads", "1",
+                            "--set", "solver.courant_limit=0.15",
+                            "--set", "solver.expected_speed=1",
+                            "--set", "solver.substep_courant=0", "dam-break", scene],
+                           capture_output=True, text=True)
+        self.assertEqual(p.returncode, 2, p.stderr)
+        report = json.loads(p.stdout.strip().splitlines()[-1])
+        self.assertTrue(report["outcome"].startswith("stopped: "), report["outcome"])
+        lines = p.stderr.strip().splitlines()
+        self.assertEqual(len(lines), 1, p.stderr)
+        self.assertIn("dam_break_small.json: stopped: ", lines[0])
+        self.assertIn("solver.courant_limit 0.15", lines[0])
+
     def test_missing_binary_is_one_clear_line(self):
         with tempfile.TemporaryDirectory() as tmp:
             p = subprocess.run([sys.executable, str(TOOL), "--quick", "--bin", tmp,
