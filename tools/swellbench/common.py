@@ -6,6 +6,7 @@ Run with Debian's /usr/bin/python3 (numpy, zstandard, matplotlib from tools/setu
 
 import csv
 import datetime
+import hashlib
 import json
 import os
 import platform
@@ -189,13 +190,40 @@ class Context:
         return self.cache
 
     def paper_cache(self):
-        """The paper-scale surging bake (scenes/surging.json), baked once into out/bench/."""
+        """The paper-scale surging bake (scenes/surging.json) in out/bench/, baked again only
+        when the scene file or the solver's numerics version changed since the last one (a
+        stamp beside the cache records both), so its figures are always the shipped scene's."""
         cache = self.path("surging.swell")
-        if not os.path.exists(cache):
+        stamp_path = cache + ".stamp.json"
+        stamp = {"scene_sha256": file_sha256(scene("surging.json")),
+                 "numerics_version": numerics_version()}
+        try:
+            with open(stamp_path) as f:
+                fresh = json.load(f) == stamp and os.path.exists(cache)
+        except (OSError, ValueError):
+            fresh = False
+        if not fresh:
             r = self.run([exe("swell-bake"), scene("surging.json"), "-o", cache, "--json", "-q"], 3600)
             if r.rc != 0:
                 raise SystemExit("tools/bench: baking surging failed: " + r.last_err_line())
+            with open(stamp_path, "w") as f:
+                json.dump(stamp, f)
         return cache
+
+
+def file_sha256(path):
+    with open(path, "rb") as f:
+        return hashlib.sha256(f.read()).hexdigest()
+
+
+def numerics_version():
+    """kNumericsVersion of the source tree (bake/include/swell/bake/numerics_version.h)."""
+    path = os.path.join(ROOT, "bake", "include", "swell", "bake", "numerics_version.h")
+    with open(path) as f:
+        m = re.search(r"kNumericsVersion\s*=\s*(\d+)", f.read())
+    if not m:
+        raise SystemExit("tools/bench: no kNumericsVersion in " + path)
+    return int(m.group(1))
 
 
 def cache_facts(summary=None, cache=None):
