@@ -899,6 +899,25 @@ void MpsSolver::dampAgainstShift(std::size_t i, double sx, double sy, double len
     m_p.vy[i] += take * ey;
 }
 
+std::string MpsSolver::courantAdvice() const {
+    // What the user can do about a step stopped on the Courant limit (docs/scenes.md,
+    // solver.courant_limit and solver.substep_courant).
+    const TimeStepParams& t = m_par.time;
+    if (m_stats.substeps > 1 || (t.substepCourant > 0.0 && t.courantLimit > t.substepCourant)) {
+        return "the flow sped up faster than the sub-steps follow: a diverging simulation, or "
+               "a solver.dt too large for this flow";
+    }
+    if (!(t.substepCourant > 0.0)) {
+        return "a smaller solver.dt, or solver.substep_courant > 0 with solver.courant_limit "
+               "above it so that fast spray is followed in sub-steps";
+    }
+    return fmt::format("sub-steps (solver.substep_courant {:.3g}) act only under a higher "
+                       "limit: raise solver.courant_limit (scenes/surging.json: 0.8) so "
+                       "that fast spray is followed in sub-steps, or take a smaller "
+                       "solver.dt",
+                       t.substepCourant);
+}
+
 void MpsSolver::checkState(double dt) {
     const std::size_t n = m_p.size();
     std::size_t bad = n; // first non-finite particle
@@ -942,8 +961,8 @@ void MpsSolver::checkState(double dt) {
         fail(fastest,
              fmt::format(
                  "Courant number {:.3g} = |u| dt / l0 = {:.4g} m/s x {:.4g} s / {:.4g} m exceeds "
-                 "solver.courant_limit {:.3g}",
-                 m_stats.courant, best, dt, m_l0, m_par.time.courantLimit));
+                 "solver.courant_limit {:.3g}; {}",
+                 m_stats.courant, best, dt, m_l0, m_par.time.courantLimit, courantAdvice()));
     }
 }
 

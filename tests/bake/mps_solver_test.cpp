@@ -400,6 +400,21 @@ TEST(MpsSolver, DetectorStopsOnCourantNumberAboveTheLimit) {
     EXPECT_NE(msg.find("step"), std::string::npos);
     EXPECT_NE(msg.find("particle"), std::string::npos);
     EXPECT_NE(msg.find("courant_limit"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("a smaller solver.dt, or solver.substep_courant > 0"), std::string::npos)
+        << msg;
+}
+
+// The detector's message says what to change: with the default limit, equal to the sub-step
+// threshold, sub-steps never act, so it points at the limit.
+TEST(MpsSolver, DetectorSaysHowSubstepsCouldFollowTheFlow) {
+    Scene scene = smallDamBreak();
+    scene.solver.time.dt = 0.006;
+    ASSERT_EQ(scene.solver.time.courantLimit, scene.solver.time.substepCourant);
+    MpsSolver solver = makeSolver(scene);
+    const std::string msg = runUntilFailure(solver, 200);
+    ASSERT_FALSE(msg.empty()) << "a too-large step must be stopped";
+    EXPECT_NE(msg.find("raise solver.courant_limit"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("solver.substep_courant 0.5"), std::string::npos) << msg;
 }
 
 // Sub-steps (TimeStepParams::substepCourant): with the detector's limit at 1 (as a splashing
@@ -444,6 +459,7 @@ TEST(MpsSolver, DetectorNamesTheSubstepItStopsIn) {
     const std::string msg = runUntilFailure(solver, 1);
     EXPECT_NE(msg.find("in sub-step 1 of 64"), std::string::npos) << msg;
     EXPECT_NE(msg.find("step 2"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("faster than the sub-steps follow"), std::string::npos) << msg;
 }
 
 TEST(MpsSolver, DetectorNamesStepTimeAndParticleForNonFiniteState) {

@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <functional>
 #include <span>
+#include <string>
 #include <vector>
 
 #include <Eigen/Sparse>
@@ -124,6 +125,8 @@ private:
     void assemblePressureEquation(double dt);
     void solvePressure();
     void correctVelocity(double dt);
+    /// What a user can change when a step exceeds solver.courant_limit (the detector's message).
+    std::string courantAdvice() const;
     /// solver.shift_damping: takes from free-surface particle i the velocity its shift
     /// (sx, sy), of length len, undoes in a step of dt.
     void dampAgainstShift(std::size_t i, double sx, double sy, double len, double dt);
