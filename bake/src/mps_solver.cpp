@@ -912,7 +912,7 @@ std::string MpsSolver::courantAdvice() const {
                "above it so that fast spray is followed in sub-steps";
     }
     return fmt::format("sub-steps (solver.substep_courant {:.3g}) act only under a higher "
-                       "limit: raise solver.courant_limit (scenes/surging.json: 0.8) so "
+                       "limit: raise solver.courant_limit (default 0.8) above it so "
                        "that fast spray is followed in sub-steps, or take a smaller "
                        "solver.dt",
                        t.substepCourant);

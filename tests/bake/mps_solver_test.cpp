@@ -404,12 +404,12 @@ TEST(MpsSolver, DetectorStopsOnCourantNumberAboveTheLimit) {
         << msg;
 }
 
-// The detector's message says what to change: with the default limit, equal to the sub-step
-// threshold, sub-steps never act, so it points at the limit.
+// The detector's message says what to change: with the limit lowered to the sub-step
+// threshold (the default until 2026-12-02), sub-steps never act, so it points at the limit.
 TEST(MpsSolver, DetectorSaysHowSubstepsCouldFollowTheFlow) {
     Scene scene = smallDamBreak();
     scene.solver.time.dt = 0.006;
-    ASSERT_EQ(scene.solver.time.courantLimit, scene.solver.time.substepCourant);
+    scene.solver.time.courantLimit = scene.solver.time.substepCourant;
     MpsSolver solver = makeSolver(scene);
     const std::string msg = runUntilFailure(solver, 200);
     ASSERT_FALSE(msg.empty()) << "a too-large step must be stopped";
@@ -417,16 +417,15 @@ TEST(MpsSolver, DetectorSaysHowSubstepsCouldFollowTheFlow) {
     EXPECT_NE(msg.find("solver.substep_courant 0.5"), std::string::npos) << msg;
 }
 
-// Sub-steps (TimeStepParams::substepCourant): with the detector's limit at 1 (as a splashing
-// scene sets it), the same too-large step is split as soon as the previous step's fastest
-// particle would cross more than 0.5 l0, so the collapse runs 0.6 s (100 steps) without
-// reaching the limit; each step still advances exactly dt, and the number of sub-steps
-// follows the speed, ceil(max|u| dt / (0.5 l0)). (With the default limit, 0.5, a step that
-// would be split next has already been stopped: sub-steps act where a scene raises the limit.)
+// Sub-steps (TimeStepParams::substepCourant): with the default limits (sub-steps from 0.5,
+// the detector at 0.8), the same too-large step is split as soon as the previous step's
+// fastest particle would cross more than 0.5 l0, so the collapse runs 0.6 s (100 steps)
+// without reaching the limit; each step still advances exactly dt, and the number of
+// sub-steps follows the speed, ceil(max|u| dt / (0.5 l0)). No scene key is needed for it.
 TEST(MpsSolver, SubstepsFollowAFlowTheStepIsTooLongFor) {
     Scene scene = smallDamBreak();
     scene.solver.time.dt = 0.006;
-    scene.solver.time.courantLimit = 1.0;
+    ASSERT_GT(scene.solver.time.courantLimit, scene.solver.time.substepCourant);
     MpsSolver solver = makeSolver(scene);
     int most = 1;
     for (int k = 0; k < 100; ++k) {

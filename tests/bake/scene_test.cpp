@@ -164,12 +164,20 @@ TEST(Scene, BadValuesAreRejectedNamingTheKey) {
 }
 
 TEST(Scene, TimeStepAboveTheCourantLimitIsRejected) {
-    // Expected speed 2 sqrt(g H) = 2 sqrt(9.81 x 0.2) = 2.80 m/s; l0 = 0.01 m; limit 0.5:
-    // dt may be at most 0.5 x 0.01 / 2.80 = 1.78 ms.
+    // Expected speed 2 sqrt(g H) = 2 sqrt(9.81 x 0.2) = 2.80 m/s; l0 = 0.01 m; limit 0.8
+    // (the default): dt may be at most 0.8 x 0.01 / 2.80 = 2.86 ms.
     json j = minimal();
-    j["solver"]["dt"] = 0.0017;
+    j["solver"]["dt"] = 0.0028;
     EXPECT_EQ(errorKey(j), "<accepted>");
+    j["solver"]["dt"] = 0.0029;
+    EXPECT_EQ(errorKey(j), "solver.dt");
+    j["solver"]["courant_limit"] = 0.9; // a looser detector accepts it
+    EXPECT_EQ(errorKey(j), "<accepted>");
+    j["solver"]["courant_limit"] = 0.5; // a stricter one rejects a step it accepted
     j["solver"]["dt"] = 0.0019;
+    EXPECT_EQ(errorKey(j), "solver.dt");
+    j["solver"].erase("courant_limit");
+    j["solver"]["dt"] = 0.0029;
     EXPECT_EQ(errorKey(j), "solver.dt");
     j["solver"]["expected_speed"] = 1.0; // the scene says it is slower
     EXPECT_EQ(errorKey(j), "<accepted>");

@@ -103,7 +103,12 @@ struct TimeStepParams {
     double dt = 0.001;          ///< time step (s), the largest one when adaptive (paper Table 1)
     bool adaptive = false;      ///< shrink dt so max|u| dt / l0 <= courantTarget
     double courantTarget = 0.2; ///< Courant number the adaptive step aims at (-)
-    double courantLimit = 0.5;  ///< detector: a step above this Courant number stops the run (-)
+    /// Detector: a step (or sub-step) above this Courant number stops the run; also the
+    /// load-time check of dt at the scene's expected speed (-). Above substepCourant, so that
+    /// a flow speeding up is first taken in sub-steps and only stopped when a sub-step still
+    /// outruns it (with both at 0.5, the default until 2026-12-02, a step that would be split
+    /// had already been stopped, and every splashing scene had to raise it).
+    double courantLimit = 0.8;
     /// A step whose Courant number, max|u| of the previous step x dt / l0, is above this is
     /// taken as k = ceil(C / substepCourant) equal sub-steps (at most kMaxSubsteps), so a fast
     /// splash is followed in finer steps while frames stay evenly spaced; 0 turns it off (-).
