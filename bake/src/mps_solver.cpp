@@ -188,7 +188,7 @@ MpsSolver::MpsSolver(const PhysicsParams& physics, const SolverParams& solver, P
     m_grid.configure(m_domain, m_reList, n, lists.maxNeighbors);
 
     for (auto* v : {&m_xs, &m_ys, &m_xStar, &m_yStar, &m_uStar, &m_vStar, &m_uC, &m_vC, &m_divU,
-                    &m_fx, &m_fy, &m_shiftX, &m_shiftY, &m_nRelax, &m_nPack}) {
+                    &m_fx, &m_fy, &m_fNorm, &m_shiftX, &m_shiftY, &m_nRelax, &m_nPack}) {
         v->assign(n, 0.0);
     }
     m_surface.assign(n, 0);
@@ -410,7 +410,7 @@ void MpsSolver::predictVelocity(double dt) {
     // Algorithm 1, step 3: move the pushing wall to its prescribed place at the end of the step.
     const PistonState wall = m_wall.motion ? m_wall.motion(m_time + dt) : PistonState{};
     const bool anyMoving = !m_moving.empty();
-#pragma omp parallel for schedule(static) if (n >= kParallelMin)
+#pragma omp parallel for schedule(static, kParticleChunk) if (n >= kParallelMin)
     for (std::size_t i = 0; i < n; ++i) {
         if (isFixed(m_p.kind[i])) {
             const bool moving = anyMoving && m_moving[i];
@@ -446,7 +446,7 @@ void MpsSolver::resolveCollisions(double dt) {
     const double c2 = m_collide * m_collide;
     const double e = m_par.model.restitution;
     std::size_t collisions = 0;
-#pragma omp parallel for schedule(static) reduction(+ : collisions) if (n >= kParallelMin)
+#pragma omp parallel for schedule(static, kParticleChunk) reduction(+ : collisions) if (n >= kParallelMin)
     for (std::size_t i = 0; i < n; ++i) {
         m_uC[i] = m_uStar[i];
         m_vC[i] = m_vStar[i];
@@ -470,7 +470,7 @@ void MpsSolver::resolveCollisions(double dt) {
                       });
     }
     m_stats.collisions += collisions;
-#pragma omp parallel for schedule(static) if (n >= kParallelMin)
+#pragma omp parallel for schedule(static, kParticleChunk) if (n >= kParallelMin)
     for (std::size_t i = 0; i < n; ++i) {
         if (isFixed(m_p.kind[i]))
             continue;
@@ -502,8 +502,11 @@ void MpsSolver::numberDensityAndSurface() {
     const double reR2 = m_reR * m_reR;
     const double reP2 = m_reP * m_reP;
     const double scan2 = std::max({reN2, ownR ? reR2 : 0.0, reP2});
+    // |f| is read by the distribution test, the packing factor's choice of full
+    // neighbourhoods and the surface particles' shift: taken once here, in parallel.
+    const bool norm = distribution || packing || shifting;
     std::size_t surface = 0;
-#pragma omp parallel for schedule(static) reduction(+ : surface) if (n >= kParallelMin)
+#pragma omp parallel for schedule(static, kParticleChunk) reduction(+ : surface) if (n >= kParallelMin)
     for (std::size_t i = 0; i < n; ++i) {
         double s = 0.0;
         double div = 0.0;
@@ -543,6 +546,7 @@ void MpsSolver::numberDensityAndSurface() {
         m_divU[i] = coefD * div;
         m_fx[i] = fx * fScale;
         m_fy[i] = fy * fScale;
+        m_fNorm[i] = norm ? std::hypot(m_fx[i], m_fy[i]) : 0.0;
         m_shiftX[i] = cx;
         m_shiftY[i] = cy;
         if (m_p.kind[i] == ParticleKind::Dummy) {
@@ -554,7 +558,7 @@ void MpsSolver::numberDensityAndSurface() {
             bool free = s < threshold;
             bool oneSided = false;
             if (distribution) {
-                oneSided = std::hypot(m_fx[i], m_fy[i]) > asymmetric;
+                oneSided = m_fNorm[i] > asymmetric;
                 if (free && s >= sparse)
                     free = oneSided;
             }
@@ -584,7 +588,7 @@ double MpsSolver::measurePacking() const {
     double sumR = 0.0, sumP = 0.0;
     for (std::size_t i = 0; i < n; ++i) {
         if (m_p.kind[i] != ParticleKind::Water || m_surface[i] != 0 || m_layer[i] != 0 ||
-            std::hypot(m_fx[i], m_fy[i]) >= kFull)
+            m_fNorm[i] >= kFull)
             continue;
         sumR += m_nRelax[i];
         sumP += m_nPack[i];
@@ -724,7 +728,9 @@ void MpsSolver::correctVelocity(double dt) {
     const bool symmetric = usesSymmetricPairs(model);
     const bool minimum = usesMinimumPressure(model);
     double maxSpeed2 = 0.0;
-#pragma omp parallel for schedule(static) reduction(max : maxSpeed2) if (n >= kParallelMin)
+#pragma omp parallel for schedule(static, kParticleChunk)                                          \
+    reduction(max                                                                                  \
+              : maxSpeed2) if (n >= kParallelMin)
     for (std::size_t i = 0; i < n; ++i) {
         if (isFixed(m_p.kind[i])) {
             m_p.x[i] = m_xStar[i]; // a moving wall's prescribed place (others unchanged)
@@ -807,14 +813,14 @@ void MpsSolver::shiftParticles(double dt) {
     // taken; without it each particle moves at once.
     const bool follow = m_par.model.shiftingVelocity;
     const bool damp = m_par.model.shiftDamping;
-#pragma omp parallel for schedule(static) if (n >= kParallelMin)
+#pragma omp parallel for schedule(static, kParticleChunk) if (n >= kParallelMin)
     for (std::size_t i = 0; i < n; ++i) {
         if (isFixed(m_p.kind[i]))
             continue;
         double sx = -d * m_shiftX[i], sy = -d * m_shiftY[i];
         const bool surface = m_surface[i] == 1;
         if (surface) {
-            const double fn = std::hypot(m_fx[i], m_fy[i]);
+            const double fn = m_fNorm[i]; // |f| (numberDensityAndSurface)
             if (fn > 0.0) {
                 const double nx = -m_fx[i] / fn, ny = -m_fy[i] / fn;
                 const double along = sx * nx + sy * ny;
@@ -846,7 +852,7 @@ void MpsSolver::shiftParticles(double dt) {
     // Lind et al. 2012), taken before any particle moves.
     const double coefG = kDim / m_latN.n0;
     const double reN2 = m_reN * m_reN;
-#pragma omp parallel for schedule(static) if (n >= kParallelMin)
+#pragma omp parallel for schedule(static, kParticleChunk) if (n >= kParallelMin)
     for (std::size_t i = 0; i < n; ++i) {
         m_uC[i] = m_p.vx[i];
         m_vC[i] = m_p.vy[i];
@@ -868,7 +874,7 @@ void MpsSolver::shiftParticles(double dt) {
         m_uC[i] += coefG * (m_shiftX[i] * uxx + m_shiftY[i] * uxy);
         m_vC[i] += coefG * (m_shiftX[i] * vyx + m_shiftY[i] * vyy);
     }
-#pragma omp parallel for schedule(static) if (n >= kParallelMin)
+#pragma omp parallel for schedule(static, kParticleChunk) if (n >= kParallelMin)
     for (std::size_t i = 0; i < n; ++i) {
         if (isFixed(m_p.kind[i]))
             continue;

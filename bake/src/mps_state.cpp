@@ -87,7 +87,7 @@ void MpsSolver::removeWater(std::span<const std::size_t> indices) {
     // Work arrays of one step: only their length follows.
     const std::size_t k = m_p.size();
     for (auto* v : {&m_xStar, &m_yStar, &m_uStar, &m_vStar, &m_uC, &m_vC, &m_divU, &m_fx, &m_fy,
-                    &m_shiftX, &m_shiftY, &m_nRelax, &m_nPack}) {
+                    &m_fNorm, &m_shiftX, &m_shiftY, &m_nRelax, &m_nPack}) {
         v->resize(k);
     }
     m_row.resize(k);

@@ -161,15 +161,29 @@ void PressureSolver::setupTwoLevel() {
     double* band = m_band.data();
     // Coarse matrix A_c = P^T A P (P: piecewise constant on aggregates), lower band only:
     // band[I * width + (I - J)] = sum of A_ij over i in I, j in J.
+    // A row's columns of one aggregate come one after another (columns are sorted, rows are
+    // in cell order), so each run is summed in a register and stored once: the same additions
+    // in the same order as adding each into the band.
     std::fill(band, band + need, 0.0);
     for (int r = 0; r < rows; ++r) {
         const int I = m_aggOf[static_cast<std::size_t>(r)];
         double* rowI = band + static_cast<std::size_t>(I) * width;
+        int runJ = -1;
+        double sum = 0.0;
         for (int k = m_a.rowPtr[static_cast<std::size_t>(r)]; k < m_a.rowEnd(r); ++k) {
             const int J = m_aggOf[static_cast<std::size_t>(m_a.col[static_cast<std::size_t>(k)])];
-            if (J <= I)
-                rowI[I - J] += m_a.val[static_cast<std::size_t>(k)];
+            if (J > I)
+                continue;
+            if (J != runJ) {
+                if (runJ >= 0)
+                    rowI[I - runJ] = sum;
+                runJ = J;
+                sum = rowI[I - J];
+            }
+            sum += m_a.val[static_cast<std::size_t>(k)];
         }
+        if (runJ >= 0)
+            rowI[I - runJ] = sum;
     }
     // Band Cholesky in place: L(i, j) at band[i * width + (i - j)].
     for (int i = 0; i < nAgg; ++i) {
@@ -197,9 +211,16 @@ void PressureSolver::applyTwoLevel(const double* r, double* z) const {
     const double* band = m_band.data();
     double* rc = m_rc.data();
     double* zc = m_zc.data();
+    // rc = P^T r. The rows of one aggregate come one after another (rows in cell order), so
+    // each run is summed in a register: the same additions in the same order.
     std::fill(rc, rc + nAgg, 0.0);
-    for (int q = 0; q < rows; ++q)
-        rc[m_aggOf[static_cast<std::size_t>(q)]] += r[q];
+    for (int q = 0; q < rows;) {
+        const int I = m_aggOf[static_cast<std::size_t>(q)];
+        double sum = rc[I];
+        for (; q < rows && m_aggOf[static_cast<std::size_t>(q)] == I; ++q)
+            sum += r[q];
+        rc[I] = sum;
+    }
     for (int i = 0; i < nAgg; ++i) { // L y = rc
         const double* Li = band + static_cast<std::size_t>(i) * width;
         double s = rc[i];

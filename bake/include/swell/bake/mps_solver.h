@@ -162,6 +162,7 @@ private:
     std::vector<double> m_xStar, m_yStar, m_uStar, m_vStar; // predicted state
     std::vector<double> m_divU;     // velocity divergence (mixed source term)
     std::vector<double> m_fx, m_fy; // neighbour distribution / (n0 l0) at r*
+    std::vector<double> m_fNorm;    // its length |(m_fx, m_fy)|, where a test or shift reads it
     std::vector<double> m_nRelax;   // number density at r* on m_reR (n* where m_reR = m_reN)
     std::vector<double> m_nPack;    // number density at r* on m_reP (when set)
     std::vector<double> m_shiftX, m_shiftY; // shifting: sum (r_j - r_i) / r^2 w at r*
