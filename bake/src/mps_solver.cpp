@@ -918,10 +918,10 @@ std::string MpsSolver::courantAdvice() const {
                "above it so that fast spray is followed in sub-steps";
     }
     return fmt::format("sub-steps (solver.substep_courant {:.3g}) act only under a higher "
-                       "limit: raise solver.courant_limit (default 0.8) above it so "
+                       "limit: raise solver.courant_limit (default {:.3g}) above it so "
                        "that fast spray is followed in sub-steps, or take a smaller "
                        "solver.dt",
-                       t.substepCourant);
+                       t.substepCourant, TimeStepParams{}.courantLimit);
 }
 
 void MpsSolver::checkState(double dt) {
