@@ -3,6 +3,17 @@
 #include "command_line.h"
 
 namespace swell::bake {
+namespace {
+
+CLI::Option* addEnsemble(CLI::App& run, ValidateCommandLine& cl) {
+    return run
+        .add_option("--ensemble", cl.ensemble,
+                    "run N members, seeds 1..N, the water jittered by geometry.jitter (1e-6 l0 "
+                    "unless set): each member's figures and their mean, spread and range")
+        ->check(CLI::Range(1, 64));
+}
+
+} // namespace
 
 std::optional<int> parseValidateCommandLine(int argc, const char* const* argv,
                                             ValidateCommandLine& cl, std::ostream& out,
@@ -29,6 +40,7 @@ std::optional<int> parseValidateCommandLine(int argc, const char* const* argv,
     dam->add_option("--csv", cl.csv, "write the front series T,Z to this file");
     dam->add_option("--records", cl.records,
                     "write Martin & Moyce's two series (series,T,Z) to this file");
+    addEnsemble(*dam, cl)->excludes("--csv");
 
     auto* lob = app.add_subcommand(
         "lobovsky", "run the Lobovsky et al. (2014) H = 300 mm dam break and compare the water "
@@ -40,6 +52,7 @@ std::optional<int> parseValidateCommandLine(int argc, const char* const* argv,
     lob->add_option("--csv", cl.csv, "write the height series t,h_H1..h_H4 (m) to this file");
     lob->add_option("--records", cl.records,
                     "write the experimental gauge records (gauge,x,t,h; m, s) to this file");
+    addEnsemble(*lob, cl)->excludes("--csv");
 
     auto* still = app.add_subcommand("still-tank", "run a still-tank scene and check hydrostatics");
     still->add_option("scene", cl.scene, "scene JSON (the first water rectangle sets H)")
@@ -66,11 +79,7 @@ std::optional<int> parseValidateCommandLine(int argc, const char* const* argv,
         ->check(cli::finiteRange(0.0, 1e6));
     auto* keep =
         wave->add_option("--keep", cl.keep, "keep the cache and probes CSV in this folder");
-    wave->add_option("--ensemble", cl.ensemble,
-                     "run N members, seeds 1..N, the water jittered by geometry.jitter (1e-6 l0 "
-                     "unless set): each member's figures and their mean, spread and range")
-        ->check(CLI::Range(1, 64))
-        ->excludes(keep);
+    addEnsemble(*wave, cl)->excludes(keep);
 
     if (const auto rc = cli::parse(app, argc, argv, "swell-validate", 0, out, err))
         return rc;

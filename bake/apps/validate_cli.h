@@ -28,7 +28,7 @@ struct ValidateCommandLine {
     double waveFrom = -1.0;     ///< regular-wave --from (s); -1: the default window
     double waveTo = -1.0;       ///< regular-wave --to (s); -1: the default window
     std::string keep;           ///< regular-wave --keep
-    int ensemble = 0;           ///< regular-wave --ensemble: members (0: one run of the scene)
+    int ensemble = 0;           ///< --ensemble: members (0: one run of the scene)
 };
 
 /// Parses argv into `cl`. Returns the exit status when swell-validate should stop now: 0 after

@@ -8,9 +8,11 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <fmt/format.h>
@@ -425,47 +427,40 @@ json regularWave(const Scene& scene, double from, double to, const std::string& 
     return out;
 }
 
-/// mean, sample standard deviation, min and max of `v` (at least one value).
-json spread(const std::vector<double>& v) {
-    double sum = 0.0, lo = v.front(), hi = v.front();
-    for (double x : v) {
-        sum += x;
-        lo = std::min(lo, x);
-        hi = std::max(hi, x);
-    }
-    const double mean = sum / static_cast<double>(v.size());
-    double ss = 0.0;
-    for (double x : v)
-        ss += (x - mean) * (x - mean);
-    const double sd = v.size() > 1 ? std::sqrt(ss / static_cast<double>(v.size() - 1)) : 0.0;
-    return {{"mean", mean}, {"sd", sd}, {"min", lo}, {"max", hi}};
+json toJson(const Spread& s) {
+    return {{"mean", s.mean}, {"sd", s.sd}, {"min", s.min}, {"max", s.max}};
 }
 
-/// The regular wave as an ensemble: members with seeds 1..n and the water jittered (by the
-/// scene's geometry.jitter, or 1e-6 l0), the same flow up to a perturbation far below
-/// round-off's reach after a few periods; the spread of their figures is how far one record
-/// can be trusted (docs/validation.md).
-json regularWaveEnsemble(Scene scene, int n, double from, double to) {
+/// Named figures of one member's report, whose spread over the ensemble is reported.
+using Figures = std::vector<std::pair<std::string, double>>;
+
+/// A check as an ensemble: members with seeds 1..n and the water jittered (by the scene's
+/// geometry.jitter, or 1e-6 l0), the same flow up to a perturbation far below the resolution.
+/// Where the flow amplifies small differences (a breaking jet, a wave train over several
+/// wavelengths) one record is one draw, and the spread of the members' figures is how far it
+/// can be trusted (docs/validation.md 7.2, 7.13). `run` runs one member; `figures` reads the
+/// figures of a stable member's report, the same names in the same order for every member.
+json ensemble(Scene scene, int n, const std::function<json(const Scene&)>& run,
+              const std::function<Figures(const json&)>& figures) {
     if (!(scene.geometry.jitter > 0.0))
         scene.geometry.jitter = 1e-6;
     json members = json::array();
-    std::vector<double> first, worst, decay, wavelength;
+    std::vector<std::pair<std::string, std::vector<double>>> values;
     bool stable = true;
     for (int m = 1; m <= n; ++m) {
         scene.seed = static_cast<std::uint64_t>(m);
-        json r = regularWave(scene, from, to, "");
+        json r = run(scene);
         r["seed"] = m;
         if (r["outcome"] != "stable") {
             stable = false;
         } else {
-            const std::vector<double> e = r["height_errors"].get<std::vector<double>>();
-            first.push_back(e.front());
-            double w = 0.0;
-            for (double x : e)
-                w = std::max(w, std::abs(x));
-            worst.push_back(w);
-            decay.push_back(r["decay_total"].get<double>());
-            wavelength.push_back(r["wavelength_fit_error"].get<double>());
+            const Figures f = figures(r);
+            if (values.empty()) {
+                for (const auto& [name, v] : f)
+                    values.push_back({name, {}});
+            }
+            for (std::size_t k = 0; k < f.size(); ++k)
+                values[k].second.push_back(f[k].second);
         }
         std::fprintf(stderr, "swell-validate: ensemble member %d of %d: %s\n", m, n,
                      r["outcome"].get<std::string>().c_str());
@@ -476,13 +471,38 @@ json regularWaveEnsemble(Scene scene, int n, double from, double to) {
              {"jitter", scene.geometry.jitter},
              {"outcome", stable ? "stable" : "stopped: a member stopped (see members)"},
              {"members", members}};
-    if (!first.empty()) {
-        out["height_error_first_gauge"] = spread(first);
-        out["height_error_worst_gauge"] = spread(worst);
-        out["decay_total"] = spread(decay);
-        out["wavelength_fit_error"] = spread(wavelength);
-    }
+    for (const auto& [name, v] : values)
+        out[name] = toJson(spreadOf(v));
     return out;
+}
+
+Figures regularWaveFigures(const json& r) {
+    const std::vector<double> e = r["height_errors"].get<std::vector<double>>();
+    double worst = 0.0;
+    for (double x : e)
+        worst = std::max(worst, std::abs(x));
+    return {{"height_error_first_gauge", e.front()},
+            {"height_error_worst_gauge", worst},
+            {"decay_total", r["decay_total"].get<double>()},
+            {"wavelength_fit_error", r["wavelength_fit_error"].get<double>()}};
+}
+
+Figures lobovskyFigures(const json& r) {
+    Figures f;
+    for (const json& g : r["gauges"]) {
+        const std::string name = g["name"].get<std::string>();
+        f.push_back({"mean_abs_error_over_H_" + name, g["mean_abs_error_over_H"].get<double>()});
+        f.push_back(
+            {"mean_signed_error_over_H_" + name, g["mean_signed_error_over_H"].get<double>()});
+    }
+    f.push_back({"mean_abs_error_over_H_worst", r["mean_abs_error_over_H_worst"].get<double>()});
+    return f;
+}
+
+Figures damBreakFigures(const json& r) {
+    return {{"front_error_mean", r["front_error_mean"].get<double>()},
+            {"aligned_front_error_mean", r["aligned_front_error_mean"].get<double>()},
+            {"aligned_front_error_max", r["aligned_front_error_max"].get<double>()}};
 }
 
 } // namespace
@@ -503,11 +523,26 @@ int main(int argc, char** argv) {
                           cl.run == Run::DamBreak ? martinMoyceRecordsCsv() : lobovskyRecordsCsv(),
                           "--records");
         if (cl.run == Run::DamBreak) {
-            out = damBreak(scene, cl.damUntil, cl.csv);
+            out = cl.ensemble > 0
+                      ? ensemble(
+                            scene, cl.ensemble,
+                            [&](const Scene& s) { return damBreak(s, cl.damUntil, ""); },
+                            damBreakFigures)
+                      : damBreak(scene, cl.damUntil, cl.csv);
         } else if (cl.run == Run::Lobovsky) {
-            out = lobovsky(scene, cl.lobovskyUntil, cl.csv);
+            out = cl.ensemble > 0
+                      ? ensemble(
+                            scene, cl.ensemble,
+                            [&](const Scene& s) { return lobovsky(s, cl.lobovskyUntil, ""); },
+                            lobovskyFigures)
+                      : lobovsky(scene, cl.lobovskyUntil, cl.csv);
         } else if (cl.run == Run::RegularWave) {
-            out = cl.ensemble > 0 ? regularWaveEnsemble(scene, cl.ensemble, cl.waveFrom, cl.waveTo)
+            out = cl.ensemble > 0 ? ensemble(
+                                        scene, cl.ensemble,
+                                        [&](const Scene& s) {
+                                            return regularWave(s, cl.waveFrom, cl.waveTo, "");
+                                        },
+                                        regularWaveFigures)
                                   : regularWave(scene, cl.waveFrom, cl.waveTo, cl.keep);
         } else {
             const long steps =

@@ -241,4 +241,26 @@ std::string lobovskyRecordsCsv() {
     return out;
 }
 
+Spread spreadOf(std::span<const double> values) {
+    if (values.empty())
+        throw std::invalid_argument("spreadOf: no values");
+    Spread s;
+    s.count = values.size();
+    s.min = s.max = values.front();
+    double sum = 0.0;
+    for (double v : values) {
+        if (!std::isfinite(v))
+            throw std::invalid_argument(fmt::format("spreadOf: a value is not finite ({})", v));
+        sum += v;
+        s.min = std::min(s.min, v);
+        s.max = std::max(s.max, v);
+    }
+    s.mean = sum / static_cast<double>(s.count);
+    double ss = 0.0;
+    for (double v : values)
+        ss += (v - s.mean) * (v - s.mean);
+    s.sd = s.count > 1 ? std::sqrt(ss / static_cast<double>(s.count - 1)) : 0.0;
+    return s;
+}
+
 } // namespace swell::bake

@@ -86,6 +86,17 @@ TEST(CommandLine, SwellValidateRefusesNonsenseValues) {
                   "--ensemble");
     expectRefused(validate({"regular-wave", "s.json", "--ensemble", "2", "--keep", "d"}),
                   "swell-validate", "--keep");
+    // The dam breaks run as ensembles too; an ensemble has no single series to write.
+    EXPECT_FALSE(validate({"lobovsky", "s.json", "--ensemble", "4"}).rc.has_value());
+    EXPECT_FALSE(validate({"dam-break", "s.json", "--ensemble", "3"}).rc.has_value());
+    expectRefused(validate({"lobovsky", "s.json", "--ensemble", "65"}), "swell-validate",
+                  "--ensemble");
+    expectRefused(validate({"lobovsky", "s.json", "--ensemble", "2", "--csv", "h.csv"}),
+                  "swell-validate", "--csv");
+    expectRefused(validate({"dam-break", "s.json", "--ensemble", "2", "--csv", "f.csv"}),
+                  "swell-validate", "--csv");
+    expectRefused(validate({"still-tank", "s.json", "--ensemble", "2"}), "swell-validate",
+                  "--ensemble");
 }
 
 TEST(CommandLine, SwellMpsBenchRefusesNoStepsAndTakesItsSceneOverrides) {

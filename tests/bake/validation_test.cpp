@@ -143,6 +143,24 @@ TEST(Validation, AlignedFrontRejectsASeriesThatNeverReachesTheFirstPosition) {
                  std::invalid_argument);
 }
 
+// spreadOf: an ensemble's figure as mean, sample standard deviation and range.
+TEST(Validation, SpreadOfAnEnsembleIsItsMeanSampleDeviationAndRange) {
+    const std::vector<double> v{0.074, 0.080, 0.081, 0.075};
+    const Spread s = spreadOf(v);
+    EXPECT_EQ(s.count, 4u);
+    EXPECT_NEAR(s.mean, 0.0775, 1e-15);
+    // sum of squares 0.0035^2 + 0.0025^2 + 0.0035^2 + 0.0025^2 = 3.7e-5, over n - 1 = 3
+    EXPECT_NEAR(s.sd, std::sqrt(3.7e-5 / 3.0), 1e-15);
+    EXPECT_DOUBLE_EQ(s.min, 0.074);
+    EXPECT_DOUBLE_EQ(s.max, 0.081);
+    const Spread one = spreadOf(std::vector<double>{-0.02});
+    EXPECT_EQ(one.sd, 0.0);
+    EXPECT_EQ(one.min, -0.02);
+    EXPECT_EQ(one.max, -0.02);
+    EXPECT_THROW((void)spreadOf(std::vector<double>{}), std::invalid_argument);
+    EXPECT_THROW((void)spreadOf(std::vector<double>{0.1, std::nan("")}), std::invalid_argument);
+}
+
 // compareLevel interpolates the simulated series at the record's times inside [tLo, tHi].
 TEST(Validation, LevelComparisonInterpolatesTheSimulationAtRecordTimes) {
     // Simulation h = 0.1 + 0.2 t, sampled every 0.01 s; record 0.02 m low at its times.

@@ -1,4 +1,5 @@
 #pragma once
+#include <cstddef>
 #include <span>
 #include <string>
 #include <vector>
@@ -104,5 +105,18 @@ struct HarmonicFit {
     double mean = 0.0;      ///< (units of v)
 };
 HarmonicFit fitHarmonic(std::span<const double> t, std::span<const double> v, double omega);
+
+/// One figure over an ensemble of runs (swell-validate --ensemble): members that differ only
+/// by a jitter of the water far below the resolution, so their spread is how far one record
+/// of a flow that amplifies small differences can be trusted (docs/validation.md 7.2, 7.13).
+struct Spread {
+    double mean = 0.0;
+    double sd = 0.0; ///< sample standard deviation (n - 1); 0 for one member
+    double min = 0.0;
+    double max = 0.0;
+    std::size_t count = 0;
+};
+/// Throws std::invalid_argument for no values or a value that is not finite.
+Spread spreadOf(std::span<const double> values);
 
 } // namespace swell::bake
