@@ -63,6 +63,7 @@ std::optional<int> parseValidateCommandLine(int argc, const char* const* argv,
         ->check(CLI::Range(1L, 1000000000L));
     still->add_option("--trace", cl.trace, "print step stats to stderr every N steps")
         ->check(CLI::Range(0L, 1000000000L));
+    addEnsemble(*still, cl);
 
     auto* wave = app.add_subcommand("regular-wave",
                                     "bake a sinusoidal-piston scene and compare the wave height "

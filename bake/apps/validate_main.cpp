@@ -499,6 +499,14 @@ Figures lobovskyFigures(const json& r) {
     return f;
 }
 
+Figures stillTankFigures(const json& r) {
+    return {{"bottom_pressure_ratio", r["bottom_pressure_ratio"].get<double>()},
+            {"max_speed_over_sqrt_gH", r["max_speed_over_sqrt_gH"].get<double>()},
+            {"max_drift_speed_over_sqrt_gH", r["max_drift_speed_over_sqrt_gH"].get<double>()},
+            {"mean_speed_over_sqrt_gH", r["mean_speed_over_sqrt_gH"].get<double>()},
+            {"max_excursion_over_l0", r["max_excursion_over_l0"].get<double>()}};
+}
+
 Figures damBreakFigures(const json& r) {
     return {{"front_error_mean", r["front_error_mean"].get<double>()},
             {"aligned_front_error_mean", r["aligned_front_error_mean"].get<double>()},
@@ -547,7 +555,13 @@ int main(int argc, char** argv) {
         } else {
             const long steps =
                 cl.steps >= 0 ? cl.steps : std::lround(scene.run.endTime / scene.solver.time.dt);
-            out = stillTank(scene, cl.settle, steps, cl.trace);
+            out =
+                cl.ensemble > 0
+                    ? ensemble(
+                          scene, cl.ensemble,
+                          [&](const Scene& s) { return stillTank(s, cl.settle, steps, cl.trace); },
+                          stillTankFigures)
+                    : stillTank(scene, cl.settle, steps, cl.trace);
         }
         out["wall_seconds"] =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -86,7 +86,8 @@ TEST(CommandLine, SwellValidateRefusesNonsenseValues) {
                   "--ensemble");
     expectRefused(validate({"regular-wave", "s.json", "--ensemble", "2", "--keep", "d"}),
                   "swell-validate", "--keep");
-    // The dam breaks run as ensembles too; an ensemble has no single series to write.
+    // The dam breaks and the still tank run as ensembles too; an ensemble has no single
+    // series to write.
     EXPECT_FALSE(validate({"lobovsky", "s.json", "--ensemble", "4"}).rc.has_value());
     EXPECT_FALSE(validate({"dam-break", "s.json", "--ensemble", "3"}).rc.has_value());
     expectRefused(validate({"lobovsky", "s.json", "--ensemble", "65"}), "swell-validate",
@@ -95,7 +96,8 @@ TEST(CommandLine, SwellValidateRefusesNonsenseValues) {
                   "swell-validate", "--csv");
     expectRefused(validate({"dam-break", "s.json", "--ensemble", "2", "--csv", "f.csv"}),
                   "swell-validate", "--csv");
-    expectRefused(validate({"still-tank", "s.json", "--ensemble", "2"}), "swell-validate",
+    EXPECT_FALSE(validate({"still-tank", "s.json", "--ensemble", "4"}).rc.has_value());
+    expectRefused(validate({"still-tank", "s.json", "--ensemble", "-1"}), "swell-validate",
                   "--ensemble");
 }
 
