@@ -296,8 +296,9 @@ TEST(Validation, DamBreakFrontFollowsMartinMoyceAtCiResolution) {
     RecordProperty("front_error_mean", fmt::format("{:.4f}", raw.mean));
     EXPECT_LT(raw.mean, 0.35)
         << "mean |dZ| over T in [0.8, 3.0] (bound: 0.35 a, docs/validation.md)";
-    // On the time origin tied to the first recorded front (alignedFront): measured 0.040 a mean,
-    // 0.101 a max with the default scheme (docs/validation.md section 7).
+    // On the time origin tied to the first recorded front (alignedFront): measured 0.057 a mean,
+    // 0.108 a max with the default scheme (docs/validation.md 7.11); four members jittered by
+    // 1e-6 l0 agree with it to 1e-3 a at this resolution (7.13).
     const FrontError aligned = pooled(alignedFront(run.series, martinMoyceA225()).error,
                                       alignedFront(run.series, martinMoyceA1125()).error);
     ASSERT_EQ(aligned.points, 7);
@@ -324,8 +325,9 @@ TEST(Validation, TextbookSchemeDamBreakStaysWithinItsBound) {
 // Lobovsky et al. (2014) dam break, H = 0.3 m, at CI resolution H/15 (lobovsky_small.json):
 // water height at the gauges H1..H4 (sampleProbes with the floor as level, 0 where dry) after
 // every step, compared with the records over t in [0, 1.5] s (compareLevel). Asserts only a
-// stable run and a worst-gauge error a little above the measured one: 0.085 H (gauge H2,
-// default scheme; the textbook scheme: 0.087 H, H2), 2 threads, about 1 s.
+// stable run and a worst-gauge error a little above the measured ones: 0.081 H (gauge H4,
+// default scheme, docs/validation.md 7.11), 0.077-0.088 H over four members jittered by 1e-6
+// l0 (7.13); the textbook scheme 0.087 H. 2 threads, about 1 s.
 TEST(Validation, LobovskyDamBreakRunsStableAtCiResolution) {
     const Scene scene = loadScene(kScenes / "lobovsky_small.json");
     const double H = scene.geometry.water.at(0).height();
@@ -363,7 +365,6 @@ TEST(Validation, LobovskyDamBreakRunsStableAtCiResolution) {
         worst = std::max(worst, e.mean / H);
     }
     RecordProperty("mean_abs_error_over_H_worst", fmt::format("{:.4f}", worst));
-    // Measured 0.085 H (default scheme, H2), 0.087 H textbook (docs/validation.md section 7).
     EXPECT_LT(worst, 0.105) << "worst gauge's mean |h_sim - h_exp| / H over t in [0, 1.5] s";
 }
 
@@ -437,7 +438,10 @@ StillTankResult runStillTank(Scene scene, long steps, double settle) {
 // textbook scheme and the corrected gradient with the relaxed source keep churning at 0.5);
 // the 1 % goal is not met. No water particle gets further than 0.18 l0 from where it was at
 // 2 s in the next 18 s (1.71 l0 without the damping; the textbook scheme's particles wander
-// 16.5 l0 in 10 s, swell-validate still-tank).
+// 16.5 l0 in 10 s, swell-validate still-tank). The settled state is a draw (docs/validation.md
+// 7.13): eight members jittered by 1e-6 l0 read bed 0.9948-0.9967, max |u| 0.023-0.036 and
+// excursion 0.53-0.92 l0 (without the damping 0.074-0.148 and 0.84-2.7 l0), so the bounds
+// cover those members, not only the unjittered record.
 TEST(Validation, StillTankHydrostaticPressureWithTheDefaultScheme) {
     const Scene scene = loadScene(kScenes / "still_tank_small.json");
     ASSERT_EQ(scene.solver.scheme, Scheme::Swell);
@@ -448,20 +452,24 @@ TEST(Validation, StillTankHydrostaticPressureWithTheDefaultScheme) {
     RecordProperty("max_speed_ratio", fmt::format("{:.4f}", r.maxSpeedRatio));
     RecordProperty("max_excursion_l0", fmt::format("{:.3f}", r.excursion));
     EXPECT_NEAR(r.pressureRatio, 1.0, 0.01);
-    EXPECT_LT(r.maxSpeedRatio, 0.04);
-    EXPECT_LT(r.excursion, 0.5);
+    EXPECT_LT(r.maxSpeedRatio, 0.045);
+    EXPECT_LT(r.excursion, 1.2);
 }
 
-TEST(Validation, StillTankWithTheRelaxationOnThreeSpacingsKeepsItsBedPressureWithinOnePercent) {
+TEST(Validation,
+     StillTankWithTheRelaxationOnThreeSpacingsKeepsItsBedPressureWithinOneAndAHalfPercent) {
     // solver.re_relaxation = 3.0 (docs/validation.md 7.7): a hexagonal packing holds n0 in the
-    // square lattice's area on 3.0 l0, so the water keeps its volume. Measured 0.9901 (0.9919
-    // before the damping against the shift; without the packing factor, on 2.8 l0: 0.984,
-    // which this bound fails).
+    // square lattice's area on 3.0 l0, so the water keeps more of its volume. Measured 0.9901
+    // (0.9919 before the damping against the shift); eight members jittered by 1e-6 l0 read
+    // 0.988-0.990 (docs/validation.md 7.13), so the 1 % of 7.7 holds for the unjittered record
+    // only. Without the packing factor, on 2.8 l0, the members read 0.983-0.9855 (below), which
+    // this bound fails.
     Scene scene = loadScene(kScenes / "still_tank_small.json", {"solver.re_relaxation=3.0"});
     const StillTankResult r = runStillTank(scene, 20000, 2.0);
     EXPECT_EQ(r.escaped, 0u);
     RecordProperty("bottom_pressure_ratio", fmt::format("{:.4f}", r.pressureRatio));
-    EXPECT_NEAR(r.pressureRatio, 1.0, 0.01);
+    EXPECT_GT(r.pressureRatio, 0.9865);
+    EXPECT_LT(r.pressureRatio, 1.01);
     EXPECT_LT(r.maxSpeedRatio, 0.15);
     EXPECT_LT(r.excursion, 2.0);
 }
@@ -509,8 +517,10 @@ TEST(Validation, StillTankAtHalfTheStepIsCalmWithTheDampingAgainstTheShift) {
     }
     const StillTankResult undamped = run({"solver.reference_step=0", "solver.shift_damping=false"});
     RecordProperty("undamped_max_speed_ratio", fmt::format("{:.4f}", undamped.maxSpeedRatio));
-    EXPECT_GT(undamped.maxSpeedRatio, 0.15); // measured 0.249 (numerics 4)
-    EXPECT_GT(undamped.excursion, 3.0);      // measured 5.2 l0
+    // Measured 0.249 and 5.2 l0 (numerics 4); eight jittered members 0.177-0.253 and
+    // 2.4-8.0 l0, the damped per-step tank's members 0.032-0.049 and 0.10-0.44 l0.
+    EXPECT_GT(undamped.maxSpeedRatio, 0.15);
+    EXPECT_GT(undamped.excursion, 2.0);
 }
 
 // The lidded tank (closed_tank_small.json: no free surface): what moves there comes from the
@@ -540,14 +550,16 @@ Scene settlingStillTank() {
         {"solver.scheme=textbook", "solver.symmetric_gradient=true", "solver.relaxation=0.05"});
 }
 
-TEST(Validation, StillTankWithSymmetricGradientSettlesBelowThreePercentOfWaveSpeed) {
+// Measured 0.018 of sqrt(g H) unjittered; eight members jittered by 1e-6 l0 read 0.008-0.035
+// (docs/validation.md 7.13); the textbook gradient churns at 0.4-0.5.
+TEST(Validation, StillTankWithSymmetricGradientSettlesBelowFivePercentOfWaveSpeed) {
     const StillTankResult r = runStillTank(settlingStillTank(), 20000, 10.0);
     EXPECT_EQ(r.steps, 20000);
     EXPECT_EQ(r.escaped, 0u);
     RecordProperty("bottom_pressure_ratio", fmt::format("{:.4f}", r.pressureRatio));
     RecordProperty("max_speed_ratio", fmt::format("{:.4f}", r.maxSpeedRatio));
     EXPECT_NEAR(r.pressureRatio, 1.0, 0.05);
-    EXPECT_LT(r.maxSpeedRatio, 0.03); // measured 0.018 (textbook gradient: 0.4-0.5)
+    EXPECT_LT(r.maxSpeedRatio, 0.05);
 }
 
 // The bound: max |u| < 1 % of sqrt(g H) after settling. It holds with the paper's
