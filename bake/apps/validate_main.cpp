@@ -530,39 +530,37 @@ int main(int argc, char** argv) {
             writeTextFile(cl.records,
                           cl.run == Run::DamBreak ? martinMoyceRecordsCsv() : lobovskyRecordsCsv(),
                           "--records");
+        // One check: run(scene, single) runs it once; a single run also writes the files its
+        // options name (--csv, --keep), an ensemble member does not.
+        std::function<json(const Scene&, bool)> run;
+        std::function<Figures(const json&)> figures;
         if (cl.run == Run::DamBreak) {
-            out = cl.ensemble > 0
-                      ? ensemble(
-                            scene, cl.ensemble,
-                            [&](const Scene& s) { return damBreak(s, cl.damUntil, ""); },
-                            damBreakFigures)
-                      : damBreak(scene, cl.damUntil, cl.csv);
+            run = [&](const Scene& s, bool single) {
+                return damBreak(s, cl.damUntil, single ? cl.csv : "");
+            };
+            figures = damBreakFigures;
         } else if (cl.run == Run::Lobovsky) {
-            out = cl.ensemble > 0
-                      ? ensemble(
-                            scene, cl.ensemble,
-                            [&](const Scene& s) { return lobovsky(s, cl.lobovskyUntil, ""); },
-                            lobovskyFigures)
-                      : lobovsky(scene, cl.lobovskyUntil, cl.csv);
+            run = [&](const Scene& s, bool single) {
+                return lobovsky(s, cl.lobovskyUntil, single ? cl.csv : "");
+            };
+            figures = lobovskyFigures;
         } else if (cl.run == Run::RegularWave) {
-            out = cl.ensemble > 0 ? ensemble(
-                                        scene, cl.ensemble,
-                                        [&](const Scene& s) {
-                                            return regularWave(s, cl.waveFrom, cl.waveTo, "");
-                                        },
-                                        regularWaveFigures)
-                                  : regularWave(scene, cl.waveFrom, cl.waveTo, cl.keep);
+            run = [&](const Scene& s, bool single) {
+                return regularWave(s, cl.waveFrom, cl.waveTo, single ? cl.keep : "");
+            };
+            figures = regularWaveFigures;
         } else {
             const long steps =
                 cl.steps >= 0 ? cl.steps : std::lround(scene.run.endTime / scene.solver.time.dt);
-            out =
-                cl.ensemble > 0
-                    ? ensemble(
-                          scene, cl.ensemble,
-                          [&](const Scene& s) { return stillTank(s, cl.settle, steps, cl.trace); },
-                          stillTankFigures)
-                    : stillTank(scene, cl.settle, steps, cl.trace);
+            run = [&, steps](const Scene& s, bool) {
+                return stillTank(s, cl.settle, steps, cl.trace);
+            };
+            figures = stillTankFigures;
         }
+        out = cl.ensemble > 0
+                  ? ensemble(
+                        scene, cl.ensemble, [&](const Scene& s) { return run(s, false); }, figures)
+                  : run(scene, true);
         out["wall_seconds"] =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         out["threads"] = omp_get_max_threads();
