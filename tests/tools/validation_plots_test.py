@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """tools/validation_plots.py --quick: both plots written from stable runs of the CI scenes,
-every experimental point of the records in its CSV, a clear error for a missing binary.
+every experimental point of the records in its CSV, a clear error for a missing binary; and
+the swell-validate behaviour those plots rely on (clear errors, stopped runs, ensembles).
 
     /usr/bin/python3 tests/tools/validation_plots_test.py BIN_DIR
 """
@@ -69,6 +70,48 @@ class ValidationPlots(unittest.TestCase):
         self.assertEqual(len(lines), 1, p.stderr)
         self.assertIn("dam_break_small.json: stopped: ", lines[0])
         self.assertIn("solver.courant_limit 0.15", lines[0])
+
+    def test_an_ensemble_reports_each_member_and_the_spread_of_its_figures(self):
+        # swell-validate --ensemble (docs/validation.md 7.13): members with seeds 1..N, the
+        # water jittered by 1e-6 l0; each figure's mean, sd and range over the members.
+        scene = str(ROOT / "scenes" / "lobovsky_small.json")
+        p = subprocess.run([str(BIN / "swell-validate"), "--json", "--threads", "1", "lobovsky",
+                            scene, "--until", "0.3", "--ensemble", "3"],
+                           capture_output=True, text=True)
+        self.assertEqual(p.returncode, 0, p.stderr)
+        report = json.loads(p.stdout)
+        self.assertEqual(report["outcome"], "stable")
+        self.assertEqual(report["ensemble"], 3)
+        self.assertEqual(report["jitter"], 1e-6)
+        members = report["members"]
+        self.assertEqual([m["seed"] for m in members], [1, 2, 3])
+        for gauge in ("H1", "H2", "H3", "H4", "worst"):
+            name = "mean_abs_error_over_H_" + gauge
+            values = [m["mean_abs_error_over_H_worst"] if gauge == "worst" else
+                      next(g["mean_abs_error_over_H"] for g in m["gauges"] if g["name"] == gauge)
+                      for m in members]
+            spread = report[name]
+            self.assertAlmostEqual(spread["mean"], sum(values) / 3, places=12, msg=name)
+            self.assertEqual(spread["min"], min(values), name)
+            self.assertEqual(spread["max"], max(values), name)
+            self.assertGreaterEqual(spread["sd"], 0.0, name)
+        # The members differ (the jitter reaches the water), each one stable.
+        self.assertGreater(len({m["gauges"][0]["mean_abs_error_over_H"] for m in members}), 1)
+        self.assertEqual(p.stderr.count("ensemble member"), 3, p.stderr)
+
+    def test_an_ensemble_with_a_stopped_member_says_so(self):
+        scene = str(ROOT / "scenes" / "dam_break_small.json")
+        p = subprocess.run([str(BIN / "swell-validate"), "--json", "--threads", "1",
+                            "--set", "solver.courant_limit=0.15",
+                            "--set", "solver.expected_speed=1",
+                            "--set", "solver.substep_courant=0", "dam-break", scene,
+                            "--ensemble", "2"],
+                           capture_output=True, text=True)
+        self.assertEqual(p.returncode, 2, p.stderr)
+        report = json.loads(p.stdout)
+        self.assertTrue(report["outcome"].startswith("stopped: a member stopped"), report)
+        self.assertNotIn("aligned_front_error_mean", report)  # no spread of stopped runs
+        self.assertTrue(all(m["outcome"].startswith("stopped: ") for m in report["members"]))
 
     def test_missing_binary_is_one_clear_line(self):
         with tempfile.TemporaryDirectory() as tmp:
