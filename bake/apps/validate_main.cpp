@@ -428,7 +428,7 @@ json regularWave(const Scene& scene, double from, double to, const std::string& 
 }
 
 json toJson(const Spread& s) {
-    return {{"mean", s.mean}, {"sd", s.sd}, {"min", s.min}, {"max", s.max}};
+    return {{"mean", s.mean}, {"sd", s.sd}, {"min", s.min}, {"max", s.max}, {"members", s.count}};
 }
 
 /// Named figures of one member's report, whose spread over the ensemble is reported.
@@ -471,8 +471,16 @@ json ensemble(Scene scene, int n, const std::function<json(const Scene&)>& run,
              {"jitter", scene.geometry.jitter},
              {"outcome", stable ? "stable" : "stopped: a member stopped (see members)"},
              {"members", members}};
-    for (const auto& [name, v] : values)
-        out[name] = toJson(spreadOf(v));
+    // A figure a member could not measure (NaN) leaves the spread of the others, and a
+    // figure no member measured reads null: an ensemble's other figures are never lost.
+    for (const auto& [name, v] : values) {
+        std::vector<double> finite;
+        for (double x : v) {
+            if (std::isfinite(x))
+                finite.push_back(x);
+        }
+        out[name] = finite.empty() ? json(nullptr) : toJson(spreadOf(finite));
+    }
     return out;
 }
 

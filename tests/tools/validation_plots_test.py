@@ -95,6 +95,7 @@ class ValidationPlots(unittest.TestCase):
             self.assertEqual(spread["min"], min(values), name)
             self.assertEqual(spread["max"], max(values), name)
             self.assertGreaterEqual(spread["sd"], 0.0, name)
+            self.assertEqual(spread["members"], 3, name)
         # The members differ (the jitter reaches the water), each one stable.
         self.assertGreater(len({m["gauges"][0]["mean_abs_error_over_H"] for m in members}), 1)
         self.assertEqual(p.stderr.count("ensemble member"), 3, p.stderr)
