@@ -459,8 +459,11 @@ json ensemble(Scene scene, int n, const std::function<json(const Scene&)>& run,
                 for (const auto& [name, v] : f)
                     values.push_back({name, {}});
             }
-            for (std::size_t k = 0; k < f.size(); ++k)
-                values[k].second.push_back(f[k].second);
+            // A figure a member could not measure (NaN) stays out of the others' spread.
+            for (std::size_t k = 0; k < f.size(); ++k) {
+                if (std::isfinite(f[k].second))
+                    values[k].second.push_back(f[k].second);
+            }
         }
         std::fprintf(stderr, "swell-validate: ensemble member %d of %d: %s\n", m, n,
                      r["outcome"].get<std::string>().c_str());
@@ -471,16 +474,9 @@ json ensemble(Scene scene, int n, const std::function<json(const Scene&)>& run,
              {"jitter", scene.geometry.jitter},
              {"outcome", stable ? "stable" : "stopped: a member stopped (see members)"},
              {"members", members}};
-    // A figure a member could not measure (NaN) leaves the spread of the others, and a
-    // figure no member measured reads null: an ensemble's other figures are never lost.
-    for (const auto& [name, v] : values) {
-        std::vector<double> finite;
-        for (double x : v) {
-            if (std::isfinite(x))
-                finite.push_back(x);
-        }
-        out[name] = finite.empty() ? json(nullptr) : toJson(spreadOf(finite));
-    }
+    // A figure no member measured reads null: an ensemble's other figures are never lost.
+    for (const auto& [name, v] : values)
+        out[name] = v.empty() ? json(nullptr) : toJson(spreadOf(v));
     return out;
 }
 
