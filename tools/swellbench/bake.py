@@ -28,6 +28,14 @@ DAM_DT = (0.0005, 0.005)  # dt = 0.5 ms at l0 = 5 mm, proportional to l0
 WAVE_DT = ((0.04, 0.004), (0.02, 0.002), (0.0, 0.001))  # (l0 at least, dt): frames every 20 ms
 SCHEMES = [("swell (default)", {}), ("textbook", {"solver.scheme": "textbook"})]
 DEFAULT_SCHEME = SCHEMES[0][0]
+# The figures of each case whose spread over an ensemble's members the tables and the plot show.
+DAM_SPREAD = ("front_error_mean_a", "front_error_max_a", "aligned_front_error_mean_a",
+              "aligned_front_error_max_a", "aligned_shift_T")
+TANK_SPREAD = ("bed_pressure_ratio", "pressure_error", "max_speed_over_sqrt_gH")
+WAVE_SPREAD = ("H_m", "height_error", "wavelength_error", "wavelength_fit_error", "decay_per_wavelength",
+               "decay_total")
+def LOB_SPREAD(field):  # the worst gauge's and each gauge's mean error
+    return field.endswith("mean_abs_error_over_H")
 
 
 def scheme_of(r):
@@ -36,10 +44,21 @@ def scheme_of(r):
 
 
 def validate(ctx, kind, scene_name, settings, extra=(), timeout=900):
-    """One swell-validate run: (Run, its JSON or {})."""
+    """One swell-validate run: (Run, [each member's JSON]). With ctx.members > 1 it runs them as
+    an ensemble (--ensemble N: seeds 1..N, the water jittered by 1e-6 l0) and each member's JSON
+    gets the run's wall time over N as its wall_seconds; otherwise one unjittered record. A run
+    that wrote no JSON gives one empty member."""
+    ensemble = ["--ensemble", ctx.members] if ctx.members > 1 else []
     r = ctx.run([bl.exe("swell-validate"), "--json", "--threads", "1"] + bl.sets(settings) +
-                [kind, bl.scene(scene_name)] + [str(e) for e in extra], timeout)
-    return r, r.json or {}
+                [kind, bl.scene(scene_name)] + [str(e) for e in list(extra) + ensemble],
+                timeout * max(1, ctx.members))
+    j = r.json or {}
+    if not ensemble or "members" not in j:
+        return r, [j]
+    members = [dict(m) for m in j["members"]]
+    for m in members:
+        m.setdefault("wall_seconds", r.wall / len(members))
+    return r, members
 
 
 def validate_outcome(r, j):
@@ -47,6 +66,15 @@ def validate_outcome(r, j):
     if r.timed_out:
         return "timed out after %.0f s" % r.wall
     return j.get("outcome", "exit %s: %s" % (r.rc, r.last_err_line()))
+
+
+def each_member(r, members, row_of, spread):
+    """The row of a case: row_of(member JSON) for each member, combined (common.combine: means,
+    and the sample sd of the fields in spread); with one member its row as it is."""
+    rows = [row_of(j) for j in members]
+    if len(rows) == 1:
+        return rows[0]
+    return bl.combine(rows, spread)
 
 
 def us_per_particle_step(j, steps, particles):
@@ -79,18 +107,21 @@ def dam_break(ctx):
         s = {"geometry.particle_spacing": "%.6g" % l0, "solver.dt": "%.6g" % dt,
              "solver.ppe_tolerance": "%g" % tol}
         s.update(sset)
-        r, j = validate(ctx, "dam-break", DAM_SCENE, s)
-        steps, parts = j.get("steps") or 0, j.get("particles") or 0
-        rows.append({
-            "resolution": "a/%d" % per, "l0_m": l0, "dt_s": dt, "scheme": sname,
-            "ppe_tolerance": tol, "particles": parts, "water": j.get("water"),
-            "steps": steps, "outcome": validate_outcome(r, j),
-            "front_error_mean_a": j.get("front_error_mean"), "front_error_max_a": j.get("front_error_max"),
-            "aligned_front_error_mean_a": j.get("aligned_front_error_mean"),
-            "aligned_front_error_max_a": j.get("aligned_front_error_max"),
-            "aligned_shift_T": j.get("aligned_shift_T"),
-            "ppe_iterations_mean": j.get("ppe_iterations_mean"), "wall_s": j.get("wall_seconds", r.wall),
-            "us_per_particle_step": us_per_particle_step(j, steps, parts)})
+        r, members = validate(ctx, "dam-break", DAM_SCENE, s)
+
+        def row_of(j):
+            steps, parts = j.get("steps") or 0, j.get("particles") or 0
+            return {
+                "resolution": "a/%d" % per, "l0_m": l0, "dt_s": dt, "scheme": sname,
+                "ppe_tolerance": tol, "particles": parts, "water": j.get("water"),
+                "steps": steps, "outcome": validate_outcome(r, j),
+                "front_error_mean_a": j.get("front_error_mean"), "front_error_max_a": j.get("front_error_max"),
+                "aligned_front_error_mean_a": j.get("aligned_front_error_mean"),
+                "aligned_front_error_max_a": j.get("aligned_front_error_max"),
+                "aligned_shift_T": j.get("aligned_shift_T"),
+                "ppe_iterations_mean": j.get("ppe_iterations_mean"), "wall_s": j.get("wall_seconds", r.wall),
+                "us_per_particle_step": us_per_particle_step(j, steps, parts)}
+        rows.append(each_member(r, members, row_of, DAM_SPREAD))
     return rows
 
 
@@ -106,15 +137,19 @@ def still_tank(ctx):
         for sname, sset in SCHEMES:
             s = {"geometry.particle_spacing": "%.6g" % l0}
             s.update(sset)
-            r, j = validate(ctx, "still-tank", TANK_SCENE, s, ["--steps", steps, "--settle", settle])
-            n, parts = j.get("steps") or 0, j.get("particles") or 0
-            ratio = j.get("bottom_pressure_ratio")
-            rows.append({
-                "resolution": "H/%d" % per, "l0_m": l0, "scheme": sname, "particles": parts,
-                "water": j.get("water"), "steps": n, "settle_s": settle, "outcome": validate_outcome(r, j),
-                "bed_pressure_ratio": ratio, "pressure_error": abs(ratio - 1.0) if ratio is not None else None,
-                "max_speed_over_sqrt_gH": j.get("max_speed_over_sqrt_gH"), "escaped": j.get("escaped"),
-                "wall_s": j.get("wall_seconds", r.wall), "us_per_particle_step": us_per_particle_step(j, n, parts)})
+            r, members = validate(ctx, "still-tank", TANK_SCENE, s, ["--steps", steps, "--settle", settle])
+
+            def row_of(j):
+                n, parts = j.get("steps") or 0, j.get("particles") or 0
+                ratio = j.get("bottom_pressure_ratio")
+                return {
+                    "resolution": "H/%d" % per, "l0_m": l0, "scheme": sname, "particles": parts,
+                    "water": j.get("water"), "steps": n, "settle_s": settle, "outcome": validate_outcome(r, j),
+                    "bed_pressure_ratio": ratio, "pressure_error": abs(ratio - 1.0) if ratio is not None else None,
+                    "max_speed_over_sqrt_gH": j.get("max_speed_over_sqrt_gH"), "escaped": j.get("escaped"),
+                    "wall_s": j.get("wall_seconds", r.wall),
+                    "us_per_particle_step": us_per_particle_step(j, n, parts)}
+            rows.append(each_member(r, members, row_of, TANK_SPREAD))
     return rows
 
 
@@ -151,23 +186,26 @@ def regular_wave(ctx):
         for sname, sset in SCHEMES:
             s = dict(base)
             s.update(sset)
-            r, j = validate(ctx, "regular-wave", scene_name, s, timeout=3600)
-            hs, he = j.get("heights") or [None], j.get("height_errors") or [None]
-            win = j.get("window")
-            rows.append({"scene": scene_name[:-len(".json")], "resolution": "h/%d" % round(w["h"] / l0),
-                         "l0_m": l0, "dt_s": dt, "scheme": sname, "kh": j.get("kh"),
-                         "gauges": len(j.get("gauges") or w["gauges"]),
-                         "particles": (j.get("water") or 0) + (j.get("fixed") or 0) or None,
-                         "water": j.get("water"), "steps": j.get("steps"), "outcome": validate_outcome(r, j),
-                         "window_s": "%.1f-%.1f" % tuple(win) if win else None,
-                         "H_m": hs[0], "height_error": he[0], "theory_H_m": j.get("height_theory"),
-                         "L_m": j.get("wavelength"), "wavelength_error": j.get("wavelength_error"),
-                         "L_fit_m": j.get("wavelength_fit"), "wavelength_fit_error": j.get("wavelength_fit_error"),
-                         "theory_L_m": j.get("wavelength_theory"),
-                         "decay_per_wavelength": j.get("decay_per_wavelength"), "decay_total": j.get("decay_total"),
-                         "wall_s": j.get("wall_seconds", r.wall),
-                         "us_per_particle_step": j.get("us_per_particle_step"),
-                         "source": "swell-validate regular-wave"})
+            r, members = validate(ctx, "regular-wave", scene_name, s, timeout=3600)
+
+            def row_of(j):
+                hs, he = j.get("heights") or [None], j.get("height_errors") or [None]
+                win = j.get("window")
+                return {"scene": scene_name[:-len(".json")], "resolution": "h/%d" % round(w["h"] / l0),
+                        "l0_m": l0, "dt_s": dt, "scheme": sname, "kh": j.get("kh"),
+                        "gauges": len(j.get("gauges") or w["gauges"]),
+                        "particles": (j.get("water") or 0) + (j.get("fixed") or 0) or None,
+                        "water": j.get("water"), "steps": j.get("steps"), "outcome": validate_outcome(r, j),
+                        "window_s": "%.1f-%.1f" % tuple(win) if win else None,
+                        "H_m": hs[0], "height_error": he[0], "theory_H_m": j.get("height_theory"),
+                        "L_m": j.get("wavelength"), "wavelength_error": j.get("wavelength_error"),
+                        "L_fit_m": j.get("wavelength_fit"), "wavelength_fit_error": j.get("wavelength_fit_error"),
+                        "theory_L_m": j.get("wavelength_theory"),
+                        "decay_per_wavelength": j.get("decay_per_wavelength"), "decay_total": j.get("decay_total"),
+                        "wall_s": j.get("wall_seconds", r.wall),
+                        "us_per_particle_step": j.get("us_per_particle_step"),
+                        "source": "swell-validate regular-wave"}
+            rows.append(each_member(r, members, row_of, WAVE_SPREAD))
     return rows
 
 
@@ -221,23 +259,29 @@ def lobovsky(ctx):
                 continue
             s = dict(base)
             s.update(sset)
-            r, j = validate(ctx, "lobovsky", scene_name, s)
-            steps, parts = j.get("steps") or 0, j.get("particles") or 0
-            row.update({"particles": parts or None, "water": j.get("water"), "steps": steps or None,
-                        "outcome": validate_outcome(r, j),
-                        "worst_mean_abs_error_over_H": j.get("mean_abs_error_over_H_worst"),
-                        "window_s": "%g-%g" % tuple(j["window"]) if j.get("window") else None})
-            gauges = j.get("gauges") or []
-            worst = max(gauges, key=lambda g: g.get("mean_abs_error_over_H", 0.0), default=None)
-            row["worst_gauge"] = worst["name"] if worst else None
-            for g in gauges:
-                row["%s_x_m" % g["name"]] = g.get("x")
-                row["%s_mean_abs_error_over_H" % g["name"]] = g.get("mean_abs_error_over_H")
-                row["%s_mean_signed_error_over_H" % g["name"]] = g.get("mean_signed_error_over_H")
-            row.update({"ppe_iterations_mean": j.get("ppe_iterations_mean"),
-                        "wall_s": j.get("wall_seconds", r.wall),
-                        "us_per_particle_step": j.get("us_per_particle_step") or
-                        us_per_particle_step(j, steps, parts)})
+            r, members = validate(ctx, "lobovsky", scene_name, s)
+
+            def row_of(j, row=row):
+                steps, parts = j.get("steps") or 0, j.get("particles") or 0
+                out = dict(row)
+                out.update({"particles": parts or None, "water": j.get("water"), "steps": steps or None,
+                            "outcome": validate_outcome(r, j),
+                            "worst_mean_abs_error_over_H": j.get("mean_abs_error_over_H_worst"),
+                            "window_s": "%g-%g" % tuple(j["window"]) if j.get("window") else None})
+                for g in j.get("gauges") or []:
+                    out["%s_x_m" % g["name"]] = g.get("x")
+                    out["%s_mean_abs_error_over_H" % g["name"]] = g.get("mean_abs_error_over_H")
+                    out["%s_mean_signed_error_over_H" % g["name"]] = g.get("mean_signed_error_over_H")
+                out.update({"ppe_iterations_mean": j.get("ppe_iterations_mean"),
+                            "wall_s": j.get("wall_seconds", r.wall),
+                            "us_per_particle_step": j.get("us_per_particle_step") or
+                            us_per_particle_step(j, steps, parts)})
+                return out
+            row = each_member(r, members, row_of, LOB_SPREAD)
+            # The worst gauge: the one with the largest mean error (over the members).
+            means = {n: row.get("%s_mean_abs_error_over_H" % n) for n in gauge_names([row])}
+            means = {n: v for n, v in means.items() if v is not None}
+            row["worst_gauge"] = max(means, key=means.get) if means else None
             rows.append(row)
     return rows
 
@@ -282,7 +326,7 @@ def load_note(out):
 
 def table(rows, m):
     t = [bl.header(m), "", "Load average by section: " + bl.loads_text(m) + ".", "",
-         schemes_text(), "",
+         schemes_text(), "", members_text(m.get("members", 1)), "",
          dam_break_text(rows["dam_break"]), "", dam_break_table(rows["dam_break"]), "",
          still_tank_text(rows["still_tank"]), "", still_tank_table(rows["still_tank"]), "",
          regular_wave_text(rows.get(NOTE, "")), "", regular_wave_table(rows["regular_wave"]), "",
@@ -304,6 +348,20 @@ def schemes_text():
             "run with `%s`. One thread (`--threads 1`); cost = solver time / steps / all particles "
             "(water + wall + dummy), in µs per particle-step." % (
                 DEFAULT_SCHEME, textbook, " ".join(bl.sets(dict(SCHEMES)[textbook]))))
+
+
+def members_text(n):
+    if n <= 1:
+        return ("**Members.** One record per row, unjittered (`tools/bench --members N` runs each check "
+                "as an ensemble instead): where the flow amplifies small differences (the dam breaks "
+                "after the impact, the waves over several wavelengths, the still tank's settled state) "
+                "one record is one draw, good to the spread docs/validation.md 7.13 measures.")
+    return ("**Members.** Each row is an ensemble of %d members (`tools/bench --members %d`: "
+            "`swell-validate ... --ensemble %d`, seeds 1..%d, the water jittered by 1e-6 l0, the same "
+            "flow up to a perturbation far below the resolution): each figure reads the members' mean "
+            "± their sample sd (the error figures; counts, times and costs are means), and the plot "
+            "draws that sd as a bar. A row's outcome is the first member's that was not stable, "
+            "if any." % (n, n, n, n))
 
 
 def dam_break_text(rows):
@@ -435,17 +493,19 @@ def at_default_tolerance(r):
     return r.get("ppe_tolerance") in (None, 1e-6)
 
 
-# (CSV, label, error of a row, rows kept or None for all, joined by a line): one colour each.
+# (CSV, label, field, plotted as its absolute value, rows kept or None for all, joined by a
+# line): one colour each; an ensemble's rows also draw FIELD_sd as an error bar.
 PLOT_CASES = [
-    ("dam_break", "dam break: raw mean |dZ| / a", lambda r: r.get("front_error_mean_a"), at_default_tolerance, True),
-    ("dam_break", "dam break: aligned mean |dZ| / a", lambda r: r.get("aligned_front_error_mean_a"),
-     at_default_tolerance, True),
-    ("still_tank", "still tank: |bed p / rho g H - 1|", lambda r: r.get("pressure_error"), None, True),
-    ("regular_wave", "regular wave, h/N sweep: |H / H_Biesel - 1|", lambda r: abs_or_none(r.get("height_error")),
+    ("dam_break", "dam break: raw mean |dZ| / a", "front_error_mean_a", False, at_default_tolerance, True),
+    ("dam_break", "dam break: aligned mean |dZ| / a", "aligned_front_error_mean_a", False, at_default_tolerance,
+     True),
+    ("still_tank", "still tank: |bed p / rho g H - 1|", "pressure_error", False, None, True),
+    ("still_tank", "still tank: max speed / sqrt(gH)", "max_speed_over_sqrt_gH", False, None, True),
+    ("regular_wave", "regular wave, h/N sweep: |H / H_Biesel - 1|", "height_error", True,
      lambda r: r.get("scene") in (None, SWEEP), True),
-    ("regular_wave", "progressive waves (one scene each): |H / H_Biesel - 1|",
-     lambda r: abs_or_none(r.get("height_error")), lambda r: r.get("scene") not in (None, SWEEP), False),
-    ("lobovsky", "Lobovsky: worst gauge mean |dh| / H", lambda r: r.get("worst_mean_abs_error_over_H"), None, True),
+    ("regular_wave", "progressive waves (one scene each): |H / H_Biesel - 1|", "height_error", True,
+     lambda r: r.get("scene") not in (None, SWEEP), False),
+    ("lobovsky", "Lobovsky: worst gauge mean |dh| / H", "worst_mean_abs_error_over_H", False, None, True),
 ]
 # Scheme -> line style: the default solid with filled circles, textbook dashed with open squares.
 SCHEME_STYLES = {DEFAULT_SCHEME: {"linestyle": "-", "marker": "o"},
@@ -453,21 +513,23 @@ SCHEME_STYLES = {DEFAULT_SCHEME: {"linestyle": "-", "marker": "o"},
 STYLE_WORDS = {DEFAULT_SCHEME: "solid lines, filled circles", "textbook": "dashed lines, open squares"}
 
 
-def abs_or_none(v):
-    return abs(v) if v is not None else None
-
-
 def plot_text():
     return ("**Error against cost** (the plot): each case's error (y, log) against its µs per "
             "particle-step (x, log); one colour per case, one style per scheme (%s); points labelled "
-            "with their resolution (progressive waves: kh, not joined). Dam break at PPE tolerance "
-            "1e-6 only." % "; ".join("%s: %s" % (n, STYLE_WORDS[n]) for n in SCHEME_STYLES))
+            "with their resolution (progressive waves: kh, not joined); with an ensemble's rows, a bar of "
+            "one sd of the members either side of their mean (on the log axis a bar that would reach "
+            "below zero ends at the axis). Dam break at PPE tolerance 1e-6 only." % "; ".join(
+                "%s: %s" % (n, STYLE_WORDS[n]) for n in SCHEME_STYLES))
 
 
 def plot(rows, out_dir):
     series, annotate, extra = [], {}, []
-    for k, (csv_name, label, error, keep, line) in enumerate(PLOT_CASES):
+    for k, (csv_name, label, field, absolute, keep, line) in enumerate(PLOT_CASES):
         colour = "C%d" % k
+
+        def error(r):
+            v = r.get(field)
+            return abs(v) if absolute and v is not None else v
         drawn = False
         for sname, style in SCHEME_STYLES.items():
             rs = [r for r in rows.get(csv_name, []) if scheme_of(r) == sname and (keep is None or keep(r))
@@ -477,7 +539,7 @@ def plot(rows, out_dir):
             rs.sort(key=lambda r: r["us_per_particle_step"])
             drawn = True
             key = "_%s / %s" % (label, sname)  # "_": out of the legend (legend_extra names them)
-            st = dict(style, color=colour)
+            st = dict(style, color=colour, yerr=[r.get(field + "_sd") for r in rs])
             if not line:
                 st["linestyle"] = "none"
             series.append((key, [r["us_per_particle_step"] for r in rs], [error(r) for r in rs], st))

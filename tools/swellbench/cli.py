@@ -4,6 +4,8 @@ CSV files and PNG plots to out/bench/ and regenerates the marked tables in docs/
 
 Called by tools/bench (which installs and builds first). --quick: fewer and shorter runs
 (under ten minutes on the 2-core project VM); the full variant takes longer (see README).
+--members N: each bake check as an ensemble of N jittered members (default 1 with --quick, 3
+for the full variant).
 --docs-only: the tables and plots again from the CSV files of earlier runs, measuring nothing."""
 
 import argparse
@@ -26,6 +28,10 @@ def parse_args(argv=None):
     ap.add_argument("--only", default="",
                     help="comma list of sections: bake (or dam_break, still_tank, regular_wave, lobovsky), replay, "
                          "fidelity, compression, skips, render")
+    ap.add_argument("--members", type=int, default=None,
+                    help="bake checks as ensembles of N jittered members (swell-validate --ensemble N): "
+                         "tables and the plot show mean and sd; 1: one unjittered record each "
+                         "(default: 1 with --quick, 3 otherwise)")
     ap.add_argument("--no-docs", action="store_true", help="do not rewrite docs/BENCHMARKS.md")
     ap.add_argument("--docs-only", action="store_true",
                     help="measure nothing: rewrite the tables in docs/BENCHMARKS.md and the plots from "
@@ -33,6 +39,12 @@ def parse_args(argv=None):
     args = ap.parse_args(argv)
     if args.docs_only and args.no_docs:
         ap.error("--docs-only and --no-docs exclude each other")
+    if args.docs_only and args.members is not None:
+        ap.error("--docs-only measures nothing: it redraws the last run with its members")
+    if args.members is None:
+        args.members = 1 if args.quick else 3
+    if not 1 <= args.members <= 64:
+        ap.error("--members must be in 1..64 (swell-validate --ensemble's range), not %d" % args.members)
     args.only = set(filter(None, args.only.split(",")))
     unknown = args.only - set(MODULES) - set(BAKE_PARTS)
     if unknown:
@@ -112,7 +124,7 @@ def main(argv=None):
     t_start = time.monotonic()
     variant = "quick" if args.quick else "full"
     with open(os.path.join(bl.OUT, "commands.log"), "w") as log:
-        ctx = bl.Context(args.quick, log)
+        ctx = bl.Context(args.quick, log, members=args.members)
         ctx.note_load("start")
         print("tools/bench (%s): load average %s; log out/bench/commands.log" % (variant, bl.load_average()),
               flush=True)
@@ -121,6 +133,7 @@ def main(argv=None):
         results = measure(ctx, chosen)
         ctx.note_load("end")
         m = describe_machine(ctx, variant, t_start, list(chosen))
+        m["members"] = args.members
     with open(os.path.join(bl.OUT, "machine.json"), "w") as f:
         json.dump(m, f, indent=1)
     save(bl.OUT, results)

@@ -156,11 +156,13 @@ def dig(j, key):
 
 
 class Context:
-    """What every section shares: the variant (quick), the command log, the load averages
+    """What every section shares: the variant (quick), the members of each bake check (1: one
+    unjittered record; N > 1: swell-validate --ensemble N), the command log, the load averages
     noted at each section's start, the output folder and the surging_small bake."""
 
-    def __init__(self, quick, log, out=OUT):
+    def __init__(self, quick, log, out=OUT, members=1):
         self.quick = quick
+        self.members = members
         self.log = log
         self.out = out
         self.loads = []
@@ -263,6 +265,33 @@ def plural(n, one, many=None):
     return "%s %s" % (fmt(n), one if n == 1 else (many or one + "s"))
 
 
+def combine(rows, spread):
+    """One row from the rows of an ensemble's members (swell-validate --ensemble): each number the
+    mean over the members that have it, and for each field in spread (a collection of names, or a
+    test on the name) its sample sd too, as FIELD_sd (None with one member); any other value
+    (text) the first member's. 'members' is the
+    number of rows; 'outcome' the first member's that is not 'stable' (naming it), else 'stable'."""
+    wanted = spread if callable(spread) else spread.__contains__
+    out = {"members": len(rows)}
+    for r in rows:
+        for k, v in r.items():
+            if k in out:
+                continue
+            values = [x.get(k) for x in rows]
+            nums = [x for x in values if isinstance(x, (int, float)) and not isinstance(x, bool)]
+            if nums and len(nums) == len([x for x in values if x is not None]):
+                mean = sum(nums) / len(nums)
+                out[k] = round(mean) if all(isinstance(x, int) for x in nums) else mean
+                if wanted(k):
+                    out[k + "_sd"] = statistics.stdev(nums) if len(nums) > 1 else None
+            else:
+                out[k] = v
+    bad = [(m, r.get("outcome")) for m, r in enumerate(rows, 1) if r.get("outcome") != "stable"]
+    if rows and "outcome" in rows[0]:
+        out["outcome"] = "member %d: %s" % bad[0] if bad else "stable"
+    return out
+
+
 def read_csv(path):
     """Rows of an earlier run's CSV with numbers parsed back (empty: None)."""
     if not os.path.exists(path):
@@ -320,7 +349,8 @@ def fmt(v, digits=3):
 
 
 def md_table(rows, columns):
-    """columns: [(header, key or function of the row)]."""
+    """columns: [(header, key or function of the row)]; a key whose row also has KEY_sd (an
+    ensemble's spread, combine()) reads 'mean ± sd'."""
     head = "| " + " | ".join(h for h, _ in columns) + " |"
     sep = "|" + "|".join("---" for _ in columns) + "|"
     lines = [head, sep]
@@ -328,7 +358,9 @@ def md_table(rows, columns):
         cells = []
         for _, k in columns:
             v = k(r) if callable(k) else r.get(k)
-            cells.append(v if isinstance(v, str) else fmt(v))
+            text = v if isinstance(v, str) else fmt(v)
+            sd = None if callable(k) else r.get(k + "_sd")
+            cells.append(text + " ± " + fmt(sd, 2) if isinstance(sd, float) and v is not None else text)
         lines.append("| " + " | ".join(c.replace("|", "\\|") for c in cells) + " |")
     return "\n".join(lines)
 
@@ -352,7 +384,8 @@ def replace_section(path, name, text):
 def plot(path, title, xlabel, ylabel, series, logx=False, logy=False, annotate=None, legend_extra=(),
          figsize=(6.4, 4.2), plain_x=False):
     """series: [(label, xs, ys)] or [(label, xs, ys, style)], style: keyword arguments of
-    matplotlib's plot (color, linestyle, marker, ...) over the default "o-"; a label starting
+    matplotlib's plot (color, linestyle, marker, ...) over the default "o-", and "yerr": one
+    error bar per point (None: none); a label starting
     with "_" stays out of the legend. legend_extra: [(label, style)], legend entries without
     data (what a colour or a line style stands for). annotate: {label: [text per point]}.
     plain_x: x tick labels as plain numbers, minor ticks too (a log axis within a decade or two).
@@ -365,14 +398,21 @@ def plot(path, title, xlabel, ylabel, series, logx=False, logy=False, annotate=N
         return False
     fig, ax = plt.subplots(figsize=figsize, dpi=100)
     for label, xs, ys, *style in series:
-        pts = [(x, y) for x, y in zip(xs, ys) if x is not None and y is not None and y == y]
-        if not pts:
-            continue
         kw = {"marker": "o", "linestyle": "-"}
         kw.update(style[0] if style else {})
+        yerr = kw.pop("yerr", None) or [None] * len(ys)
+        pts = [(x, y, e) for x, y, e in zip(xs, ys, yerr) if x is not None and y is not None and y == y]
+        if not pts:
+            continue
         line, = ax.plot([p[0] for p in pts], [p[1] for p in pts], label=label, **kw)
+        bars = [p for p in pts if p[2]]
+        if bars:
+            # On a log axis a bar below zero is cut at the axis: the lower end then reads "down to 0".
+            ax.errorbar([p[0] for p in bars], [p[1] for p in bars],
+                        yerr=[[min(p[2], 0.999 * p[1]) if logy else p[2] for p in bars], [p[2] for p in bars]],
+                        fmt="none", ecolor=line.get_color(), capsize=3, linewidth=1)
         if annotate:
-            for (x, y), a in zip(pts, annotate.get(label, [])):
+            for (x, y, _), a in zip(pts, annotate.get(label, [])):
                 ax.annotate(a, (x, y), textcoords="offset points", xytext=(4, 4), fontsize=7,
                             color=line.get_color() if style else None)
     for label, style in legend_extra:

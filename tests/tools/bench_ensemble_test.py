@@ -1,0 +1,137 @@
+#!/usr/bin/env python3
+"""tools/swellbench: bake checks as ensembles (tools/bench --members N). A case's row is the
+members' mean with the sample sd of its error figures, the table reads 'mean ± sd', a member
+that did not stay stable names itself in the row's outcome, and --members is checked.
+
+    /usr/bin/python3 tests/tools/bench_ensemble_test.py
+"""
+import contextlib
+import io
+import pathlib
+import statistics
+import sys
+import tempfile
+import unittest
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT / "tools"))
+from swellbench import bake, cli, common  # noqa: E402
+
+
+class Result:
+    """What Context.run returns: the exit status, the wall time and the parsed JSON."""
+
+    def __init__(self, j, wall=6.0):
+        self.rc, self.wall, self.timed_out, self.json, self.err = 0, wall, False, j, ""
+
+    def last_err_line(self):
+        return ""
+
+
+def dam_member(seed, aligned, outcome="stable"):
+    return {"seed": seed, "outcome": outcome, "steps": 457, "particles": 1712, "water": 800,
+            "solver_seconds": 1.0 + seed, "front_error_mean": 0.25, "front_error_max": 0.33,
+            "aligned_front_error_mean": aligned, "aligned_front_error_max": 2 * aligned,
+            "aligned_shift_T": 0.2, "ppe_iterations_mean": 18.0}
+
+
+class Combine(unittest.TestCase):
+    def test_mean_and_sample_sd_of_the_spread_fields_only(self):
+        rows = [{"resolution": "a/20", "steps": 10, "err": 0.1, "cost": 1.0, "outcome": "stable"},
+                {"resolution": "a/20", "steps": 12, "err": 0.3, "cost": 3.0, "outcome": "stable"},
+                {"resolution": "a/20", "steps": 14, "err": 0.5, "cost": 2.0, "outcome": "stable"}]
+        row = common.combine(rows, ("err",))
+        self.assertEqual(row["members"], 3)
+        self.assertAlmostEqual(row["err"], 0.3)
+        self.assertAlmostEqual(row["err_sd"], statistics.stdev([0.1, 0.3, 0.5]))
+        self.assertAlmostEqual(row["cost"], 2.0)
+        self.assertNotIn("cost_sd", row)
+        self.assertEqual(row["steps"], 12)
+        self.assertEqual(row["resolution"], "a/20")
+        self.assertEqual(row["outcome"], "stable")
+
+    def test_a_member_that_stopped_names_itself_and_missing_figures_stay_out(self):
+        rows = [{"err": 0.2, "outcome": "stable"}, {"err": None, "outcome": "stopped at step 9"},
+                {"err": 0.4, "outcome": "stable"}]
+        row = common.combine(rows, lambda k: k == "err")
+        self.assertEqual(row["outcome"], "member 2: stopped at step 9")
+        self.assertAlmostEqual(row["err"], 0.3)
+        self.assertAlmostEqual(row["err_sd"], statistics.stdev([0.2, 0.4]))
+
+    def test_table_reads_mean_plus_minus_sd(self):
+        row = common.combine([{"err": 0.1}, {"err": 0.3}], ("err",))
+        table = common.md_table([row, {"err": 0.25}], [("error", "err")])
+        self.assertIn("| 0.2 ± 0.14 |", table)
+        self.assertIn("| 0.25 |", table)  # a single record: no spread
+
+
+class Validate(unittest.TestCase):
+    def run_dam_break(self, members, answer):
+        with tempfile.TemporaryDirectory() as tmp:
+            ctx = common.Context(quick=True, log=None, out=tmp, members=members)
+            commands = []
+
+            def fake_run(cmd, timeout=900):
+                commands.append([str(c) for c in cmd])
+                return Result(answer)
+
+            ctx.run = fake_run
+            rows = [r for r in bake.dam_break(ctx) if r["resolution"] == "a/20"]
+        return commands, rows
+
+    def test_members_run_as_one_ensemble_and_give_mean_and_sd(self):
+        answer = {"outcome": "stable", "ensemble": 3,
+                  "members": [dam_member(1, 0.04), dam_member(2, 0.05), dam_member(3, 0.06)]}
+        commands, rows = self.run_dam_break(3, answer)
+        self.assertTrue(all(c[-2:] == ["--ensemble", "3"] for c in commands), commands[0])
+        swell = next(r for r in rows if r["scheme"] == bake.DEFAULT_SCHEME)
+        self.assertEqual(swell["members"], 3)
+        self.assertAlmostEqual(swell["aligned_front_error_mean_a"], 0.05)
+        self.assertAlmostEqual(swell["aligned_front_error_mean_a_sd"], 0.01)
+        self.assertAlmostEqual(swell["aligned_front_error_max_a_sd"], 0.02)
+        self.assertAlmostEqual(swell["wall_s"], 2.0)  # the run's 6 s over its three members
+        self.assertAlmostEqual(swell["us_per_particle_step"], 1e6 * 3.0 / 457 / 1712)
+        self.assertEqual(swell["outcome"], "stable")
+
+    def test_one_member_is_one_unjittered_record(self):
+        commands, rows = self.run_dam_break(1, dam_member(0, 0.04))
+        self.assertTrue(all("--ensemble" not in c for c in commands))
+        self.assertNotIn("members", rows[0])
+        self.assertAlmostEqual(rows[0]["aligned_front_error_mean_a"], 0.04)
+        self.assertNotIn("aligned_front_error_mean_a_sd", rows[0])
+
+    def test_worst_lobovsky_gauge_is_the_one_with_the_largest_mean(self):
+        def member(h1, h2):
+            gauges = [{"name": "H1", "x": 0.3, "mean_abs_error_over_H": h1, "mean_signed_error_over_H": 0.0},
+                      {"name": "H2", "x": 0.865, "mean_abs_error_over_H": h2, "mean_signed_error_over_H": 0.0}]
+            return {"outcome": "stable", "steps": 10, "particles": 100, "solver_seconds": 1.0,
+                    "gauges": gauges, "mean_abs_error_over_H_worst": max(h1, h2), "window": [0, 1.5]}
+        with tempfile.TemporaryDirectory() as tmp:
+            ctx = common.Context(quick=True, log=None, out=tmp, members=2)
+            ctx.run = lambda cmd, timeout=900: Result({"outcome": "stable",
+                                                        "members": [member(0.09, 0.02), member(0.01, 0.06)]})
+            row = bake.lobovsky(ctx)[0]
+        # Gauge means H1 0.05, H2 0.04: H1 is the worst gauge; the worst figure is the members'
+        # mean of their own worst gauges (0.09 and 0.06), as swell-validate --ensemble gives it.
+        self.assertEqual(row["worst_gauge"], "H1")
+        self.assertAlmostEqual(row["H1_mean_abs_error_over_H"], 0.05)
+        self.assertAlmostEqual(row["worst_mean_abs_error_over_H"], 0.075)
+        self.assertIn("H1_mean_abs_error_over_H_sd", row)
+
+
+class Members(unittest.TestCase):
+    def parse(self, argv):
+        with contextlib.redirect_stderr(io.StringIO()):
+            return cli.parse_args(argv)
+
+    def test_defaults_and_range(self):
+        self.assertEqual(self.parse(["--quick"]).members, 1)
+        self.assertEqual(self.parse([]).members, 3)
+        self.assertEqual(self.parse(["--quick", "--members", "4"]).members, 4)
+        for bad in (["--members", "0"], ["--members", "65"], ["--docs-only", "--members", "2"]):
+            with self.assertRaises(SystemExit, msg=bad):
+                self.parse(bad)
+
+
+if __name__ == "__main__":
+    unittest.main()
