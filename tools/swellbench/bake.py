@@ -517,8 +517,8 @@ def plot_text():
     return ("**Error against cost** (the plot): each case's error (y, log) against its µs per "
             "particle-step (x, log); one colour per case, one style per scheme (%s); points labelled "
             "with their resolution (progressive waves: kh, not joined); with an ensemble's rows, a bar of "
-            "one sd of the members either side of their mean (on the log axis a bar that would reach "
-            "below zero ends at the axis). Dam break at PPE tolerance 1e-6 only." % "; ".join(
+            "one sd of the members either side of their mean (on the log axis a bar that reaches zero "
+            "or below runs off the bottom of the plot). Dam break at PPE tolerance 1e-6 only." % "; ".join(
                 "%s: %s" % (n, STYLE_WORDS[n]) for n in SCHEME_STYLES))
 
 

@@ -381,6 +381,12 @@ def replace_section(path, name, text):
         f.write(doc)
 
 
+def lower_bar(y, sd, logy):
+    """The length of an error bar below y: sd, but on a log axis one that reaches zero or below
+    is drawn down to (almost) zero, off the axis' bottom."""
+    return min(sd, 0.999999 * y) if logy else sd
+
+
 def plot(path, title, xlabel, ylabel, series, logx=False, logy=False, annotate=None, legend_extra=(),
          figsize=(6.4, 4.2), plain_x=False):
     """series: [(label, xs, ys)] or [(label, xs, ys, style)], style: keyword arguments of
@@ -397,6 +403,7 @@ def plot(path, title, xlabel, ylabel, series, logx=False, logy=False, annotate=N
     except ImportError:
         return False
     fig, ax = plt.subplots(figsize=figsize, dpi=100)
+    floor = []  # the lowest point or bar end above zero: a log axis ends half below it
     for label, xs, ys, *style in series:
         kw = {"marker": "o", "linestyle": "-"}
         kw.update(style[0] if style else {})
@@ -407,10 +414,11 @@ def plot(path, title, xlabel, ylabel, series, logx=False, logy=False, annotate=N
         line, = ax.plot([p[0] for p in pts], [p[1] for p in pts], label=label, **kw)
         bars = [p for p in pts if p[2]]
         if bars:
-            # On a log axis a bar below zero is cut at the axis: the lower end then reads "down to 0".
             ax.errorbar([p[0] for p in bars], [p[1] for p in bars],
-                        yerr=[[min(p[2], 0.999 * p[1]) if logy else p[2] for p in bars], [p[2] for p in bars]],
+                        yerr=[[lower_bar(p[1], p[2], logy) for p in bars], [p[2] for p in bars]],
                         fmt="none", ecolor=line.get_color(), capsize=3, linewidth=1)
+            floor.extend(p[1] - p[2] for p in bars if p[1] - p[2] > 0)
+        floor.extend(p[1] for p in pts)
         if annotate:
             for (x, y, _), a in zip(pts, annotate.get(label, [])):
                 ax.annotate(a, (x, y), textcoords="offset points", xytext=(4, 4), fontsize=7,
@@ -425,6 +433,8 @@ def plot(path, title, xlabel, ylabel, series, logx=False, logy=False, annotate=N
             set_formatter(FuncFormatter(lambda v, _: "%g" % v))
     if logy:
         ax.set_yscale("log")
+        if floor and min(floor) > 0:
+            ax.set_ylim(bottom=0.5 * min(floor))  # a bar reaching zero runs off the bottom
     ax.set_title(title, fontsize=10)
     ax.set_xlabel(xlabel)
     ax.set_ylabel(ylabel)
