@@ -28,6 +28,7 @@
 #include "swell/bake/probes.h"
 #include "swell/bake/regular_wave.h"
 #include "swell/bake/scene.h"
+#include "swell/bake/still_tank.h"
 #include "swell/bake/validation.h"
 #include "swell/cache/checked_write.h"
 
@@ -228,129 +229,59 @@ json lobovsky(const Scene& scene, double tEnd, const std::string& csv) {
 }
 
 json stillTank(const Scene& scene, double settle, long steps, long trace) {
-    if (!scene.geometry.tank)
-        throw SceneError("geometry.tank", "the still-tank check needs a tank");
-    const Box tank = *scene.geometry.tank;
-    const Box water = scene.geometry.water.at(0);
-    const double l0 = scene.geometry.particleSpacing;
-    const double H = water.height();
-    const double expected = scene.physics.density * scene.physics.gravity * H; // rho g H
-    const double waveSpeed = std::sqrt(scene.physics.gravity * H);
-    MpsSolver solver = makeSolver(scene);
-    // Bottom gauge: the wall layer touching the water (y = y0 - l0/2) under the middle half.
-    std::vector<std::size_t> gauge;
-    const Particles& P = solver.particles();
-    for (std::size_t i = 0; i < P.size(); ++i) {
-        if (P.kind[i] == ParticleKind::Wall &&
-            std::abs(P.y[i] - (tank.y0 - 0.5 * l0)) < 0.25 * l0 &&
-            P.x[i] > tank.x0 + 0.25 * tank.width() && P.x[i] < tank.x1 - 0.25 * tank.width()) {
-            gauge.push_back(i);
-        }
+    StillTankStep onStep;
+    if (trace > 0) {
+        onStep = [trace](const MpsSolver& solver, const StepStats& s) {
+            if (s.step % trace != 0)
+                return;
+            const Particles& P = solver.particles();
+            std::size_t fastest = 0;
+            for (std::size_t i = 0; i < P.size(); ++i) {
+                if (std::hypot(P.vx[i], P.vy[i]) > std::hypot(P.vx[fastest], P.vy[fastest]))
+                    fastest = i;
+            }
+            std::fprintf(
+                stderr,
+                "step %ld t %.3f max|u| %.4f (particle %zu at %.4f, %.4f n/n0 %.3f) ppe %d "
+                "surface %zu collisions %zu\n",
+                s.step, s.time, s.maxSpeed, fastest, P.x[fastest], P.y[fastest],
+                P.n[fastest] / solver.densityConstants().n0, s.ppeIterations, s.surfaceParticles,
+                s.collisions);
+        };
     }
-    RunTotals totals;
-    double pSum = 0.0;
-    long pCount = 0;
-    double maxSpeedAfter = 0.0;
-    // What the particles do, beside what their velocities say: the mean speed, and each water
-    // particle's excursion from where it was when settling ended (max over particles and time).
-    double speedSum = 0.0;
-    long speedCount = 0;
-    double maxExcursion2 = 0.0;
-    std::vector<double> settledX, settledY;
-    // Drift speed: each water particle's displacement over consecutive windows of kDriftWindow,
-    // divided by it (max over particles and windows): how fast the water moves, to set beside
-    // the largest |u| (a particle whose velocity the shifting keeps from moving it has the one
-    // but not the other; docs/validation.md 7.5).
-    constexpr double kDriftWindow = 0.1; // s
-    double maxDrift = 0.0;
-    double windowStart = -1.0;
-    std::vector<double> windowX, windowY;
-    std::size_t escaped = 0;
+    const StillTankReport r = runStillTank(scene, settle, steps, onStep);
     json out{{"scene", scene.name},
-             {"H", H},
-             {"l0", l0},
-             {"particles", P.size()},
-             {"water", P.count(ParticleKind::Water)},
-             {"gauge_particles", gauge.size()}};
-    try {
-        for (long k = 0; k < steps; ++k) {
-            const StepStats& s = solver.step();
-            accumulate(totals, s);
-            if (trace > 0 && s.step % trace == 0) {
-                std::size_t fastest = 0;
-                for (std::size_t i = 0; i < P.size(); ++i) {
-                    if (std::hypot(P.vx[i], P.vy[i]) > std::hypot(P.vx[fastest], P.vy[fastest]))
-                        fastest = i;
-                }
-                std::fprintf(
-                    stderr,
-                    "step %ld t %.3f max|u| %.4f (particle %zu at %.4f, %.4f n/n0 %.3f) ppe %d "
-                    "surface %zu collisions %zu\n",
-                    s.step, s.time, s.maxSpeed, fastest, P.x[fastest], P.y[fastest],
-                    P.n[fastest] / solver.densityConstants().n0, s.ppeIterations,
-                    s.surfaceParticles, s.collisions);
-            }
-            if (solver.time() >= settle) {
-                double p = 0.0;
-                for (std::size_t i : gauge)
-                    p += P.p[i];
-                pSum += p / static_cast<double>(gauge.size());
-                ++pCount;
-                maxSpeedAfter = std::max(maxSpeedAfter, s.maxSpeed);
-                if (settledX.empty()) {
-                    settledX = P.x;
-                    settledY = P.y;
-                }
-                if (windowStart < 0.0) {
-                    windowStart = solver.time();
-                    windowX = P.x;
-                    windowY = P.y;
-                } else if (solver.time() >= windowStart + kDriftWindow - 1e-9) {
-                    const double span = solver.time() - windowStart;
-                    for (std::size_t i = 0; i < P.size(); ++i) {
-                        if (P.kind[i] == ParticleKind::Water) {
-                            maxDrift = std::max(
-                                maxDrift,
-                                std::hypot(P.x[i] - windowX[i], P.y[i] - windowY[i]) / span);
-                        }
-                    }
-                    windowStart = solver.time();
-                    windowX = P.x;
-                    windowY = P.y;
-                }
-                for (std::size_t i = 0; i < P.size(); ++i) {
-                    if (P.kind[i] != ParticleKind::Water)
-                        continue;
-                    speedSum += std::hypot(P.vx[i], P.vy[i]);
-                    ++speedCount;
-                    const double dx = P.x[i] - settledX[i], dy = P.y[i] - settledY[i];
-                    maxExcursion2 = std::max(maxExcursion2, dx * dx + dy * dy);
-                }
-            }
-        }
-        out["outcome"] = "stable";
-    } catch (const DivergenceError& e) {
-        out["outcome"] = std::string("stopped: ") + e.what();
+             {"H", scene.geometry.water.at(0).height()},
+             {"l0", scene.geometry.particleSpacing},
+             {"particles", r.particles},
+             {"water", r.water},
+             {"gauge_particles", r.gaugeParticles},
+             {"outcome", r.outcome},
+             {"steps", r.steps},
+             {"time", r.time},
+             {"bottom_pressure_mean", r.bottomPressureMean},
+             {"rho_g_H", r.rhoGH},
+             {"bottom_pressure_ratio", r.bottomPressureRatio},
+             {"max_speed_after_settle", r.maxSpeed},
+             {"max_speed_over_sqrt_gH", r.maxSpeedOverSqrtGH},
+             {"mean_speed_over_sqrt_gH", r.meanSpeedOverSqrtGH},
+             {"max_excursion_over_l0", r.maxExcursionOverL0},
+             {"max_drift_speed_over_sqrt_gH", r.maxDriftSpeedOverSqrtGH},
+             {"escaped", r.escaped},
+             {"ppe_iterations_mean", r.ppeIterationsMean},
+             {"solver_seconds", r.solverSeconds}};
+    if (r.maxSpeed > 0.0) {
+        const FastestParticle& f = r.fastest;
+        out["fastest_after_settle"] = {{"particle", f.index},
+                                       {"time", f.time},
+                                       {"x", f.x},
+                                       {"y", f.y},
+                                       {"u", f.u},
+                                       {"v", f.v},
+                                       {"free_surface", f.freeSurface},
+                                       {"depth_below_top_over_l0", f.depthOverL0},
+                                       {"wall_distance_over_l0", f.wallDistanceOverL0}};
     }
-    for (std::size_t i = 0; i < P.size(); ++i) {
-        if (P.kind[i] == ParticleKind::Water && !tank.contains(P.x[i], P.y[i]))
-            ++escaped;
-    }
-    const double pMean = pCount ? pSum / static_cast<double>(pCount) : 0.0;
-    out["steps"] = totals.steps;
-    out["time"] = solver.time();
-    out["bottom_pressure_mean"] = pMean;
-    out["rho_g_H"] = expected;
-    out["bottom_pressure_ratio"] = pMean / expected;
-    out["max_speed_after_settle"] = maxSpeedAfter;
-    out["max_speed_over_sqrt_gH"] = maxSpeedAfter / waveSpeed;
-    const double meanSpeed = speedCount ? speedSum / static_cast<double>(speedCount) : 0.0;
-    out["mean_speed_over_sqrt_gH"] = meanSpeed / waveSpeed;
-    out["max_excursion_over_l0"] = std::sqrt(maxExcursion2) / l0;
-    out["max_drift_speed_over_sqrt_gH"] = maxDrift / waveSpeed;
-    out["escaped"] = escaped;
-    out["ppe_iterations_mean"] = totals.steps ? totals.ppeIterations / totals.steps : 0.0;
-    out["solver_seconds"] = totals.seconds;
     return out;
 }
 
