@@ -34,7 +34,10 @@ DAM_SPREAD = ("front_error_mean_a", "front_error_max_a", "aligned_front_error_me
 TANK_SPREAD = ("bed_pressure_ratio", "pressure_error", "max_speed_over_sqrt_gH")
 WAVE_SPREAD = ("H_m", "height_error", "wavelength_error", "wavelength_fit_error", "decay_per_wavelength",
                "decay_total")
-def LOB_SPREAD(field):  # the worst gauge's and each gauge's mean error
+
+
+def lobovsky_spread(field):
+    """The Lobovsky figures with a spread: the worst gauge's and each gauge's mean error."""
     return field.endswith("mean_abs_error_over_H")
 
 
@@ -277,7 +280,7 @@ def lobovsky(ctx):
                             "us_per_particle_step": j.get("us_per_particle_step") or
                             us_per_particle_step(j, steps, parts)})
                 return out
-            row = each_member(r, members, row_of, LOB_SPREAD)
+            row = each_member(r, members, row_of, lobovsky_spread)
             # The worst gauge: the one with the largest mean error (over the members).
             means = {n: row.get("%s_mean_abs_error_over_H" % n) for n in gauge_names([row])}
             means = {n: v for n, v in means.items() if v is not None}
