@@ -35,7 +35,8 @@ TEST(StillTank, MeasuresAfterSettlingAndNamesTheFastestWaterParticle) {
     const MpsSolver fresh = makeSolver(scene);
     EXPECT_EQ(r.particles, fresh.particles().size());
     EXPECT_EQ(r.water, fresh.particles().count(ParticleKind::Water));
-    // The middle half of the 0.2 m bed at l0 = 0.01 m: the 10 wall particles under x in (0.05, 0.15).
+    // The middle half of the 0.2 m bed at l0 = 0.01 m: the 10 wall particles under x in (0.05,
+    // 0.15).
     EXPECT_EQ(r.gaugeParticles, 10u);
     EXPECT_NEAR(r.rhoGH, 1000.0 * 9.81 * 0.1, 1e-9);
     EXPECT_NEAR(r.bottomPressureRatio, 1.0, 0.1); // the water has barely started to settle
