@@ -231,22 +231,19 @@ json lobovsky(const Scene& scene, double tEnd, const std::string& csv) {
 json stillTank(const Scene& scene, double settle, long steps, long trace) {
     StillTankStep onStep;
     if (trace > 0) {
-        onStep = [trace](const MpsSolver& solver, const StepStats& s) {
+        // Called only once runStillTank has checked that the scene has a tank.
+        onStep = [trace, &scene](const MpsSolver& solver, const StepStats& s) {
             if (s.step % trace != 0)
                 return;
-            const Particles& P = solver.particles();
-            std::size_t fastest = 0;
-            for (std::size_t i = 0; i < P.size(); ++i) {
-                if (std::hypot(P.vx[i], P.vy[i]) > std::hypot(P.vx[fastest], P.vy[fastest]))
-                    fastest = i;
-            }
+            const FastestParticle f =
+                fastestWaterParticle(solver, *scene.geometry.tank, scene.geometry.particleSpacing);
             std::fprintf(
                 stderr,
                 "step %ld t %.3f max|u| %.4f (particle %zu at %.4f, %.4f n/n0 %.3f) ppe %d "
                 "surface %zu collisions %zu\n",
-                s.step, s.time, s.maxSpeed, fastest, P.x[fastest], P.y[fastest],
-                P.n[fastest] / solver.densityConstants().n0, s.ppeIterations, s.surfaceParticles,
-                s.collisions);
+                s.step, s.time, s.maxSpeed, f.index, f.x, f.y,
+                solver.particles().n[f.index] / solver.densityConstants().n0, s.ppeIterations,
+                s.surfaceParticles, s.collisions);
         };
     }
     const StillTankReport r = runStillTank(scene, settle, steps, onStep);

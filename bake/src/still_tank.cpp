@@ -8,11 +8,7 @@
 
 namespace swell::bake {
 
-namespace {
-
-/// The water particle with the largest |u|, and where it is: depth below the highest water
-/// particle and distance to the nearer side wall's inner face, in l0.
-FastestParticle fastestWater(const MpsSolver& solver, const Box& tank, double l0) {
+FastestParticle fastestWaterParticle(const MpsSolver& solver, const Box& tank, double l0) {
     const Particles& P = solver.particles();
     FastestParticle f;
     double best = -1.0;
@@ -38,8 +34,6 @@ FastestParticle fastestWater(const MpsSolver& solver, const Box& tank, double l0
     f.wallDistanceOverL0 = std::min(P.x[i] - tank.x0, tank.x1 - P.x[i]) / l0;
     return f;
 }
-
-} // namespace
 
 StillTankReport runStillTank(const Scene& scene, double settle, long steps,
                              const StillTankStep& onStep) {
@@ -88,7 +82,7 @@ StillTankReport runStillTank(const Scene& scene, double settle, long steps,
             ++pCount;
             if (s.maxSpeed > r.maxSpeed) {
                 r.maxSpeed = s.maxSpeed;
-                r.fastest = fastestWater(solver, tank, l0);
+                r.fastest = fastestWaterParticle(solver, tank, l0);
             }
             if (settledX.empty()) {
                 settledX = P.x;

@@ -54,7 +54,7 @@ def validate(ctx, kind, scene_name, settings, extra=(), timeout=900):
     ensemble = ["--ensemble", ctx.members] if ctx.members > 1 else []
     r = ctx.run([bl.exe("swell-validate"), "--json", "--threads", "1"] + bl.sets(settings) +
                 [kind, bl.scene(scene_name)] + [str(e) for e in list(extra) + ensemble],
-                timeout * max(1, ctx.members))
+                timeout * ctx.members)
     j = r.json or {}
     if not ensemble or "members" not in j:
         return r, [j]

@@ -269,8 +269,8 @@ def combine(rows, spread):
     """One row from the rows of an ensemble's members (swell-validate --ensemble): each number the
     mean over the members that have it, and for each field in spread (a collection of names, or a
     test on the name) its sample sd too, as FIELD_sd (None with one member); any other value
-    (text) the first member's. 'members' is the
-    number of rows; 'outcome' the first member's that is not 'stable' (naming it), else 'stable'."""
+    (text) the first member's. 'members' is the number of rows; 'outcome' the first member's
+    that is not 'stable' (naming it), else 'stable'."""
     wanted = spread if callable(spread) else spread.__contains__
     out = {"members": len(rows)}
     for r in rows:

@@ -25,6 +25,10 @@ struct FastestParticle {
     double wallDistanceOverL0 = 0.0; ///< to the nearer side wall's inner face (l0)
 };
 
+/// The water particle with the largest |u| in the solver's state now, and where it is in the
+/// tank (its interior box `tank`; l0 the particle spacing).
+FastestParticle fastestWaterParticle(const MpsSolver& solver, const Box& tank, double l0);
+
 struct StillTankReport {
     /// "stable", or "stopped: " and the divergence detector's message.
     std::string outcome;
