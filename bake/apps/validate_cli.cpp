@@ -18,9 +18,8 @@ CLI::Option* addEnsemble(CLI::App& run, ValidateCommandLine& cl) {
 std::optional<int> parseValidateCommandLine(int argc, const char* const* argv,
                                             ValidateCommandLine& cl, std::ostream& out,
                                             std::ostream& err) {
-    CLI::App app{"swell-validate: dam-break, lobovsky, still-tank and regular-wave validation runs "
-                 "of the MPS "
-                 "solver"};
+    CLI::App app{"swell-validate: dam-break, lobovsky, still-tank, regular-wave and standing-wave "
+                 "validation runs of the MPS solver"};
     app.require_subcommand(1);
     app.fallthrough();
     app.add_option("--set", cl.sets, "override a scene key: section.key=value (repeatable)")
@@ -82,12 +81,22 @@ std::optional<int> parseValidateCommandLine(int argc, const char* const* argv,
         wave->add_option("--keep", cl.keep, "keep the cache and probes CSV in this folder");
     addEnsemble(*wave, cl)->excludes(keep);
 
+    auto* slosh = app.add_subcommand(
+        "standing-wave", "run a closed tank whose water starts at rest with a cosine top "
+                         "(geometry.water[0].surface) and compare the period at the walls with "
+                         "linear theory and the decay per period with none");
+    slosh->add_option("scene", cl.scene, "scene JSON (the first water rectangle, in a tank)")
+        ->required();
+    slosh->add_option("--csv", cl.csv, "write the elevation series t,eta_left,eta_right (m)");
+    addEnsemble(*slosh, cl)->excludes("--csv");
+
     if (const auto rc = cli::parse(app, argc, argv, "swell-validate", 0, out, err))
         return rc;
     cl.run = *dam     ? ValidateCommandLine::Run::DamBreak
              : *lob   ? ValidateCommandLine::Run::Lobovsky
              : *still ? ValidateCommandLine::Run::StillTank
-                      : ValidateCommandLine::Run::RegularWave;
+             : *wave  ? ValidateCommandLine::Run::RegularWave
+                      : ValidateCommandLine::Run::StandingWave;
     if (cl.scene.empty()) {
         err << "swell-validate: scene: an empty path (see --help)\n";
         return 2;

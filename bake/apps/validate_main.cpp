@@ -1,7 +1,7 @@
 // swell-validate: developer runs behind docs/validation.md (dam break against Martin & Moyce
 // and against the water levels of Lobovsky et al. 2014, regular waves against linear wavemaker
-// theory, still-tank hydrostatics). Thin: scene loading, the solver and the comparisons are library
-// code.
+// theory, still-tank hydrostatics, a standing wave against linear theory). Thin: scene loading, the
+// solver and the comparisons are library code.
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -28,6 +28,7 @@
 #include "swell/bake/probes.h"
 #include "swell/bake/regular_wave.h"
 #include "swell/bake/scene.h"
+#include "swell/bake/standing_wave.h"
 #include "swell/bake/still_tank.h"
 #include "swell/bake/validation.h"
 #include "swell/cache/checked_write.h"
@@ -355,6 +356,52 @@ json regularWave(const Scene& scene, double from, double to, const std::string& 
     return out;
 }
 
+/// A standing wave (standing_wave.h, runStandingWave): the period at the two side walls
+/// against linear theory's and the decay per period against none.
+json standingWave(const Scene& scene, const std::string& csv) {
+    const StandingWaveReport r = runStandingWave(scene);
+    const CosineTop top = scene.geometry.waterTops.front();
+    json out{{"scene", scene.name},
+             {"l0", scene.geometry.particleSpacing},
+             {"depth", scene.geometry.water.front().height()},
+             {"amplitude", top.amplitude},
+             {"wavelength", top.wavelength},
+             {"kh", r.theory.kh},
+             {"period_theory", r.theory.period},
+             {"gauges", r.gauges},
+             {"particles", r.particles},
+             {"water", r.water},
+             {"outcome", r.outcome}};
+    if (!csv.empty()) {
+        std::string text = "t,eta_left,eta_right\n";
+        for (std::size_t k = 0; k < r.times.size(); ++k)
+            text += fmt::format("{:.5f},{:.6f},{:.6f}\n", r.times[k], r.elevations[0][k],
+                                r.elevations[1][k]);
+        writeTextFile(csv, text, "--csv");
+    }
+    if (r.outcome == "stable") {
+        json gauges = json::array();
+        for (std::size_t g = 0; g < r.records.size(); ++g)
+            gauges.push_back({{"x", r.gauges[g]},
+                              {"period", r.records[g].period},
+                              {"amplitudes", r.records[g].amplitudes},
+                              {"decay_per_period", r.records[g].decayPerPeriod}});
+        out["gauge_records"] = gauges;
+        out["period"] = r.period;
+        out["period_error"] = r.periodError;
+        out["decay_per_period"] = r.decayPerPeriod;
+        out["first_amplitude_over_theory"] = r.firstAmplitudeOverTheory;
+    }
+    out["steps"] = r.steps;
+    out["ppe_iterations_mean"] = r.ppeIterationsMean;
+    out["solver_seconds"] = r.solverSeconds;
+    out["us_per_particle_step"] =
+        r.steps > 0 ? 1e6 * r.solverSeconds /
+                          (static_cast<double>(r.steps) * static_cast<double>(r.particles))
+                    : 0.0;
+    return out;
+}
+
 json toJson(const Spread& s) {
     return {{"mean", s.mean}, {"sd", s.sd}, {"min", s.min}, {"max", s.max}, {"members", s.count}};
 }
@@ -439,6 +486,12 @@ Figures stillTankFigures(const json& r) {
             {"max_excursion_over_l0", r["max_excursion_over_l0"].get<double>()}};
 }
 
+Figures standingWaveFigures(const json& r) {
+    return {{"period_error", r["period_error"].get<double>()},
+            {"decay_per_period", r["decay_per_period"].get<double>()},
+            {"first_amplitude_over_theory", r["first_amplitude_over_theory"].get<double>()}};
+}
+
 Figures damBreakFigures(const json& r) {
     return {{"front_error_mean", r["front_error_mean"].get<double>()},
             {"aligned_front_error_mean", r["aligned_front_error_mean"].get<double>()},
@@ -481,6 +534,11 @@ int main(int argc, char** argv) {
                 return regularWave(s, cl.waveFrom, cl.waveTo, single ? cl.keep : "");
             };
             figures = regularWaveFigures;
+        } else if (cl.run == Run::StandingWave) {
+            run = [&](const Scene& s, bool single) {
+                return standingWave(s, single ? cl.csv : "");
+            };
+            figures = standingWaveFigures;
         } else {
             const long steps =
                 cl.steps >= 0 ? cl.steps : std::lround(scene.run.endTime / scene.solver.time.dt);

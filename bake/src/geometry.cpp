@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <string>
 
 #include <fmt/format.h>
@@ -12,6 +13,11 @@
 
 namespace swell::bake {
 namespace {
+
+/// Water rectangle w's top (flat where the scene gives none).
+CosineTop waterTop(const GeometryParams& g, std::size_t w) {
+    return w < g.waterTops.size() ? g.waterTops[w] : CosineTop{};
+}
 
 /// Number of whole lattice cells of size l0 in `length`, tolerating rounding; at most 1e15 (a
 /// count that high is refused by checkParticleCount before anything loops over it).
@@ -27,8 +33,9 @@ void checkParticleCount(const GeometryParams& g, int layers) {
         return std::max(0.0, std::floor(length / l0 + 1e-6));
     };
     double count = 0.0;
-    for (const Box& b : g.water)
-        count += cells(b.width()) * cells(b.height());
+    for (std::size_t w = 0; w < g.water.size(); ++w)
+        count += cells(g.water[w].width()) *
+                 cells(g.water[w].height() + std::abs(waterTop(g, w).amplitude));
     if (g.tank) {
         const double nIn = std::round(g.tank->width() / l0);
         const double nUp = std::round(g.tank->height() / l0);
@@ -110,8 +117,19 @@ GeneratedGeometry generateGeometry(const GeometryParams& g) {
         solidRegions.push_back({g.solids[s], key});
     }
 
-    for (std::size_t w = 0; w < g.water.size(); ++w)
+    for (std::size_t w = 0; w < g.water.size(); ++w) {
         checkBox(g.water[w], fmt::format("geometry.water[{}]", w));
+        const CosineTop top = waterTop(g, w);
+        const std::string key = fmt::format("geometry.water[{}].surface", w);
+        if (!std::isfinite(top.amplitude) || !(std::abs(top.amplitude) < g.water[w].height()))
+            throw SceneError(key + ".amplitude",
+                             fmt::format("must be below the rectangle's height {} m in size, "
+                                         "got {} m",
+                                         g.water[w].height(), top.amplitude));
+        if (top.amplitude != 0.0 && !(std::isfinite(top.wavelength) && top.wavelength > 0.0))
+            throw SceneError(key + ".wavelength",
+                             fmt::format("must be positive, got {} m", top.wavelength));
+    }
     checkParticleCount(g, layers);
 
     GeneratedGeometry out;
@@ -123,8 +141,9 @@ GeneratedGeometry generateGeometry(const GeometryParams& g) {
         const std::string key = fmt::format("geometry.water[{}]", w);
         const Box& b = g.water[w];
         checkBox(b, key);
+        const CosineTop top = waterTop(g, w);
         const long nx = cellsIn(b.width(), l0);
-        const long ny = cellsIn(b.height(), l0);
+        const long ny = cellsIn(b.height() + std::abs(top.amplitude), l0);
         if (nx < 1 || ny < 1) {
             throw SceneError(
                 key,
@@ -134,7 +153,9 @@ GeneratedGeometry generateGeometry(const GeometryParams& g) {
         for (std::size_t v = 0; v < w; ++v) {
             const Box& o = g.water[v];
             const double ox = std::min(b.x1, o.x1) - std::max(b.x0, o.x0);
-            const double oy = std::min(b.y1, o.y1) - std::max(b.y0, o.y0);
+            const double oy = std::min(b.y1 + std::abs(top.amplitude),
+                                       o.y1 + std::abs(waterTop(g, v).amplitude)) -
+                              std::max(b.y0, o.y0);
             if (ox > 1e-9 && oy > 1e-9) {
                 throw SceneError(key, fmt::format("overlaps geometry.water[{}]", v));
             }
@@ -150,6 +171,10 @@ GeneratedGeometry generateGeometry(const GeometryParams& g) {
             for (long i = 0; i < nx; ++i) {
                 const double x = b.x0 + (static_cast<double>(i) + 0.5) * l0;
                 const double y = b.y0 + (static_cast<double>(j) + 0.5) * l0;
+                if (top.amplitude != 0.0 &&
+                    !(y < b.y1 + top.amplitude * std::cos(2.0 * std::numbers::pi * (x - b.x0) /
+                                                          top.wavelength)))
+                    continue; // above the cosine top
                 for (const auto& [box, name] : near) {
                     const double m = 0.25 * l0; // a particle centre strictly inside a solid
                     if (x > box.x0 + m && x < box.x1 - m && y > box.y0 + m && y < box.y1 - m) {

@@ -142,9 +142,19 @@ private:
 
 constexpr double kInf = std::numeric_limits<double>::max();
 
-Box readBox(const json& j, const std::string& path) {
+/// A rectangle {x0, y0, x1, y1} (m); with `top`, a water rectangle, which may also give its
+/// cosine top as "surface": {"amplitude", "wavelength"} (m).
+Box readBox(const json& j, const std::string& path, CosineTop* top = nullptr) {
     Section s(j, path);
     Box b;
+    if (top) {
+        if (const json* v = s.get("surface")) {
+            Section t(*v, s.key("surface"));
+            top->amplitude = t.number("amplitude", 0.0, -kInf, kInf, false, " (m)");
+            top->wavelength = t.number("wavelength", 0.0, 0.0, kInf, true, " (m)");
+            t.finish();
+        }
+    }
     for (const char* k : {"x0", "y0", "x1", "y1"}) {
         if (!s.has(k))
             throw SceneError(s.key(k), "missing (a rectangle needs x0, y0, x1, y1 in m)");
@@ -178,6 +188,20 @@ std::vector<Box> readBoxes(Section& parent, const std::string& k) {
 
 json boxJson(const Box& b) {
     return json{{"x0", b.x0}, {"y0", b.y0}, {"x1", b.x1}, {"y1", b.y1}};
+}
+
+/// geometry.water: its rectangles and their tops (GeometryParams::waterTops).
+void readWater(Section& parent, GeometryParams& g) {
+    const json* v = parent.get("water");
+    if (!v->is_array())
+        throw SceneError("geometry.water", "must be an array of rectangles {x0, y0, x1, y1}");
+    g.water.clear();
+    g.waterTops.clear();
+    for (std::size_t i = 0; i < v->size(); ++i) {
+        CosineTop top;
+        g.water.push_back(readBox((*v)[i], fmt::format("geometry.water[{}]", i), &top));
+        g.waterTops.push_back(top);
+    }
 }
 
 } // namespace
@@ -231,7 +255,7 @@ Scene parseScene(const json& j) {
         if (!s.has("water"))
             throw SceneError("geometry.water",
                              "missing: a scene needs at least one water rectangle");
-        g.water = readBoxes(s, "water");
+        readWater(s, g);
         if (g.water.empty())
             throw SceneError("geometry.water",
                              "is empty: a scene needs at least one water rectangle");
@@ -487,8 +511,13 @@ Scene loadScene(const std::filesystem::path& path, const std::vector<std::string
 json toJson(const Scene& sc) {
     const GeometryParams& g = sc.geometry;
     json water = json::array();
-    for (const Box& b : g.water)
-        water.push_back(boxJson(b));
+    for (std::size_t w = 0; w < g.water.size(); ++w) {
+        json b = boxJson(g.water[w]);
+        if (w < g.waterTops.size() && g.waterTops[w].amplitude != 0.0)
+            b["surface"] = {{"amplitude", g.waterTops[w].amplitude},
+                            {"wavelength", g.waterTops[w].wavelength}};
+        water.push_back(std::move(b));
+    }
     json solids = json::array();
     for (const Box& b : g.solids)
         solids.push_back(boxJson(b));

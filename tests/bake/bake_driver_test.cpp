@@ -214,7 +214,7 @@ TEST(BakeDriverScenes, EveryShippedSceneIsBakeable) {
         EXPECT_NO_THROW((void)totalSteps(s));
         ++scenes;
     }
-    EXPECT_GE(scenes, 17);
+    EXPECT_GE(scenes, 19);
 }
 
 TEST_F(BakeDriver, SceneErrorsOfABake) {

@@ -86,6 +86,14 @@ TEST(CommandLine, SwellValidateRefusesNonsenseValues) {
                   "--ensemble");
     expectRefused(validate({"regular-wave", "s.json", "--ensemble", "2", "--keep", "d"}),
                   "swell-validate", "--keep");
+    // The standing wave: a scene, a series to write, or an ensemble of members.
+    EXPECT_FALSE(validate({"standing-wave", "s.json"}).rc.has_value());
+    EXPECT_FALSE(validate({"standing-wave", "s.json", "--csv", "eta.csv"}).rc.has_value());
+    EXPECT_FALSE(validate({"standing-wave", "s.json", "--ensemble", "4"}).rc.has_value());
+    expectRefused(validate({"standing-wave", "s.json", "--ensemble", "2", "--csv", "eta.csv"}),
+                  "swell-validate", "--csv");
+    expectRefused(validate({"standing-wave", "s.json", "--settle", "2"}), "swell-validate",
+                  "--settle");
     // The dam breaks and the still tank run as ensembles too; an ensemble has no single
     // series to write.
     EXPECT_FALSE(validate({"lobovsky", "s.json", "--ensemble", "4"}).rc.has_value());

@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -113,6 +114,39 @@ TEST(Geometry, BadRectanglesNameTheirKey) {
     g = tankWithColumn();
     g.domain = Box{0.0, 0.0, 0.2, 0.2}; // cuts through the tank
     EXPECT_EQ(sceneErrorKey([&] { generateGeometry(g); }), "geometry.domain");
+}
+
+TEST(Geometry, CosineTopHoldsTheSitesBelowTheCurve) {
+    GeometryParams g = tankWithColumn();
+    g.water = {Box{0.0, 0.0, 0.5, 0.2}};
+    g.waterTops = {CosineTop{0.03, 1.0}}; // top 0.2 + 0.03 cos(2 pi x): 0.23 at x = 0, 0.17 at 0.5
+    const GeneratedGeometry out = generateGeometry(g);
+    const Particles& p = out.particles;
+    int water = 0;
+    double topLeft = -1.0, topRight = -1.0; // the highest site in the first and last columns
+    for (std::size_t i = 0; i < p.size(); ++i) {
+        if (p.kind[i] != ParticleKind::Water)
+            continue;
+        ++water;
+        const double x = p.x[i], y = p.y[i];
+        EXPECT_LT(y, 0.2 + 0.03 * std::cos(2.0 * 3.141592653589793 * x)) << x;
+        if (x < 0.01)
+            topLeft = std::max(topLeft, y);
+        if (x > 0.49)
+            topRight = std::max(topRight, y);
+    }
+    EXPECT_NEAR(topLeft, 0.225, 1e-9);  // sites at (j + 1/2) l0 below 0.22999
+    EXPECT_NEAR(topRight, 0.165, 1e-9); // below 0.17001
+    // The cosine's mean over its whole wavelength is y1: as many sites as the flat rectangle,
+    // give or take the rows the lattice rounds at each column.
+    EXPECT_NEAR(water, 50 * 20, 50);
+
+    g.waterTops = {CosineTop{0.2, 1.0}}; // as deep as the water: the trough would reach the bed
+    EXPECT_EQ(sceneErrorKey([&] { generateGeometry(g); }), "geometry.water[0].surface.amplitude");
+    g.waterTops = {CosineTop{0.01, 0.0}};
+    EXPECT_EQ(sceneErrorKey([&] { generateGeometry(g); }), "geometry.water[0].surface.wavelength");
+    g.waterTops = {CosineTop{0.0, 0.0}}; // flat: the wavelength is not read
+    EXPECT_EQ(generateGeometry(g).particles.count(ParticleKind::Water), 50u * 20u);
 }
 
 TEST(Geometry, MoreThanTheParticleLimitIsRefusedBeforeAnyIsMade) {

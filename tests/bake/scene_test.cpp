@@ -54,7 +54,8 @@ std::string errorMessage(const json& j) {
 
 TEST(Scene, ShippedScenesLoad) {
     for (const char* name :
-         {"still_tank.json", "still_tank_small.json", "dam_break.json", "dam_break_small.json"}) {
+         {"still_tank.json", "still_tank_small.json", "dam_break.json", "dam_break_small.json",
+          "standing_wave.json", "standing_wave_small.json"}) {
         SCOPED_TRACE(name);
         const Scene s = loadScene(kScenes / name);
         EXPECT_FALSE(s.name.empty());
@@ -199,6 +200,26 @@ TEST(Scene, ToJsonRoundTrips) {
     EXPECT_TRUE(usesCorrectiveMatrix(b.solver.model.gradient));
     EXPECT_TRUE(b.solver.model.shiftingVelocity);
     ASSERT_EQ(b.geometry.solids.size(), 1u);
+}
+
+TEST(Scene, WaterSurfaceIsReadRoundTripsAndNamesItsKeys) {
+    json j = minimal();
+    j["geometry"]["water"][0]["surface"] = {{"amplitude", 0.02}, {"wavelength", 0.2}};
+    const Scene a = parseScene(j);
+    ASSERT_EQ(a.geometry.waterTops.size(), 1u);
+    EXPECT_EQ(a.geometry.waterTops[0].amplitude, 0.02);
+    EXPECT_EQ(a.geometry.waterTops[0].wavelength, 0.2);
+    EXPECT_EQ(toJson(parseScene(toJson(a))), toJson(a));
+    EXPECT_EQ(toJson(a)["geometry"]["water"][0]["surface"]["wavelength"], 0.2);
+    // A flat top writes no surface: scenes without one keep their recorded form.
+    EXPECT_FALSE(toJson(parseScene(minimal()))["geometry"]["water"][0].contains("surface"));
+
+    j["geometry"]["water"][0]["surface"]["phase"] = 0.5;
+    EXPECT_EQ(errorKey(j), "geometry.water[0].surface.phase");
+    j["geometry"]["water"][0]["surface"] = {{"amplitude", "big"}, {"wavelength", 0.2}};
+    EXPECT_EQ(errorKey(j), "geometry.water[0].surface.amplitude");
+    j["geometry"]["water"][0]["surface"] = {{"amplitude", 0.02}, {"wavelength", -1.0}};
+    EXPECT_EQ(errorKey(j), "geometry.water[0].surface.wavelength");
 }
 
 TEST(Scene, OverridesSetNestedKeysWithJsonValues) {

@@ -17,6 +17,7 @@
 #include "swell/bake/probes.h"
 #include "swell/bake/regular_wave.h"
 #include "swell/bake/scene.h"
+#include "swell/bake/standing_wave.h"
 #include "swell/bake/still_tank.h"
 #include "swell/bake/validation.h"
 #include "swell/bake/wave_theory.h"
@@ -392,6 +393,39 @@ StillTankReport runTank(const Scene& scene, long steps, double settle) {
 // 7.13): eight members jittered by 1e-6 l0 read bed 0.9948-0.9967, max |u| 0.023-0.036 and
 // excursion 0.53-0.92 l0 (without the damping 0.074-0.148 and 0.84-2.7 l0), so the bounds
 // cover those members, not only the unjittered record.
+TEST(Validation, StandingWaveKeepsLinearTheorysPeriodAtCiResolution) {
+    // The tank's first sloshing mode from rest (docs/validation.md 7.15), h/25, five periods.
+    // Four jittered members read period -1.0 +- 0.5 %, decay 5.6 +- 1.9 % per period, first
+    // amplitude 1.14 of the cosine's; the textbook scheme's surface churns and shows no wave
+    // (first amplitude 0.27, period "error" -79 % from the noise's crossings).
+    const Scene scene = loadScene(kScenes / "standing_wave_small.json");
+    ASSERT_EQ(scene.solver.scheme, Scheme::Swell);
+    const StandingWaveReport r = runStandingWave(scene);
+    ASSERT_EQ(r.outcome, "stable");
+    EXPECT_NEAR(r.theory.period, 1.1818, 1e-4);
+    RecordProperty("period_error", fmt::format("{:.4f}", r.periodError));
+    RecordProperty("decay_per_period", fmt::format("{:.4f}", r.decayPerPeriod));
+    ASSERT_EQ(r.records.size(), 2u);
+    for (const SloshRecord& g : r.records)
+        EXPECT_GE(g.amplitudes.size(), 4u); // five periods, four whole between crossings
+    EXPECT_NEAR(r.periodError, 0.0, 0.03);
+    EXPECT_LT(r.decayPerPeriod, 0.12);
+    EXPECT_GT(r.decayPerPeriod, -0.05);
+    EXPECT_NEAR(r.firstAmplitudeOverTheory, 1.0, 0.3);
+    // The two walls are half a wavelength apart: their records are in antiphase.
+    EXPECT_GT(r.elevations[0].front(), 0.0);
+    EXPECT_LT(r.elevations[1].front(), 0.0);
+
+    Scene flat = scene; // no cosine top: nothing to measure, an error naming the key
+    flat.geometry.waterTops.clear();
+    try {
+        runStandingWave(flat);
+        ADD_FAILURE() << "a flat top was accepted";
+    } catch (const SceneError& e) {
+        EXPECT_EQ(e.key(), "geometry.water[0].surface");
+    }
+}
+
 TEST(Validation, StillTankHydrostaticPressureWithTheDefaultScheme) {
     const Scene scene = loadScene(kScenes / "still_tank_small.json");
     ASSERT_EQ(scene.solver.scheme, Scheme::Swell);

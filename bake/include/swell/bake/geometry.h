@@ -9,6 +9,15 @@
 
 namespace swell::bake {
 
+/// A water rectangle's top as a cosine instead of its edge y1: the lattice sites with
+/// y < y1 + amplitude cos(2 pi (x - x0) / wavelength) hold water, so y1 is the mean level. A
+/// closed tank's first sloshing mode starts from rest with wavelength twice the tank's length
+/// (swell-validate standing-wave). amplitude 0 keeps the flat top.
+struct CosineTop {
+    double amplitude = 0.0;  ///< A (m): |A| below the rectangle's height
+    double wavelength = 0.0; ///< (m), > 0 where amplitude is not 0
+};
+
 /// Scene geometry: rectangles of water and solid, turned into particles on a
 /// square lattice of spacing `particle_spacing`.
 struct GeometryParams {
@@ -16,7 +25,10 @@ struct GeometryParams {
     /// Open-topped tank given by its inner faces (m): back wall inner face at x0, front
     /// wall inner face at x1, bed at y0, side walls up to y1. Walls are generated outside.
     std::optional<Box> tank;
-    std::vector<Box> water;  ///< water rectangles (m); each holds at least one particle
+    std::vector<Box> water; ///< water rectangles (m); each holds at least one particle
+    /// Tops of the water rectangles, in their order (geometry.water[i].surface); empty, or
+    /// shorter than `water`, for flat tops.
+    std::vector<CosineTop> waterTops;
     std::vector<Box> solids; ///< extra solid blocks (m), filled with wall + dummy particles
     int wallLayers = 2;      ///< layers of pressure-solved wall particles (textbook code: 2)
     int dummyLayers = 2;     ///< dummy layers behind them, completing wall density (textbook: 2)
