@@ -118,6 +118,30 @@ class Validate(unittest.TestCase):
         self.assertAlmostEqual(row["worst_mean_abs_error_over_H"], 0.075)
         self.assertIn("H1_mean_abs_error_over_H_sd", row)
 
+    def test_standing_wave_rows_per_scheme_with_spread_and_table(self):
+        def member(err, decay):
+            return {"outcome": "stable", "steps": 6000, "particles": 1762, "water": 1250, "l0": 0.02,
+                    "solver_seconds": 15.0, "period_theory": 1.1818, "period": 1.1818 * (1 + err),
+                    "period_error": err, "decay_per_period": decay, "first_amplitude_over_theory": 1.1}
+        with tempfile.TemporaryDirectory() as tmp:
+            ctx = common.Context(quick=True, log=None, out=tmp, members=2)
+            commands = []
+
+            def fake_run(cmd, timeout=900):
+                commands.append([str(c) for c in cmd])
+                return Result({"outcome": "stable", "members": [member(-0.01, 0.04), member(-0.02, 0.08)]})
+            ctx.run = fake_run
+            rows = bake.standing_wave(ctx)
+        # Quick: the h/25 scene only, both schemes, each an ensemble.
+        self.assertEqual(len(rows), 2)
+        self.assertTrue(all("standing-wave" in c and c[-2:] == ["--ensemble", "2"] for c in commands))
+        self.assertTrue(any("solver.scheme=textbook" in c for c in commands[1]))
+        self.assertEqual(rows[0]["resolution"], "h/25")
+        self.assertAlmostEqual(rows[0]["period_error"], -0.015)
+        self.assertAlmostEqual(rows[0]["decay_per_period"], 0.06)
+        self.assertIn("decay_per_period_sd", rows[0])
+        self.assertIn("| -0.015 ± 0.0071 |", bake.standing_wave_table(rows))
+
 
 class Members(unittest.TestCase):
     def parse(self, argv):
