@@ -149,6 +149,9 @@ Box readBox(const json& j, const std::string& path, CosineTop* top = nullptr) {
     Box b;
     if (top) {
         if (const json* v = s.get("surface")) {
+            if (!v->is_object())
+                throw SceneError(s.key("surface"),
+                                 "must be an object {\"amplitude\", \"wavelength\"} (m)");
             Section t(*v, s.key("surface"));
             top->amplitude = t.number("amplitude", 0.0, -kInf, kInf, false, " (m)");
             top->wavelength = t.number("wavelength", 0.0, 0.0, kInf, true, " (m)");

@@ -220,6 +220,8 @@ TEST(Scene, WaterSurfaceIsReadRoundTripsAndNamesItsKeys) {
     EXPECT_EQ(errorKey(j), "geometry.water[0].surface.amplitude");
     j["geometry"]["water"][0]["surface"] = {{"amplitude", 0.02}, {"wavelength", -1.0}};
     EXPECT_EQ(errorKey(j), "geometry.water[0].surface.wavelength");
+    j["geometry"]["water"][0]["surface"] = 0.02;
+    EXPECT_EQ(errorKey(j), "geometry.water[0].surface");
 }
 
 TEST(Scene, OverridesSetNestedKeysWithJsonValues) {
