@@ -38,20 +38,6 @@ using nlohmann::json;
 
 namespace {
 
-struct RunTotals {
-    long steps = 0;
-    double ppeIterations = 0.0;
-    double maxResidual = 0.0;
-    double seconds = 0.0;
-};
-
-void accumulate(RunTotals& t, const StepStats& s) {
-    ++t.steps;
-    t.ppeIterations += s.ppeIterations;
-    t.maxResidual = std::max(t.maxResidual, s.ppeResidual);
-    t.seconds += s.seconds();
-}
-
 /// Writes `text` to `path` whole or not at all: to a temporary name in the same folder,
 /// renamed when complete. Throws std::runtime_error naming the option, the file and the error.
 void writeTextFile(const std::filesystem::path& path, const std::string& text, const char* option) {
@@ -72,7 +58,7 @@ json damBreak(const Scene& scene, double tEnd, const std::string& csv) {
     const double n0 = solver.densityConstants().n0;
     std::vector<FrontPoint> series{
         {0.0, surgeFront(solver.particles(), n0, scene.output.splashRatio, column.x0) / a}};
-    RunTotals totals;
+    StepTotals totals;
     json out{{"scene", scene.name},
              {"a", a},
              {"l0", scene.geometry.particleSpacing},
@@ -81,7 +67,7 @@ json damBreak(const Scene& scene, double tEnd, const std::string& csv) {
     try {
         while (solver.time() * tScale < tEnd) {
             const StepStats& s = solver.step();
-            accumulate(totals, s);
+            totals.add(s);
             series.push_back(
                 {solver.time() * tScale,
                  surgeFront(solver.particles(), n0, scene.output.splashRatio, column.x0) / a});
@@ -137,7 +123,7 @@ json damBreak(const Scene& scene, double tEnd, const std::string& csv) {
         out["Z_at_T"] = z;
     }
     out["steps"] = totals.steps;
-    out["ppe_iterations_mean"] = totals.steps ? totals.ppeIterations / totals.steps : 0.0;
+    out["ppe_iterations_mean"] = totals.ppeIterationsMean();
     out["ppe_tolerance"] = scene.solver.pressure.tolerance;
     out["solver_seconds"] = totals.seconds;
     return out;
@@ -170,7 +156,7 @@ json lobovsky(const Scene& scene, double tEnd, const std::string& csv) {
         }
     };
     sample();
-    RunTotals totals;
+    StepTotals totals;
     json out{{"scene", scene.name},
              {"H", H},
              {"l0", scene.geometry.particleSpacing},
@@ -179,7 +165,7 @@ json lobovsky(const Scene& scene, double tEnd, const std::string& csv) {
              {"water", solver.particles().count(ParticleKind::Water)}};
     try {
         while (solver.time() < tEnd - 1e-9) {
-            accumulate(totals, solver.step());
+            totals.add(solver.step());
             sample();
         }
         out["outcome"] = "stable";
@@ -219,7 +205,7 @@ json lobovsky(const Scene& scene, double tEnd, const std::string& csv) {
         out["window"] = {tLo, tHi};
     }
     out["steps"] = totals.steps;
-    out["ppe_iterations_mean"] = totals.steps ? totals.ppeIterations / totals.steps : 0.0;
+    out["ppe_iterations_mean"] = totals.ppeIterationsMean();
     out["solver_seconds"] = totals.seconds;
     out["us_per_particle_step"] = totals.steps
                                       ? 1e6 * totals.seconds /
@@ -360,7 +346,7 @@ json regularWave(const Scene& scene, double from, double to, const std::string& 
 /// against linear theory's and the decay per period against none.
 json standingWave(const Scene& scene, const std::string& csv) {
     const StandingWaveReport r = runStandingWave(scene);
-    const CosineTop top = scene.geometry.waterTops.front();
+    const CosineTop top = waterTop(scene.geometry, 0);
     json out{{"scene", scene.name},
              {"l0", scene.geometry.particleSpacing},
              {"depth", scene.geometry.water.front().height()},

@@ -14,11 +14,6 @@
 namespace swell::bake {
 namespace {
 
-/// Water rectangle w's top (flat where the scene gives none).
-CosineTop waterTop(const GeometryParams& g, std::size_t w) {
-    return w < g.waterTops.size() ? g.waterTops[w] : CosineTop{};
-}
-
 /// Number of whole lattice cells of size l0 in `length`, tolerating rounding; at most 1e15 (a
 /// count that high is refused by checkParticleCount before anything loops over it).
 long cellsIn(double length, double l0) {

@@ -37,23 +37,7 @@ double phaseLag(double from, double to) {
     return std::fmod(to - from + 2.0 * twoPi, twoPi);
 }
 
-/// Slope of the least-squares line through (x, y); x not all equal (distinct gauges).
-double lineSlope(std::span<const double> x, std::span<const double> y) {
-    const double n = static_cast<double>(x.size());
-    double mx = 0.0, my = 0.0;
-    for (std::size_t i = 0; i < x.size(); ++i) {
-        mx += x[i] / n;
-        my += y[i] / n;
-    }
-    double sxy = 0.0, sxx = 0.0;
-    for (std::size_t i = 0; i < x.size(); ++i) {
-        sxy += (x[i] - mx) * (y[i] - my);
-        sxx += (x[i] - mx) * (x[i] - mx);
-    }
-    if (!(sxx > 0.0))
-        throw std::invalid_argument("the regular-wave check needs gauges at distinct x");
-    return sxy / sxx;
-}
+constexpr const char* kDistinctGauges = "the regular-wave check needs gauges at distinct x";
 
 LinearPistonWave theoryOf(const Scene& scene, double& depth) {
     const PistonParams& p = sinusoidalPiston(scene);
@@ -137,10 +121,11 @@ RegularWaveCheck checkRegularWave(const Scene& scene, std::span<const ProbeSampl
             phase.push_back(phase.back() + phaseLag(fits[order[i - 1]].phase, fits[g].phase));
         }
     }
-    const double phaseSlope = lineSlope(xs, phase);
+    const double phaseSlope = lineSlope(xs, phase, kDistinctGauges);
     out.wavelengthFit =
         phaseSlope > 0.0 ? twoPi / phaseSlope : std::numeric_limits<double>::infinity();
-    out.decayPerWavelength = 1.0 - std::exp(lineSlope(xs, logH) * out.theory.wavelength);
+    out.decayPerWavelength =
+        1.0 - std::exp(lineSlope(xs, logH, kDistinctGauges) * out.theory.wavelength);
     out.decayTotal = 1.0 - out.heights[order.back()] / out.heights[order.front()];
     return out;
 }

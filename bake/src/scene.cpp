@@ -516,9 +516,8 @@ json toJson(const Scene& sc) {
     json water = json::array();
     for (std::size_t w = 0; w < g.water.size(); ++w) {
         json b = boxJson(g.water[w]);
-        if (w < g.waterTops.size() && g.waterTops[w].amplitude != 0.0)
-            b["surface"] = {{"amplitude", g.waterTops[w].amplitude},
-                            {"wavelength", g.waterTops[w].wavelength}};
+        if (const CosineTop top = waterTop(g, w); top.amplitude != 0.0)
+            b["surface"] = {{"amplitude", top.amplitude}, {"wavelength", top.wavelength}};
         water.push_back(std::move(b));
     }
     json solids = json::array();

@@ -10,6 +10,7 @@
 
 #include "swell/bake/error.h"
 #include "swell/bake/probes.h"
+#include "swell/bake/validation.h"
 
 namespace swell::bake {
 
@@ -56,20 +57,13 @@ SloshRecord analyseSlosh(std::span<const double> t, std::span<const double> eta)
                                                   eta.begin() + static_cast<long>(at[c + 1]));
         r.amplitudes.push_back(0.5 * (*hi - *lo));
     }
-    // Least-squares slope of ln(amplitude) against the period's index.
-    const double m = static_cast<double>(r.amplitudes.size());
-    double sx = 0.0, sy = 0.0, sxx = 0.0, sxy = 0.0;
+    // Least-squares slope of ln(amplitude) against the period's index (two or more periods).
+    std::vector<double> index, logAmplitude;
     for (std::size_t k = 0; k < r.amplitudes.size(); ++k) {
-        const double x = static_cast<double>(k);
-        const double y = std::log(std::max(r.amplitudes[k], 1e-300));
-        sx += x;
-        sy += y;
-        sxx += x * x;
-        sxy += x * y;
+        index.push_back(static_cast<double>(k));
+        logAmplitude.push_back(std::log(std::max(r.amplitudes[k], 1e-300)));
     }
-    const double den = m * sxx - sx * sx;
-    const double slope = den > 0.0 ? (m * sxy - sx * sy) / den : 0.0;
-    r.decayPerPeriod = 1.0 - std::exp(slope);
+    r.decayPerPeriod = 1.0 - std::exp(lineSlope(index, logAmplitude, "analyseSlosh: one period"));
     return r;
 }
 
@@ -78,8 +72,7 @@ StandingWaveReport runStandingWave(const Scene& scene) {
         throw SceneError("geometry.tank", "the standing-wave check needs a tank");
     const Box tank = *scene.geometry.tank;
     const Box water = scene.geometry.water.at(0);
-    const CosineTop top =
-        scene.geometry.waterTops.empty() ? CosineTop{} : scene.geometry.waterTops.front();
+    const CosineTop top = waterTop(scene.geometry, 0);
     if (top.amplitude == 0.0)
         throw SceneError("geometry.water[0].surface",
                          "missing: the standing-wave check needs the water's cosine top");
@@ -104,20 +97,19 @@ StandingWaveReport runStandingWave(const Scene& scene) {
             r.elevations[g].push_back(s.elevations[g]);
     };
     sample();
-    double ppe = 0.0;
+    StepTotals totals;
     try {
         while (solver.time() < scene.run.endTime - 1e-9) {
-            const StepStats& s = solver.step();
-            ++r.steps;
-            ppe += s.ppeIterations;
-            r.solverSeconds += s.seconds();
+            totals.add(solver.step());
             sample();
         }
         r.outcome = "stable";
     } catch (const DivergenceError& e) {
         r.outcome = std::string("stopped: ") + e.what();
     }
-    r.ppeIterationsMean = r.steps > 0 ? ppe / static_cast<double>(r.steps) : 0.0;
+    r.steps = totals.steps;
+    r.ppeIterationsMean = totals.ppeIterationsMean();
+    r.solverSeconds = totals.seconds;
     if (r.outcome != "stable")
         return r;
     const double share = 1.0 / static_cast<double>(r.gauges.size());

@@ -60,7 +60,8 @@ StillTankReport runStillTank(const Scene& scene, double settle, long steps,
     r.water = P.count(ParticleKind::Water);
     r.gaugeParticles = gauge.size();
     r.rhoGH = scene.physics.density * scene.physics.gravity * H;
-    double pSum = 0.0, ppeIterations = 0.0, speedSum = 0.0, maxExcursion2 = 0.0, maxDrift = 0.0;
+    double pSum = 0.0, speedSum = 0.0, maxExcursion2 = 0.0, maxDrift = 0.0;
+    StepTotals totals;
     long pCount = 0, speedCount = 0;
     std::vector<double> settledX, settledY, windowX, windowY;
     double windowStart = -1.0;
@@ -68,9 +69,7 @@ StillTankReport runStillTank(const Scene& scene, double settle, long steps,
     try {
         for (long k = 0; k < steps; ++k) {
             const StepStats& s = solver.step();
-            ++r.steps;
-            ppeIterations += s.ppeIterations;
-            r.solverSeconds += s.seconds();
+            totals.add(s);
             if (onStep)
                 onStep(solver, s);
             if (solver.time() < settle)
@@ -128,7 +127,9 @@ StillTankReport runStillTank(const Scene& scene, double settle, long steps,
         speedCount ? speedSum / static_cast<double>(speedCount) / waveSpeed : 0.0;
     r.maxDriftSpeedOverSqrtGH = maxDrift / waveSpeed;
     r.maxExcursionOverL0 = std::sqrt(maxExcursion2) / l0;
-    r.ppeIterationsMean = r.steps ? ppeIterations / static_cast<double>(r.steps) : 0.0;
+    r.steps = totals.steps;
+    r.ppeIterationsMean = totals.ppeIterationsMean();
+    r.solverSeconds = totals.seconds;
     return r;
 }
 

@@ -181,6 +181,23 @@ LevelError compareLevel(std::span<const LevelPoint> sim, std::span<const LevelPo
         });
 }
 
+double lineSlope(std::span<const double> x, std::span<const double> y, const char* what) {
+    const double n = static_cast<double>(x.size());
+    double mx = 0.0, my = 0.0;
+    for (std::size_t i = 0; i < x.size(); ++i) {
+        mx += x[i] / n;
+        my += y[i] / n;
+    }
+    double sxy = 0.0, sxx = 0.0;
+    for (std::size_t i = 0; i < x.size(); ++i) {
+        sxy += (x[i] - mx) * (y[i] - my);
+        sxx += (x[i] - mx) * (x[i] - mx);
+    }
+    if (!(sxx > 0.0))
+        throw std::invalid_argument(what);
+    return sxy / sxx;
+}
+
 HarmonicFit fitHarmonic(std::span<const double> t, std::span<const double> v, double omega) {
     if (t.size() != v.size() || t.size() < 3)
         throw std::invalid_argument("fitHarmonic: need >= 3 samples of t and v");

@@ -610,6 +610,20 @@ TEST(Validation, StressSweepEitherStaysStableOrStopsWithAClearMessage) {
                              "stopped";
 }
 
+TEST(Validation, LineSlopeIsTheLeastSquaresSlopeAndNamesEqualX) {
+    const std::vector<double> x{0.0, 1.0, 2.0, 3.0};
+    const std::vector<double> y{1.0, 2.9, 5.1, 7.0};
+    EXPECT_NEAR(lineSlope(x, y, "x"), 2.02, 1e-12); // 10.1 / 5
+    const std::vector<double> same{1.0, 1.0};
+    const std::vector<double> two{0.0, 1.0};
+    try {
+        lineSlope(same, two, "need distinct x");
+        ADD_FAILURE() << "equal x accepted";
+    } catch (const std::invalid_argument& e) {
+        EXPECT_STREQ(e.what(), "need distinct x");
+    }
+}
+
 TEST(Validation, HarmonicFitRecoversAmplitudePhaseAndMean) {
     const double omega = 2.0 * std::acos(-1.0) / 0.8;
     std::vector<double> t, v;

@@ -46,6 +46,11 @@ struct GeometryParams {
     double jitter = 0.0;
 };
 
+/// Water rectangle w's top: its entry in waterTops, flat (amplitude 0) where it has none.
+inline CosineTop waterTop(const GeometryParams& g, std::size_t w) {
+    return w < g.waterTops.size() ? g.waterTops[w] : CosineTop{};
+}
+
 /// Most particles a geometry may generate (water, wall and dummy together): 4 million, some
 /// 40 times the largest shipped scene. A scene past it is refused before any particle is made,
 /// naming geometry.particle_spacing and the count, instead of allocating without bound.

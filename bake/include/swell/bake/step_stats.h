@@ -42,4 +42,21 @@ struct StepStats {
     }
 };
 
+/// Totals over the steps of a run, for the reports of validation runs: steps taken, PCG
+/// iterations and the solver's wall time.
+struct StepTotals {
+    long steps = 0;
+    double ppeIterations = 0.0;
+    double seconds = 0.0;
+
+    void add(const StepStats& s) {
+        ++steps;
+        ppeIterations += s.ppeIterations;
+        seconds += s.seconds();
+    }
+    double ppeIterationsMean() const {
+        return steps > 0 ? ppeIterations / static_cast<double>(steps) : 0.0;
+    }
+};
+
 } // namespace swell::bake

@@ -106,6 +106,11 @@ struct HarmonicFit {
 };
 HarmonicFit fitHarmonic(std::span<const double> t, std::span<const double> v, double omega);
 
+/// Slope of the least-squares line through (x, y) (a wave's decay or phase along its gauges,
+/// a standing wave's ln amplitude over its periods). Throws std::invalid_argument(what) when
+/// the x are all equal.
+double lineSlope(std::span<const double> x, std::span<const double> y, const char* what);
+
 /// One figure over an ensemble of runs (swell-validate --ensemble): members that differ only
 /// by a jitter of the water far below the resolution, so their spread is how far one record
 /// of a flow that amplifies small differences can be trusted (docs/validation.md 7.2, 7.13).
