@@ -38,6 +38,12 @@ using nlohmann::json;
 
 namespace {
 
+/// Solver time per step and particle (µs), 0 for a run that took no step.
+double usPerParticleStep(double seconds, long steps, std::size_t particles) {
+    return steps > 0 ? 1e6 * seconds / (static_cast<double>(steps) * static_cast<double>(particles))
+                     : 0.0;
+}
+
 /// Writes `text` to `path` whole or not at all: to a temporary name in the same folder,
 /// renamed when complete. Throws std::runtime_error naming the option, the file and the error.
 void writeTextFile(const std::filesystem::path& path, const std::string& text, const char* option) {
@@ -207,11 +213,8 @@ json lobovsky(const Scene& scene, double tEnd, const std::string& csv) {
     out["steps"] = totals.steps;
     out["ppe_iterations_mean"] = totals.ppeIterationsMean();
     out["solver_seconds"] = totals.seconds;
-    out["us_per_particle_step"] = totals.steps
-                                      ? 1e6 * totals.seconds /
-                                            (static_cast<double>(totals.steps) *
-                                             static_cast<double>(solver.particles().size()))
-                                      : 0.0;
+    out["us_per_particle_step"] =
+        usPerParticleStep(totals.seconds, totals.steps, solver.particles().size());
     return out;
 }
 
@@ -381,10 +384,7 @@ json standingWave(const Scene& scene, const std::string& csv) {
     out["steps"] = r.steps;
     out["ppe_iterations_mean"] = r.ppeIterationsMean;
     out["solver_seconds"] = r.solverSeconds;
-    out["us_per_particle_step"] =
-        r.steps > 0 ? 1e6 * r.solverSeconds /
-                          (static_cast<double>(r.steps) * static_cast<double>(r.particles))
-                    : 0.0;
+    out["us_per_particle_step"] = usPerParticleStep(r.solverSeconds, r.steps, r.particles);
     return out;
 }
 
