@@ -124,12 +124,18 @@ def plot_lobovsky(runs, path):
     H = runs[0]["result"]["H"]
     gauges = {}
     for r in runs[0]["records"]:
-        g = gauges.setdefault(r["gauge"], {"x": float(r["x"]), "t": [], "h": []})
-        g["t"].append(float(r["t"]))
-        g["h"].append(float(r["h"]) / H)
+        g = gauges.setdefault(r["gauge"], {"x": float(r["x"]), "record": ([], []),
+                                           "repeat": ([], [])})
+        g[r["series"]][0].append(float(r["t"]))
+        g[r["series"]][1].append(float(r["h"]) / H)
     fig, axes = plt.subplots(2, 2, figsize=(11, 7), sharex=True)
     for ax, (name, g) in zip(axes.flat, gauges.items()):
-        ax.plot(g["t"], g["h"], ".", color="black", ms=4, label="Lobovsky et al. 2014")
+        ax.plot(*g["record"], ".", color="black", ms=4, label="Lobovsky et al. 2014 (compared)")
+        if g["repeat"][0]:
+            scatter = next(e for e in runs[0]["result"]["gauges"]
+                           if e["name"] == name)["experiment_scatter_over_H"]
+            ax.plot(*g["repeat"], "x", color="0.45", ms=3,
+                    label=f"its other series: mean |dh| {100 * scatter:.1f} % H")
         for run_, colour in zip(runs, COLOURS):
             t = [float(r["t"]) for r in run_["series"]]
             h = [float(r[f"h_{name}"]) / H for r in run_["series"]]

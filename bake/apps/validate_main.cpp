@@ -10,6 +10,7 @@
 #include <fstream>
 #include <functional>
 #include <iostream>
+#include <optional>
 #include <span>
 #include <string>
 #include <utility>
@@ -198,12 +199,16 @@ json lobovsky(const Scene& scene, double tEnd, const std::string& csv) {
         double worst = 0.0;
         for (std::size_t g = 0; g < gauges.size(); ++g) {
             const LevelError e = compareLevel(series[g], gauges[g].series, tLo, tHi);
-            list.push_back({{"name", gauges[g].name},
-                            {"x", gauges[g].x},
-                            {"mean_abs_error_over_H", e.mean / H},
-                            {"max_abs_error_over_H", e.max / H},
-                            {"mean_signed_error_over_H", e.meanSigned / H},
-                            {"points", e.points}});
+            // The experiment against itself over the same window (null: no second series).
+            const std::optional<LevelError> scatter = lobovskyScatter(gauges[g], tLo, tHi);
+            list.push_back(
+                {{"name", gauges[g].name},
+                 {"x", gauges[g].x},
+                 {"mean_abs_error_over_H", e.mean / H},
+                 {"max_abs_error_over_H", e.max / H},
+                 {"mean_signed_error_over_H", e.meanSigned / H},
+                 {"points", e.points},
+                 {"experiment_scatter_over_H", scatter ? json(scatter->mean / H) : json(nullptr)}});
             worst = std::max(worst, e.mean / H);
         }
         out["gauges"] = list;
@@ -459,6 +464,10 @@ Figures lobovskyFigures(const json& r) {
         f.push_back({"mean_abs_error_over_H_" + name, g["mean_abs_error_over_H"].get<double>()});
         f.push_back(
             {"mean_signed_error_over_H_" + name, g["mean_signed_error_over_H"].get<double>()});
+        // The same for every member; kept beside the errors it bounds (NaN: no second series).
+        const json& scatter = g["experiment_scatter_over_H"];
+        f.push_back({"experiment_scatter_over_H_" + name,
+                     scatter.is_null() ? std::nan("") : scatter.get<double>()});
     }
     f.push_back({"mean_abs_error_over_H_worst", r["mean_abs_error_over_H_worst"].get<double>()});
     return f;

@@ -181,6 +181,12 @@ LevelError compareLevel(std::span<const LevelPoint> sim, std::span<const LevelPo
         });
 }
 
+std::optional<LevelError> lobovskyScatter(const LevelGauge& gauge, double tLo, double tHi) {
+    if (gauge.repeat.empty())
+        return std::nullopt;
+    return compareLevel(gauge.repeat, gauge.series, tLo, tHi);
+}
+
 double lineSlope(std::span<const double> x, std::span<const double> y, const char* what) {
     const double n = static_cast<double>(x.size());
     double mx = 0.0, my = 0.0;
@@ -250,10 +256,12 @@ std::string martinMoyceRecordsCsv() {
 }
 
 std::string lobovskyRecordsCsv() {
-    std::string out = "gauge,x,t,h\n";
+    std::string out = "gauge,series,x,t,h\n";
     for (const LevelGauge& g : lobovskyH300Gauges()) {
         for (const LevelPoint& p : g.series)
-            out += fmt::format("{},{},{},{}\n", g.name, g.x, p.t, p.h);
+            out += fmt::format("{},record,{},{},{}\n", g.name, g.x, p.t, p.h);
+        for (const LevelPoint& p : g.repeat)
+            out += fmt::format("{},repeat,{},{},{}\n", g.name, g.x, p.t, p.h);
     }
     return out;
 }

@@ -6,6 +6,7 @@
 #include <span>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <fmt/format.h>
@@ -189,6 +190,46 @@ TEST(Validation, LevelComparisonInterpolatesTheSimulationAtRecordTimes) {
         EXPECT_EQ(gauges[g].series.front().h, 0.0) << gauges[g].name;
 }
 
+// The experiment against itself: H2-H4 carry the other series (ETSIN 01) on the record's own
+// times, copied verbatim; the two agree through the surge and impact and part after the
+// returning jet lands.
+TEST(Validation, LobovskyScatterComparesTheExperimentsTwoSeries) {
+    const auto gauges = lobovskyH300Gauges();
+    const double H = 0.3;
+    EXPECT_FALSE(lobovskyScatter(gauges[0], 0.0, 1.5).has_value()); // H1: one series only
+    for (std::size_t g = 1; g < gauges.size(); ++g) {
+        const LevelGauge& gauge = gauges[g];
+        ASSERT_EQ(gauge.repeat.size(), gauge.series.size()) << gauge.name;
+        double sum = 0.0;
+        int n = 0;
+        for (std::size_t k = 0; k < gauge.series.size(); ++k) {
+            EXPECT_DOUBLE_EQ(gauge.repeat[k].t, gauge.series[k].t) << gauge.name << " " << k;
+            if (gauge.series[k].t <= 1.5) {
+                sum += std::abs(gauge.repeat[k].h - gauge.series[k].h);
+                ++n;
+            }
+        }
+        const auto whole = lobovskyScatter(gauge, 0.0, 1.5);
+        ASSERT_TRUE(whole.has_value()) << gauge.name;
+        EXPECT_EQ(whole->points, n) << gauge.name;
+        EXPECT_NEAR(whole->mean, sum / n, 1e-12) << gauge.name;
+        EXPECT_GT(whole->mean / H, 0.01) << gauge.name; // two runs, not one copied twice
+        const auto early = lobovskyScatter(gauge, 0.0, 0.9);
+        EXPECT_LT(early->mean / H, 0.01) << gauge.name; // the same flow up to the run-up
+    }
+    // Spot values of the copied files (t sqrt(g/H), h/H): H3 ETSIN 01 at 6.86207 reads
+    // 0.489117, H4 at 6.25211 reads 0.737148.
+    const double s = std::sqrt(9.81 / H);
+    const auto at = [&](const LevelGauge& gauge, double tStar) {
+        for (const LevelPoint& p : gauge.repeat)
+            if (std::abs(p.t * s - tStar) < 1e-4)
+                return p.h / H;
+        return -1.0;
+    };
+    EXPECT_NEAR(at(gauges[2], 6.86207), 0.489117, 1e-9);
+    EXPECT_NEAR(at(gauges[3], 6.25211), 0.737148, 1e-9);
+}
+
 // The Lobovsky scenes: the experiment's column against the upstream wall, its tank length
 // (lobovsky_small.json: 1 cm longer, a whole number of 20 mm spacings), walls tall enough for the
 // run-up, dt at Courant < 0.3 for the dry-bed front speed 2 sqrt(g H).
@@ -245,21 +286,27 @@ TEST(Validation, RecordsCsvHoldEveryExperimentalPointAsCompared) {
         EXPECT_DOUBLE_EQ(std::stod(mm[k][1]), p.T);
         EXPECT_DOUBLE_EQ(std::stod(mm[k][2]), p.Z);
     }
-    const auto lob = csvRows(lobovskyRecordsCsv(), "gauge,x,t,h");
-    std::size_t k = 0;
+    const auto lob = csvRows(lobovskyRecordsCsv(), "gauge,series,x,t,h");
+    std::size_t k = 0, repeats = 0;
     for (const LevelGauge& g : lobovskyH300Gauges()) {
-        for (const LevelPoint& p : g.series) {
-            ASSERT_LT(k, lob.size());
-            ASSERT_EQ(lob[k].size(), 4u);
-            EXPECT_EQ(lob[k][0], g.name);
-            EXPECT_DOUBLE_EQ(std::stod(lob[k][1]), g.x);
-            EXPECT_DOUBLE_EQ(std::stod(lob[k][2]), p.t);
-            EXPECT_DOUBLE_EQ(std::stod(lob[k][3]), p.h);
-            ++k;
+        for (const auto& [name, points] :
+             {std::pair{"record", g.series}, std::pair{"repeat", g.repeat}}) {
+            for (const LevelPoint& p : points) {
+                ASSERT_LT(k, lob.size());
+                ASSERT_EQ(lob[k].size(), 5u);
+                EXPECT_EQ(lob[k][0], g.name);
+                EXPECT_EQ(lob[k][1], name);
+                EXPECT_DOUBLE_EQ(std::stod(lob[k][2]), g.x);
+                EXPECT_DOUBLE_EQ(std::stod(lob[k][3]), p.t);
+                EXPECT_DOUBLE_EQ(std::stod(lob[k][4]), p.h);
+                ++k;
+            }
         }
+        repeats += g.repeat.size();
     }
     EXPECT_EQ(k, lob.size());
-    EXPECT_GT(k, 4u * 10u); // four gauges, each a record, not a stub
+    EXPECT_GT(k - repeats, 4u * 10u); // four gauges, each a record, not a stub
+    EXPECT_GT(repeats, 3u * 10u);     // and H2-H4's other series
 }
 
 // Pooling the two Martin & Moyce series weights their means by their point counts.

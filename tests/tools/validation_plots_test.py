@@ -40,8 +40,15 @@ class ValidationPlots(unittest.TestCase):
                 series = {row["series"] for row in csv.DictReader(f)}
             self.assertEqual(series, {"a2.25in", "a1.125in"})
             with open(out / "lobovsky_records.csv", newline="") as f:
-                gauges = {row["gauge"] for row in csv.DictReader(f)}
-            self.assertEqual(gauges, {"H1", "H2", "H3", "H4"})
+                rows = list(csv.DictReader(f))
+            self.assertEqual({r["gauge"] for r in rows}, {"H1", "H2", "H3", "H4"})
+            # H2-H4 also carry the experiment's other series, drawn beside the compared one.
+            self.assertEqual({r["gauge"] for r in rows if r["series"] == "repeat"},
+                             {"H2", "H3", "H4"})
+            lob = summary["runs"][1]["result"]["gauges"]
+            self.assertIsNone(lob[0]["experiment_scatter_over_H"])
+            for g in lob[1:]:
+                self.assertGreater(g["experiment_scatter_over_H"], 0.0, g["name"])
 
     def test_unwritable_csv_and_records_are_one_clear_line_each(self):
         scene = str(ROOT / "scenes" / "lobovsky_small.json")

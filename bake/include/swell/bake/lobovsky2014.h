@@ -14,6 +14,9 @@ struct LevelGauge {
     const char* name = "";
     double x = 0.0; ///< (m), from the tank's left (upstream) wall, i.e. the wall behind the column
     std::span<const LevelPoint> series;
+    /// The same gauge's record in the experiment's other series, on the same times; empty where
+    /// none is stored. Only to measure the experiment's repeatability (lobovskyScatter).
+    std::span<const LevelPoint> repeat;
 };
 
 /// Geometry of the 2D section of the Lobovsky et al. (2014) tank, H = 300 mm filling.
@@ -36,7 +39,8 @@ LobovskyGeometry lobovskyH300Geometry();
 /// at x = 0.3, 0.865, 1.114, 1.3625 m from the upstream wall. The records are the
 /// experimental files (Fig. 16 of the paper) shipped with TNL-SPH, converted from
 /// t sqrt(g/H), h/H to seconds and metres and thinned; see lobovsky2014.cpp for the exact
-/// files, commits and conversion. They cover 0 <= t <= 1.963 s.
+/// files, commits and conversion. They cover 0 <= t <= 1.963 s. H2-H4 also carry the other
+/// series' record (`repeat`, "ETSIN 01" against "ETSIN 02").
 std::span<const LevelGauge> lobovskyH300Gauges();
 
 } // namespace swell::bake

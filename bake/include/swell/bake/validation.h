@@ -1,5 +1,6 @@
 #pragma once
 #include <cstddef>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -90,9 +91,17 @@ struct LevelError {
 LevelError compareLevel(std::span<const LevelPoint> simulated, std::span<const LevelPoint> record,
                         double tLo, double tHi);
 
-/// The Lobovsky et al. (2014) gauge records as CSV text, "gauge,x,t,h" (x, t, h in m and s as
-/// in lobovskyH300Gauges) then one row per point, gauges in the order H1..H4: the records the
-/// lobovsky check compares with, for plots (swell-validate lobovsky --records).
+/// How far the experiment is from itself at one gauge: the gauge's other series (`repeat`,
+/// lobovsky2014.h) compared with its record as compareLevel compares a simulated series, over
+/// [tLo, tHi]. A gauge error below it cannot be told from the experiment's scatter. Empty for
+/// a gauge without a second series (H1).
+std::optional<LevelError> lobovskyScatter(const LevelGauge& gauge, double tLo, double tHi);
+
+/// The Lobovsky et al. (2014) gauge records as CSV text, "gauge,series,x,t,h" (x, t, h in m
+/// and s as in lobovskyH300Gauges) then one row per point, gauges in the order H1..H4, each
+/// gauge's record (series "record": what the lobovsky check compares with) then its other
+/// series' points (series "repeat", where it has one), for plots (swell-validate lobovsky
+/// --records).
 std::string lobovskyRecordsCsv();
 
 /// Least-squares fit v(t) ~ a cos(omega t) + b sin(omega t) + c of a gauge record at a
