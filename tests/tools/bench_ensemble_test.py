@@ -102,8 +102,10 @@ class Validate(unittest.TestCase):
 
     def test_worst_lobovsky_gauge_is_the_one_with_the_largest_mean(self):
         def member(h1, h2):
-            gauges = [{"name": "H1", "x": 0.3, "mean_abs_error_over_H": h1, "mean_signed_error_over_H": 0.0},
-                      {"name": "H2", "x": 0.865, "mean_abs_error_over_H": h2, "mean_signed_error_over_H": 0.0}]
+            gauges = [{"name": "H1", "x": 0.3, "mean_abs_error_over_H": h1, "mean_signed_error_over_H": 0.0,
+                       "experiment_scatter_over_H": None},
+                      {"name": "H2", "x": 0.865, "mean_abs_error_over_H": h2, "mean_signed_error_over_H": 0.0,
+                       "experiment_scatter_over_H": 0.0515}]
             return {"outcome": "stable", "steps": 10, "particles": 100, "solver_seconds": 1.0,
                     "gauges": gauges, "mean_abs_error_over_H_worst": max(h1, h2), "window": [0, 1.5]}
         with tempfile.TemporaryDirectory() as tmp:
@@ -117,6 +119,12 @@ class Validate(unittest.TestCase):
         self.assertAlmostEqual(row["H1_mean_abs_error_over_H"], 0.05)
         self.assertAlmostEqual(row["worst_mean_abs_error_over_H"], 0.075)
         self.assertIn("H1_mean_abs_error_over_H_sd", row)
+        # The experiment's own scatter rides along where a gauge has a second series, in the table.
+        self.assertAlmostEqual(row["H2_experiment_scatter_over_H"], 0.0515)
+        self.assertIsNone(row["H1_experiment_scatter_over_H"])
+        table = bake.lobovsky_table([row])
+        self.assertIn("H2: experiment's two series", table)
+        self.assertNotIn("H1: experiment's two series", table)
 
     def test_standing_wave_rows_per_scheme_with_spread_and_table(self):
         def member(err, decay):

@@ -279,6 +279,9 @@ def lobovsky(ctx):
                     out["%s_x_m" % g["name"]] = g.get("x")
                     out["%s_mean_abs_error_over_H" % g["name"]] = g.get("mean_abs_error_over_H")
                     out["%s_mean_signed_error_over_H" % g["name"]] = g.get("mean_signed_error_over_H")
+                    # The experiment's two series against each other (none for H1): the error
+                    # the records themselves cannot resolve.
+                    out["%s_experiment_scatter_over_H" % g["name"]] = g.get("experiment_scatter_over_H")
                 out.update({"ppe_iterations_mean": j.get("ppe_iterations_mean"),
                             "wall_s": j.get("wall_seconds", r.wall),
                             "us_per_particle_step": j.get("us_per_particle_step") or
@@ -511,6 +514,8 @@ def lobovsky_table(rows):
             ("particles", "particles"), ("steps", "steps"), ("outcome", lambda r: (r.get("outcome") or "")[:60]),
             ("worst mean abs dh / H", "worst_mean_abs_error_over_H"), ("worst gauge", "worst_gauge")]
     cols += [("%s mean abs dh / H" % n, "%s_mean_abs_error_over_H" % n) for n in gauge_names(rows)]
+    cols += [("%s: experiment's two series, mean abs dh / H" % n, "%s_experiment_scatter_over_H" % n)
+             for n in gauge_names(rows) if any(r.get("%s_experiment_scatter_over_H" % n) is not None for r in rows)]
     cols += [("PPE iter.", "ppe_iterations_mean"), ("wall s", "wall_s"),
              ("µs / particle-step", "us_per_particle_step")]
     return bl.md_table(rows, cols)
