@@ -234,11 +234,11 @@ json stillTank(const Scene& scene, double settle, long steps, long trace) {
                 fastestWaterParticle(solver, *scene.geometry.tank, scene.geometry.particleSpacing);
             std::fprintf(
                 stderr,
-                "step %ld t %.3f max|u| %.4f (particle %zu at %.4f, %.4f n/n0 %.3f) ppe %d "
-                "surface %zu collisions %zu\n",
-                s.step, s.time, s.maxSpeed, f.index, f.x, f.y,
-                solver.particles().n[f.index] / solver.densityConstants().n0, s.ppeIterations,
-                s.surfaceParticles, s.collisions);
+                "step %ld t %.3f max|u| %.4f (particle %zu at %.4f, %.4f n/n0 %.3f; before the "
+                "shift %.4f) ppe %d surface %zu collisions %zu\n",
+                s.step, s.time, std::hypot(f.u, f.v), f.index, f.x, f.y,
+                solver.particles().n[f.index] / solver.densityConstants().n0, s.maxSpeed,
+                s.ppeIterations, s.surfaceParticles, s.collisions);
         };
     }
     const StillTankReport r = runStillTank(scene, settle, steps, onStep);
@@ -256,6 +256,7 @@ json stillTank(const Scene& scene, double settle, long steps, long trace) {
              {"bottom_pressure_ratio", r.bottomPressureRatio},
              {"max_speed_after_settle", r.maxSpeed},
              {"max_speed_over_sqrt_gH", r.maxSpeedOverSqrtGH},
+             {"max_speed_before_shift_over_sqrt_gH", r.maxSpeedBeforeShiftOverSqrtGH},
              {"mean_speed_over_sqrt_gH", r.meanSpeedOverSqrtGH},
              {"max_excursion_over_l0", r.maxExcursionOverL0},
              {"max_drift_speed_over_sqrt_gH", r.maxDriftSpeedOverSqrtGH},
@@ -476,6 +477,8 @@ Figures lobovskyFigures(const json& r) {
 Figures stillTankFigures(const json& r) {
     return {{"bottom_pressure_ratio", r["bottom_pressure_ratio"].get<double>()},
             {"max_speed_over_sqrt_gH", r["max_speed_over_sqrt_gH"].get<double>()},
+            {"max_speed_before_shift_over_sqrt_gH",
+             r["max_speed_before_shift_over_sqrt_gH"].get<double>()},
             {"max_drift_speed_over_sqrt_gH", r["max_drift_speed_over_sqrt_gH"].get<double>()},
             {"mean_speed_over_sqrt_gH", r["mean_speed_over_sqrt_gH"].get<double>()},
             {"max_excursion_over_l0", r["max_excursion_over_l0"].get<double>()}};

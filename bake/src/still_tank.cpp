@@ -79,10 +79,7 @@ StillTankReport runStillTank(const Scene& scene, double settle, long steps,
                 p += P.p[i];
             pSum += gauge.empty() ? 0.0 : p / static_cast<double>(gauge.size());
             ++pCount;
-            if (s.maxSpeed > r.maxSpeed) {
-                r.maxSpeed = s.maxSpeed;
-                r.fastest = fastestWaterParticle(solver, tank, l0);
-            }
+            r.maxSpeedBeforeShift = std::max(r.maxSpeedBeforeShift, s.maxSpeed);
             if (settledX.empty()) {
                 settledX = P.x;
                 settledY = P.y;
@@ -103,13 +100,20 @@ StillTankReport runStillTank(const Scene& scene, double settle, long steps,
                 windowX = P.x;
                 windowY = P.y;
             }
+            double stepMax = 0.0;
             for (std::size_t i = 0; i < P.size(); ++i) {
                 if (P.kind[i] != ParticleKind::Water)
                     continue;
-                speedSum += std::hypot(P.vx[i], P.vy[i]);
+                const double speed = std::hypot(P.vx[i], P.vy[i]);
+                speedSum += speed;
+                stepMax = std::max(stepMax, speed);
                 ++speedCount;
                 const double dx = P.x[i] - settledX[i], dy = P.y[i] - settledY[i];
                 maxExcursion2 = std::max(maxExcursion2, dx * dx + dy * dy);
+            }
+            if (stepMax > r.maxSpeed) {
+                r.maxSpeed = stepMax;
+                r.fastest = fastestWaterParticle(solver, tank, l0);
             }
         }
     } catch (const DivergenceError& e) {
@@ -123,6 +127,7 @@ StillTankReport runStillTank(const Scene& scene, double settle, long steps,
     r.bottomPressureMean = pCount ? pSum / static_cast<double>(pCount) : 0.0;
     r.bottomPressureRatio = r.bottomPressureMean / r.rhoGH;
     r.maxSpeedOverSqrtGH = r.maxSpeed / waveSpeed;
+    r.maxSpeedBeforeShiftOverSqrtGH = r.maxSpeedBeforeShift / waveSpeed;
     r.meanSpeedOverSqrtGH =
         speedCount ? speedSum / static_cast<double>(speedCount) / waveSpeed : 0.0;
     r.maxDriftSpeedOverSqrtGH = maxDrift / waveSpeed;

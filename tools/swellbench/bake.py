@@ -430,7 +430,9 @@ def still_tank_text(rows):
     return ("**Still tank** (`swell-validate --json --threads 1 --set geometry.particle_spacing=L0 "
             "[--set solver.scheme=textbook] still-tank scenes/%s --steps N --settle S`; H = %s m, "
             "dt = %g ms%s). Error = |bed pressure / rho g H - 1|, the bed pressure averaged over the "
-            "middle half of the bed after the settling time:" % (
+            "middle half of the bed after the settling time; max speed = the largest |u| a water "
+            "particle carries at the end of a step after it (before 2026-12-03 these tables read it "
+            "before the shift's damping, docs/validation.md 7.24):" % (
                 TANK_SCENE, bl.fmt(H), 1e3 * dt, ", S = %s s" % bl.fmt(settle) if settle is not None else ""))
 
 

@@ -26,7 +26,7 @@ struct StepStats {
     int ppeIterations = 0;    ///< PCG iterations, summed over the sub-steps
     double ppeResidual = 0.0; ///< final relative residual |b - Ax| / |b| (largest sub-step)
     std::size_t ppeUnknowns = 0;
-    double maxSpeed = 0.0;            ///< max |u| of water after the step (m/s)
+    double maxSpeed = 0.0;            ///< max |u| of water after the pressure correction (m/s)
     double courant = 0.0;             ///< max |u| dt / l0 of the sub-steps, their own dt (-)
     std::size_t outOfBounds = 0;      ///< particles outside the domain (a non-zero count throws)
     std::size_t surfaceParticles = 0; ///< water + wall flagged free surface (p = 0)

@@ -40,8 +40,15 @@ struct StillTankReport {
     double bottomPressureMean = 0.0; ///< their pressure, averaged over them and the steps (Pa)
     double rhoGH = 0.0;              ///< rho g H (Pa)
     double bottomPressureRatio = 0.0;
-    double maxSpeed = 0.0;           ///< largest |u| of any water particle after settling (m/s)
+    /// Largest |u| any water particle carries at the end of a step after settling (m/s): the
+    /// velocity the next step starts from and a bake writes (docs/validation.md 7.24).
+    double maxSpeed = 0.0;
     double maxSpeedOverSqrtGH = 0.0; ///< the same / sqrt(g H)
+    /// Largest |u| after settling right after a step's pressure correction, before the shift
+    /// and its damping (StepStats::maxSpeed, the speed the Courant number reads): the still
+    /// tank's figure until 2026-12-03. Never below maxSpeed with the default scheme.
+    double maxSpeedBeforeShift = 0.0;
+    double maxSpeedBeforeShiftOverSqrtGH = 0.0; ///< the same / sqrt(g H)
     double meanSpeedOverSqrtGH = 0.0;
     /// Each water particle's displacement over consecutive windows of kDriftWindow, divided by
     /// the window (max over particles and windows) / sqrt(g H): how fast the water moves, to
@@ -52,7 +59,7 @@ struct StillTankReport {
     std::size_t escaped = 0;         ///< water particles outside the tank at the end
     double ppeIterationsMean = 0.0;
     double solverSeconds = 0.0;
-    FastestParticle fastest; ///< valid when maxSpeed > 0
+    FastestParticle fastest; ///< the particle with maxSpeed; valid when maxSpeed > 0
 };
 
 /// The drift speed's window (s).
