@@ -34,10 +34,12 @@ void* operator new(std::size_t size) {
         return p;
     throw std::bad_alloc();
 }
-void operator delete(void* p) noexcept {
+// Not inlined: GCC at -O1 would inline free() into `delete` after `new T` and warn of a
+// mismatched pair (-Wmismatched-new-delete), not seeing that this `new` is malloc.
+[[gnu::noinline]] void operator delete(void* p) noexcept {
     std::free(p);
 }
-void operator delete(void* p, std::size_t) noexcept {
+[[gnu::noinline]] void operator delete(void* p, std::size_t) noexcept {
     std::free(p);
 }
 #endif

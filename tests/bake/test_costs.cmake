@@ -5,8 +5,6 @@
 set_tests_properties(
     Validation.ProgressiveWaveKeepsItsHeightOverThreeWavelengthsAtCiResolution
     PROPERTIES COST 490)
-set_tests_properties(Validation.RegularWaveMatchesLinearWavemakerTheoryAtCiResolution
-    PROPERTIES COST 290)
 set_tests_properties(Validation.StillTankAtHalfTheStepIsCalmWithTheDampingAgainstTheShift
     PROPERTIES COST 100)
 set_tests_properties(Validation.StandingWaveKeepsLinearTheorysPeriodAtCiResolution

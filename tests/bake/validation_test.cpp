@@ -686,27 +686,13 @@ TEST(Validation, HarmonicFitRecoversAmplitudePhaseAndMean) {
                  std::invalid_argument);
 }
 
-// Regular waves from a sinusoidal piston against linear wavemaker theory at a
-// gauge 2.5 depths from the paddle: height within 15 % of Biesel's H/S, wavelength (from the
-// phase lag between gauges 0.3 m apart) within 10 % of the dispersion relation.
-// DISABLED: NOT met at CI resolution (l0 = h/10): the measured height is about 46 % low and
-// the record is dominated by the solver's free-surface noise (docs/validation.md, section 5).
-// A non-breaking regular wave (kh = 1.0, H/L = 0.023, gradient correction) at h/20:
-// measured +0.7 % (1 thread) and +5.4 % (2 threads) height, +0.2-4 % wavelength; 7,000 steps of
-// 10,000 particles, about 90 s. At h/15 (regular_wave_small.json) the record is too noisy for a
-// test: the same height read -10 % to +16 % from one build or thread count to the next.
-TEST(Validation, RegularWaveMatchesLinearWavemakerTheoryAtCiResolution) {
-    const RegularWaveCheck c = bakeRegularWave("regular_wave.json");
-    // Bounds (docs/validation.md): height within 10 % of Biesel at the gauge 2.5 h from the
-    // paddle (measured -1.8 %, default scheme, any thread count; +0.6 % with the 2.1 l0 kernel;
-    // round-off moved it by a few per cent when the thread count still did), wavelength within 10 %
-    // of the dispersion relation (measured +1.2 %; +6.9 % with 2.1 l0).
-    EXPECT_NEAR(c.heightError(0), 0.0, 0.10)
-        << "H = " << c.heights[0] << " m, Biesel " << c.theory.height;
-    EXPECT_NEAR(c.wavelengthError(), 0.0, 0.10)
-        << "L = " << c.wavelength << " m, theory " << c.theory.wavelength;
-}
-
+// Regular waves from a sinusoidal piston against linear wavemaker theory. The shorter
+// scenes/regular_wave.json (4 m tank, three gauges from 2.5 h to 5.5 h) had its own CI run until
+// 2026-12-03; it is the same wave (kh = 1.0, h/20, the same piston, water and solver), and the
+// progressive wave's bounds are tighter (8 % at 2.5 h against 10 %, the fitted wavelength 3 %
+// against 10 %), so that run was dropped to keep CI short (docs/validation.md section 5). At
+// h/15 (regular_wave_small.json) the record is too noisy for a test: the same height read -10 %
+// to +16 % from one build or thread count to the next.
 // The progressive wave over three wavelengths (scenes/progressive_wave.json: kh = 1.0, h/20,
 // seven gauges from 2.5 h to 2.5 h + 3 L; docs/validation.md 7.2), the case the 2.8 l0 kernel
 // fixed: 15,000 water and 3,328 wall particles, 9,700 steps, about 3 min with 2 threads.
