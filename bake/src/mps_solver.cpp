@@ -502,9 +502,10 @@ void MpsSolver::numberDensityAndSurface() {
     const double reR2 = m_reR * m_reR;
     const double reP2 = m_reP * m_reP;
     const double scan2 = std::max({reN2, ownR ? reR2 : 0.0, reP2});
-    // |f| is read by the distribution test, the packing factor's choice of full
-    // neighbourhoods and the surface particles' shift: taken once here, in parallel.
-    const bool norm = distribution || packing || shifting;
+    // |f| is read by the distribution test, the packing factor's choice of full neighbourhoods,
+    // the truncated neighbourhoods' density target, and the surface particles' shift: taken
+    // once here, in parallel.
+    const bool norm = distribution || packing || shifting || model.truncatedDensity > 0.0;
     std::size_t surface = 0;
 #pragma omp parallel for schedule(static, kParticleChunk) reduction(+ : surface) if (n >= kParallelMin)
     for (std::size_t i = 0; i < n; ++i) {
@@ -576,19 +577,18 @@ void MpsSolver::numberDensityAndSurface() {
 double MpsSolver::measurePacking() const {
     // P = mean(n_R / n0_R) / mean(n_P / n0_P) over the water particles whose neighbourhoods are
     // full on both kernels: off the free surface and the surface layer, and with a neighbour
-    // distribution below kFull, under half of what a flat lattice's second row has on 2.8 l0
-    // (0.123; tools/packing_density.py), so rows that a surface truncates do not count. On
+    // distribution below kFullNeighbourhood (0.05, under half of what a flat lattice's second
+    // row has on 2.8 l0), so rows that a surface truncates do not count. On
     // the square lattice the water starts on, P = 1; as the flow and the shifting reorder it
     // towards a hexagonal packing, P falls below 1 (about 0.984 for a hexagonal packing on
     // R = 2.8 l0 and a 3.0 l0 packing kernel), and n0 P is the density the relaxation's
     // kernel reads for water of the starting volume. Summed in index order: the same P with
     // any thread count.
-    constexpr double kFull = 0.05;
     const std::size_t n = m_p.size();
     double sumR = 0.0, sumP = 0.0;
     for (std::size_t i = 0; i < n; ++i) {
         if (m_p.kind[i] != ParticleKind::Water || m_surface[i] != 0 || m_layer[i] != 0 ||
-            m_fNorm[i] >= kFull)
+            m_fNorm[i] >= kFullNeighbourhood)
             continue;
         sumR += m_nRelax[i];
         sumP += m_nPack[i];
@@ -640,6 +640,7 @@ void MpsSolver::assemblePressureEquation(double dt) {
     const double gamma = m_par.pressure.relaxation * coefficientScale(m_par.time, dt);
     const double n0 = m_latR.n0;
     const double target = n0 * m_packing;
+    const double truncated = m_par.model.truncatedDensity;
     const bool mixed = m_par.pressure.sourceTerm == SourceTerm::Mixed;
     std::vector<double>& b = m_ppe.rhs();
     std::vector<double>& x = m_ppe.solution();
@@ -679,7 +680,13 @@ void MpsSolver::assemblePressureEquation(double dt) {
         // on the relaxation's kernel (re_relaxation; re_density unless set).
         // With re_packing the target is n0 P (measurePacking), the density of water that
         // keeps its starting volume in the packing it has now.
-        double rhs = gamma / (dt * dt) * (m_nRelax[i] - target) / n0;
+        // With truncated_density a water particle whose neighbourhood the surface truncates
+        // aims at n0 P (1 - k |f|), what such a neighbourhood can reach (ModelParams).
+        const double aim =
+            truncated > 0.0 && m_p.kind[i] == ParticleKind::Water && m_fNorm[i] > kFullNeighbourhood
+                ? target * (1.0 - truncated * m_fNorm[i])
+                : target;
+        double rhs = gamma / (dt * dt) * (m_nRelax[i] - aim) / n0;
         if (mixed)
             rhs -= m_divU[i] / dt;
         b[static_cast<std::size_t>(r)] = rhs;
@@ -890,16 +897,17 @@ void MpsSolver::dampAgainstShift(std::size_t i, double sx, double sy, double len
     // particles evenly spaced along it, while the pressure of the rows below can push a
     // particle along it steadily: the shift then moves it back every step and its velocity
     // grows to a value that moves it nowhere. u_s = u . s/|s| < 0 is its velocity against the
-    // shift, rho = |s| / (|u_s| dt) (at most 1) the part of that motion the shift cancels;
-    // u_s -> u_s (1 - rho^3) takes all of it from a particle held in place and almost none
-    // from one the shift barely slows (a surge's front, a wave's crest).
+    // shift, |s| / (|u_s| dt) the part of that motion the shift cancels, and rho = min(1,
+    // g |s| / (|u_s| dt)) with g = shift_damping_gain; u_s -> u_s (1 - rho^3) takes all of it
+    // from a particle the shift holds in place (or, at g = 2, undoes at least half of) and
+    // almost none from one the shift barely slows (a surge's front, a wave's crest).
     if (!(len > 0.0))
         return;
     const double ex = sx / len, ey = sy / len;
     const double against = -(m_p.vx[i] * ex + m_p.vy[i] * ey); // -u_s
     if (!(against > 0.0))
         return;
-    const double rho = std::min(1.0, len / (against * dt));
+    const double rho = std::min(1.0, m_par.model.shiftDampingGain * len / (against * dt));
     const double take = against * rho * rho * rho;
     m_p.vx[i] += take * ex;
     m_p.vy[i] += take * ey;

@@ -317,6 +317,8 @@ Scene parseScene(const json& j) {
         m.shifting = s.number("shifting", m.shifting, 0.0, 1.0, false);
         m.shiftingVelocity = s.boolean("shifting_velocity", m.shiftingVelocity);
         m.shiftDamping = s.boolean("shift_damping", m.shiftDamping);
+        m.shiftDampingGain = s.number("shift_damping_gain", m.shiftDampingGain, 0.0, 10.0, true);
+        m.truncatedDensity = s.number("truncated_density", m.truncatedDensity, 0.0, 1.0, false);
         m.higherOrderLaplacian = s.boolean("higher_order_laplacian", m.higherOrderLaplacian);
         if (m.shifting > 0.0 && m.surfaceTest != SurfaceTest::Distribution) {
             throw SceneError("solver.shifting",
@@ -585,6 +587,15 @@ json toJson(const Scene& sc) {
         {"output", output},
         {"seed", sc.seed},
     };
+    // Keys added without a change of the numerics are recorded only when set off their
+    // default, so the record (and the checkpoint fingerprint made from it) of a scene that
+    // leaves them alone is what the builds before them wrote, and such a bake resumes across
+    // the upgrade (docs/scenes.md "Checkpoints"). Absent, they reload as their default.
+    const ModelParams plain;
+    if (s.model.shiftDampingGain != plain.shiftDampingGain)
+        out["solver"]["shift_damping_gain"] = s.model.shiftDampingGain;
+    if (s.model.truncatedDensity != plain.truncatedDensity)
+        out["solver"]["truncated_density"] = s.model.truncatedDensity;
     if (sc.piston) {
         const PistonParams& p = *sc.piston;
         out["piston"] = json{{"kind", std::string(toString(p.kind))},

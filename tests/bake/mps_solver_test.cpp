@@ -315,6 +315,63 @@ TEST(MpsSolver, ShiftDampingOnlyTakesSurfaceVelocityAgainstTheShift) {
     EXPECT_GT(changed, 0u);
 }
 
+TEST(MpsSolver, ShiftDampingGainTakesMoreOfTheSameSurfaceVelocity) {
+    // solver.shift_damping_gain: from the same dam-break state, one step at gain 2 and one at
+    // gain 1 put every particle in the same place with the same pressure; only free-surface
+    // particles' velocities differ, and none is faster at gain 2 (rho grows with the gain).
+    Scene scene = smallDamBreak();
+    scene.solver = schemeParams(Scheme::Swell);
+    Scene unitScene = scene;
+    ASSERT_EQ(unitScene.solver.model.shiftDampingGain, 1.0);
+    scene.solver.model.shiftDampingGain = 2.0;
+    MpsSolver solver = makeSolver(scene);
+    MpsSolver unitSolver = makeSolver(unitScene);
+    oneStepFromTheSameState(solver, unitSolver);
+    const Particles& strong = solver.particles();
+    const Particles& unit = unitSolver.particles();
+    std::size_t changed = 0;
+    for (std::size_t i = 0; i < strong.size(); ++i) {
+        EXPECT_EQ(strong.x[i], unit.x[i]) << "particle " << i;
+        EXPECT_EQ(strong.p[i], unit.p[i]) << "particle " << i;
+        if (strong.vx[i] == unit.vx[i] && strong.vy[i] == unit.vy[i])
+            continue;
+        ++changed;
+        EXPECT_EQ(solver.surfaceFlags()[i], 1) << "particle " << i;
+        EXPECT_LE(std::hypot(strong.vx[i], strong.vy[i]), std::hypot(unit.vx[i], unit.vy[i]))
+            << "particle " << i;
+    }
+    EXPECT_GT(changed, 0u);
+}
+
+TEST(MpsSolver, TruncatedDensityRaisesThePressureUnderTheSurface) {
+    // solver.truncated_density: the rows a free surface truncates aim at n0 P (1 - k |f|),
+    // below n0 P, so from the same state the density term no longer asks them to pull their
+    // neighbours in towards a density they cannot reach: the water's pressures read higher on
+    // average, and the rows whose neighbourhoods are full keep their source term.
+    Scene scene = smallDamBreak();
+    scene.solver = schemeParams(Scheme::Swell);
+    Scene offScene = scene;
+    ASSERT_EQ(offScene.solver.model.truncatedDensity, 0.0);
+    scene.solver.model.truncatedDensity = 0.5;
+    MpsSolver solver = makeSolver(scene);
+    MpsSolver offSolver = makeSolver(offScene);
+    for (int k = 0; k < 40; ++k)
+        solver.step();
+    offSolver.importState(solver.exportState());
+    solver.step();
+    offSolver.step();
+    const Particles& on = solver.particles();
+    const Particles& off = offSolver.particles();
+    double sumOn = 0.0, sumOff = 0.0;
+    for (std::size_t i = 0; i < on.size(); ++i) {
+        if (on.kind[i] != ParticleKind::Water)
+            continue;
+        sumOn += on.p[i];
+        sumOff += off.p[i];
+    }
+    EXPECT_GT(sumOn, sumOff);
+}
+
 TEST(MpsSolver, PreconditionersCutIterations) {
     int iterations[4] = {0, 0, 0, 0};
     int k = 0;

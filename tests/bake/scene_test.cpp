@@ -520,6 +520,45 @@ TEST(Scene, ShiftDampingIsTheDefaultSchemesAndNeedsShifting) {
     EXPECT_EQ(errorKey(j), "solver.shift_damping");
 }
 
+TEST(Scene, ShiftDampingGainAndTruncatedDensityAreOptInAndRangeChecked) {
+    // Neither scheme sets them (gain 1, k 0: numerics 5's results; docs/validation.md 7.26
+    // measured them on and did not adopt them). Both keys are range-checked, name themselves
+    // in the error and reload from the scene record.
+    for (const char* scheme : {"swell", "textbook"}) {
+        json j = minimal();
+        j["solver"]["scheme"] = scheme;
+        const Scene s = parseScene(j);
+        EXPECT_EQ(s.solver.model.shiftDampingGain, 1.0) << scheme;
+        EXPECT_EQ(s.solver.model.truncatedDensity, 0.0) << scheme;
+    }
+    json j = minimal();
+    j["solver"]["shift_damping_gain"] = 2.0;
+    j["solver"]["truncated_density"] = 0.5;
+    const Scene calm = parseScene(j);
+    EXPECT_EQ(calm.solver.model.shiftDampingGain, 2.0);
+    EXPECT_EQ(calm.solver.model.truncatedDensity, 0.5);
+    EXPECT_EQ(toJson(calm)["solver"]["shift_damping_gain"], 2.0);
+    EXPECT_EQ(toJson(parseScene(toJson(calm))), toJson(calm));
+    // At their defaults they are left out of the record, so it (and a checkpoint's
+    // fingerprint) is what the builds before these keys wrote.
+    const json plainRecord = toJson(parseScene(minimal()));
+    EXPECT_FALSE(plainRecord["solver"].contains("shift_damping_gain"));
+    EXPECT_FALSE(plainRecord["solver"].contains("truncated_density"));
+    for (const double bad : {0.0, -1.0, 10.5}) {
+        j = minimal();
+        j["solver"]["shift_damping_gain"] = bad;
+        EXPECT_EQ(errorKey(j), "solver.shift_damping_gain") << bad;
+    }
+    for (const double bad : {-0.1, 1.5}) {
+        j = minimal();
+        j["solver"]["truncated_density"] = bad;
+        EXPECT_EQ(errorKey(j), "solver.truncated_density") << bad;
+    }
+    j = minimal();
+    j["solver"]["truncated_density"] = "half";
+    EXPECT_EQ(errorKey(j), "solver.truncated_density");
+}
+
 TEST(Scene, NumberBeyondADoubleIsASceneErrorNamingTheFile) {
     const swell::test::TempDir dir("swell_big_number_");
     const auto tmp = dir / "big.json";

@@ -174,11 +174,30 @@ struct ModelParams {
     /// that the shift barely slows keeps nearly all. Dissipative only: |u| never grows
     /// (docs/validation.md 7.11).
     bool shiftDamping = false;
+    /// With shift_damping: the gain g on the part of the motion the shift cancels, rho =
+    /// min(1, g |s| / (|u_s| dt)). At g = 1 (both schemes) the damping lets go as soon as the
+    /// velocity carries a particle further per step than its shift; at g = 2 it takes all of
+    /// it while the shift undoes at least half the motion, so a particle the wall's pressure
+    /// pushes against its shift is not released in bursts (docs/validation.md 7.26). A crest
+    /// or a surge front the shift slows by a tenth keeps 1 - (g/10)^3 of its motion.
+    double shiftDampingGain = 1.0;
+    /// The density term of a water particle whose neighbourhood the free surface truncates
+    /// (neighbour distribution |f| above kFullNeighbourhood) aims at n0 P (1 - k |f|) instead
+    /// of n0 P: such a neighbourhood can never reach n0 (a flat lattice's second row reads
+    /// 0.939 n0 at |f| = 0.123 on 2.8 l0, i.e. k = 0.5; tools/packing_density.py), and asking
+    /// for n0 there drives the rows under the surface up against the shifting, a velocity that
+    /// moves them nowhere (docs/validation.md 7.3, 7.26). 0 (both schemes) turns it off.
+    double truncatedDensity = 0.0;
     /// Laplacian of the pressure Poisson equation: false, K&O 1996's 2d/(lambda n0) w(r);
     /// true, the higher-order form of Khayyer & Gotoh (2010), pair weight re / r^3 (the
     /// 2D 3 re / r^3 up to its constant), normalized so a lattice gives lap x^2 = 2 exactly.
     bool higherOrderLaplacian = false;
 };
+
+/// A neighbour distribution |f| (numberDensityAndSurface, in units of n0 l0) below this is a
+/// full neighbourhood: under half of what a flat lattice's second row has on 2.8 l0 (0.123;
+/// tools/packing_density.py), so rows that a surface truncates are above it.
+inline constexpr double kFullNeighbourhood = 0.05;
 
 /// The kernel radius (l0) the density relaxation uses: re_relaxation, or re_density when 0.
 constexpr double effectiveReRelaxation(const ModelParams& m) {
@@ -232,6 +251,8 @@ inline SolverParams schemeParams(Scheme scheme) {
         // the surface: otherwise the still tank's top row carries speeds that move it nowhere
         // (docs/validation.md 7.11).
         p.model.shiftDamping = true;
+        // shiftDampingGain and truncatedDensity stay off: together they take the still tank at
+        // H/40 below 1 % of sqrt(gH) but make the standing wave decay faster (7.26).
         p.model.collisionDistance = 0.8;
         p.model.restitution = 0.0;
         // A wider number-density kernel than the textbook 2.1 l0: 2.8 l0 reaches the lattice
