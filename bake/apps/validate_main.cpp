@@ -26,6 +26,7 @@
 #include "swell/bake/bake_driver.h"
 #include "swell/bake/error.h"
 #include "swell/bake/lobovsky2014.h"
+#include "swell/bake/lobovsky_run.h"
 #include "swell/bake/probes.h"
 #include "swell/bake/regular_wave.h"
 #include "swell/bake/scene.h"
@@ -139,54 +140,27 @@ json damBreak(const Scene& scene, double tEnd, const std::string& csv) {
 /// Lobovsky et al. (2014) dam break: water height at the gauges H1..H4 against the records.
 /// Sampled after every solver step (denser than the records' 300 Hz); the simulated series is
 /// interpolated at the record times (compareLevel). Height: top of the highest non-splash water
-/// particle within l0 of the gauge (sampleProbes with the tank floor as level), 0 where dry.
+/// particle within l0 of the gauge (sampleProbes with the tank floor as level), 0 where dry
+/// (runLobovsky).
 json lobovsky(const Scene& scene, double tEnd, const std::string& csv) {
-    if (!scene.geometry.tank)
-        throw SceneError("geometry.tank", "the Lobovsky check needs a tank");
-    const Box tank = *scene.geometry.tank;
-    const double H = scene.geometry.water.at(0).height();
+    const LobovskyRun run = runLobovsky(scene, tEnd);
     const std::span<const LevelGauge> gauges = lobovskyH300Gauges();
-    MpsSolver solver = makeSolver(scene);
-    ProbeParams probe;
-    probe.n0 = solver.densityConstants().n0;
-    probe.splashRatio = scene.output.splashRatio;
-    probe.spacing = scene.geometry.particleSpacing;
-    probe.stillWaterLevel = tank.y0; // heights from the tank floor
-    for (const LevelGauge& g : gauges)
-        probe.gauges.push_back(tank.x0 + g.x); // x from the upstream wall
-    std::vector<std::vector<LevelPoint>> series(gauges.size());
-    const auto sample = [&] {
-        const ProbeSample s = sampleProbes(solver.particles(), solver.time(), probe);
-        for (std::size_t g = 0; g < gauges.size(); ++g) {
-            const double h = s.elevations[g];
-            series[g].push_back({s.time, std::isnan(h) ? 0.0 : h}); // NaN: dry gauge
-        }
-    };
-    sample();
-    StepTotals totals;
+    const double H = run.H;
     json out{{"scene", scene.name},
              {"H", H},
              {"l0", scene.geometry.particleSpacing},
              {"dt", scene.solver.time.dt},
-             {"particles", solver.particles().size()},
-             {"water", solver.particles().count(ParticleKind::Water)}};
-    try {
-        while (solver.time() < tEnd - 1e-9) {
-            totals.add(solver.step());
-            sample();
-        }
-        out["outcome"] = "stable";
-    } catch (const DivergenceError& e) {
-        out["outcome"] = std::string("stopped: ") + e.what();
-    }
+             {"particles", run.particles},
+             {"water", run.water},
+             {"outcome", run.outcome}};
     if (!csv.empty()) {
         std::string text = "t";
         for (const LevelGauge& g : gauges)
             text += fmt::format(",h_{}", g.name);
         text += "\n";
-        for (std::size_t k = 0; k < series[0].size(); ++k) {
-            text += fmt::format("{:.5f}", series[0][k].t);
-            for (const auto& s : series)
+        for (std::size_t k = 0; k < run.top[0].size(); ++k) {
+            text += fmt::format("{:.5f}", run.top[0][k].t);
+            for (const auto& s : run.top)
                 text += fmt::format(",{:.5f}", s[k].h);
             text += "\n";
         }
@@ -198,7 +172,7 @@ json lobovsky(const Scene& scene, double tEnd, const std::string& csv) {
         json list = json::array();
         double worst = 0.0;
         for (std::size_t g = 0; g < gauges.size(); ++g) {
-            const LevelError e = compareLevel(series[g], gauges[g].series, tLo, tHi);
+            const LevelError e = compareLevel(run.top[g], gauges[g].series, tLo, tHi);
             // The experiment against itself over the same window (null: no second series).
             const std::optional<LevelError> scatter = lobovskyScatter(gauges[g], tLo, tHi);
             list.push_back(
@@ -215,11 +189,11 @@ json lobovsky(const Scene& scene, double tEnd, const std::string& csv) {
         out["mean_abs_error_over_H_worst"] = worst;
         out["window"] = {tLo, tHi};
     }
-    out["steps"] = totals.steps;
-    out["ppe_iterations_mean"] = totals.ppeIterationsMean();
-    out["solver_seconds"] = totals.seconds;
+    out["steps"] = run.totals.steps;
+    out["ppe_iterations_mean"] = run.totals.ppeIterationsMean();
+    out["solver_seconds"] = run.totals.seconds;
     out["us_per_particle_step"] =
-        usPerParticleStep(totals.seconds, totals.steps, solver.particles().size());
+        usPerParticleStep(run.totals.seconds, run.totals.steps, run.particles);
     return out;
 }
 

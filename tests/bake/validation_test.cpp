@@ -15,7 +15,7 @@
 #include "swell/bake/bake_driver.h"
 #include "swell/bake/error.h"
 #include "swell/bake/lobovsky2014.h"
-#include "swell/bake/probes.h"
+#include "swell/bake/lobovsky_run.h"
 #include "swell/bake/regular_wave.h"
 #include "swell/bake/scene.h"
 #include "swell/bake/standing_wave.h"
@@ -372,49 +372,45 @@ TEST(Validation, TextbookSchemeDamBreakStaysWithinItsBound) {
 }
 
 // Lobovsky et al. (2014) dam break, H = 0.3 m, at CI resolution H/15 (lobovsky_small.json):
-// water height at the gauges H1..H4 (sampleProbes with the floor as level, 0 where dry) after
-// every step, compared with the records over t in [0, 1.5] s (compareLevel). Asserts only a
-// stable run and a worst-gauge error a little above the measured ones: 0.081 H (gauge H4,
-// default scheme, docs/validation.md 7.11), 0.077-0.088 H over four members jittered by 1e-6
-// l0 (7.13); the textbook scheme 0.087 H. 2 threads, about 1 s.
+// water height at the gauges H1..H4 (the top particle, runLobovsky) after every step, compared
+// with the records over t in [0, 1.5] s (compareLevel). Asserts a stable run and a worst-gauge
+// error a little above the measured ones: 0.081 H (gauge H4, default scheme,
+// docs/validation.md 7.11), 0.077-0.088 H over four members jittered by 1e-6 l0 (7.13); the
+// textbook scheme 0.087 H. 2 threads, about 2 s.
 TEST(Validation, LobovskyDamBreakRunsStableAtCiResolution) {
     const Scene scene = loadScene(kScenes / "lobovsky_small.json");
-    const double H = scene.geometry.water.at(0).height();
+    const LobovskyRun run = runLobovsky(scene, 1.5);
+    ASSERT_EQ(run.outcome, "stable");
     const auto gauges = lobovskyH300Gauges();
-    MpsSolver solver = makeSolver(scene);
-    ProbeParams probe;
-    probe.n0 = solver.densityConstants().n0;
-    probe.splashRatio = scene.output.splashRatio;
-    probe.spacing = scene.geometry.particleSpacing;
-    probe.stillWaterLevel = scene.geometry.tank->y0;
-    for (const LevelGauge& g : gauges)
-        probe.gauges.push_back(scene.geometry.tank->x0 + g.x);
-    std::vector<std::vector<LevelPoint>> series(gauges.size());
-    const auto sample = [&] {
-        const ProbeSample s = sampleProbes(solver.particles(), solver.time(), probe);
-        for (std::size_t g = 0; g < gauges.size(); ++g)
-            series[g].push_back({s.time, std::isnan(s.elevations[g]) ? 0.0 : s.elevations[g]});
-    };
-    sample();
-    std::string failure;
-    try {
-        while (solver.time() < 1.5 - 1e-9) {
-            solver.step();
-            sample();
-        }
-    } catch (const DivergenceError& e) {
-        failure = e.what();
-    }
-    ASSERT_EQ(failure, "");
+    ASSERT_EQ(run.top.size(), gauges.size());
     double worst = 0.0;
     for (std::size_t g = 0; g < gauges.size(); ++g) {
-        const LevelError e = compareLevel(series[g], gauges[g].series, 0.0, 1.5);
+        const LevelError e = compareLevel(run.top[g], gauges[g].series, 0.0, 1.5);
         EXPECT_GT(e.points, 50) << gauges[g].name;
         ASSERT_TRUE(std::isfinite(e.mean)) << gauges[g].name;
-        worst = std::max(worst, e.mean / H);
+        worst = std::max(worst, e.mean / run.H);
     }
     RecordProperty("mean_abs_error_over_H_worst", fmt::format("{:.4f}", worst));
     EXPECT_LT(worst, 0.105) << "worst gauge's mean |h_sim - h_exp| / H over t in [0, 1.5] s";
+}
+
+TEST(Validation, LobovskyRunNeedsATankAndReadsTheColumnAtTheStart) {
+    Scene scene = loadScene(kScenes / "lobovsky_small.json");
+    // Before any step: H1 (0.3 m, inside the column) reads the column's height, H2-H4 are dry.
+    const LobovskyRun start = runLobovsky(scene, 0.0);
+    EXPECT_EQ(start.outcome, "stable");
+    EXPECT_EQ(start.totals.steps, 0);
+    ASSERT_EQ(start.top.size(), 4u);
+    EXPECT_NEAR(start.top[0].at(0).h, start.H, 1e-9);
+    for (std::size_t g = 1; g < 4; ++g)
+        EXPECT_EQ(start.top[g].at(0).h, 0.0) << g;
+    scene.geometry.tank.reset(); // the gauges stand in a tank: an error naming the key
+    try {
+        runLobovsky(scene, 0.1);
+        ADD_FAILURE() << "a scene without a tank was accepted";
+    } catch (const SceneError& e) {
+        EXPECT_EQ(e.key(), "geometry.tank");
+    }
 }
 
 namespace {

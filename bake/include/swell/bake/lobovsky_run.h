@@ -1,0 +1,34 @@
+#pragma once
+// The Lobovsky et al. (2014) dam break as a run (docs/validation.md 7.2): the scene's column
+// collapses, and after every step the water level is read at the gauges H1..H4. One run, as
+// swell-validate lobovsky reports it and as the CI-resolution test (tests/bake/validation_test.cpp)
+// bounds it. No I/O.
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "swell/bake/lobovsky2014.h"
+#include "swell/bake/scene.h"
+#include "swell/bake/step_stats.h"
+
+namespace swell::bake {
+
+struct LobovskyRun {
+    /// "stable", or "stopped: " and the divergence detector's message.
+    std::string outcome;
+    double H = 0.0; ///< the column's height (m): the scene's first water rectangle
+    std::size_t particles = 0;
+    std::size_t water = 0;
+    StepTotals totals;
+    /// Per gauge (H1..H4, lobovskyH300Gauges), at t = 0 and after every step: the top of the
+    /// highest non-splash water particle within l0 of the gauge, from the tank floor, 0 where
+    /// dry (sampleProbes): what the check compares.
+    std::vector<std::vector<LevelPoint>> top;
+};
+
+/// Runs `scene` (which needs a tank; the gauges stand at tank.x0 + their x) to tEnd, or until
+/// the divergence detector stops it. Throws SceneError for a scene without a tank.
+LobovskyRun runLobovsky(const Scene& scene, double tEnd);
+
+} // namespace swell::bake
