@@ -24,12 +24,14 @@
 #include "validate_cli.h"
 
 #include "swell/bake/bake_driver.h"
+#include "swell/bake/dam_break_run.h"
 #include "swell/bake/error.h"
 #include "swell/bake/lobovsky2014.h"
 #include "swell/bake/lobovsky_run.h"
 #include "swell/bake/probes.h"
 #include "swell/bake/regular_wave.h"
 #include "swell/bake/scene.h"
+#include "swell/bake/solver_run.h"
 #include "swell/bake/standing_wave.h"
 #include "swell/bake/still_tank.h"
 #include "swell/bake/validation.h"
@@ -58,39 +60,19 @@ void writeTextFile(const std::filesystem::path& path, const std::string& text, c
 }
 
 json damBreak(const Scene& scene, double tEnd, const std::string& csv) {
-    const Box column = scene.geometry.water.at(0);
-    const double a = column.width();
-    const double g = scene.physics.gravity;
-    const double tScale = std::sqrt(2.0 * g / a); // T = t sqrt(2 g / a)
-    MpsSolver solver = makeSolver(scene);
-    const double n0 = solver.densityConstants().n0;
-    std::vector<FrontPoint> series{
-        {0.0, surgeFront(solver.particles(), n0, scene.output.splashRatio, column.x0) / a}};
-    StepTotals totals;
-    json out{{"scene", scene.name},
-             {"a", a},
-             {"l0", scene.geometry.particleSpacing},
-             {"particles", solver.particles().size()},
-             {"water", solver.particles().count(ParticleKind::Water)}};
-    try {
-        while (solver.time() * tScale < tEnd) {
-            const StepStats& s = solver.step();
-            totals.add(s);
-            series.push_back(
-                {solver.time() * tScale,
-                 surgeFront(solver.particles(), n0, scene.output.splashRatio, column.x0) / a});
-        }
-        out["outcome"] = "stable";
-    } catch (const DivergenceError& e) {
-        out["outcome"] = std::string("stopped: ") + e.what();
-    }
+    const DamBreakRun run = runDamBreak(scene, tEnd);
+    const std::vector<FrontPoint>& series = run.series;
+    const StepTotals& totals = run.totals;
+    json out{
+        {"scene", scene.name},        {"a", run.a},         {"l0", scene.geometry.particleSpacing},
+        {"particles", run.particles}, {"water", run.water}, {"outcome", run.outcome}};
     if (!csv.empty()) {
         std::string text = "T,Z\n";
         for (const auto& p : series)
             text += fmt::format("{:.5f},{:.5f}\n", p.T, p.Z);
         writeTextFile(csv, text, "--csv");
     }
-    if (out["outcome"] == "stable") {
+    if (run.outcome == kStable) {
         const FrontError e225 = compareFront(series, martinMoyceA225(), 0.8, 3.0);
         const FrontError e1125 = compareFront(series, martinMoyceA1125(), 0.8, 3.0);
         const FrontError raw = pooled(e225, e1125);

@@ -21,6 +21,7 @@
 #include "swell/bake/numerics_version.h"
 #include "swell/bake/probes.h"
 #include "swell/bake/replay_window.h"
+#include "swell/bake/solver_run.h"
 #include "swell/bake/spill.h"
 #include "swell/bake/wave_theory.h"
 #include "swell/cache/checked_write.h"
@@ -447,8 +448,8 @@ BakeSummary runBake(const Scene& scene, const BakeOptions& opt) {
 
     cache::Writer writer(opt.output, header);
     ProbeFile probes(opt.probes, scene.output.gauges);
-    const ProbeParams probeParams{n0, d1, scene.geometry.particleSpacing, stillWaterLevel(scene),
-                                  scene.output.gauges};
+    const ProbeParams probeParams =
+        probeParamsFor(solver, scene, stillWaterLevel(scene), scene.output.gauges);
     // With checkpoints the stored frames and probe rows are kept: a checkpoint holds them all.
     std::vector<cache::Frame> keptFrames;
     std::vector<std::string> keptRows;

@@ -1,10 +1,13 @@
 #include "swell/bake/lobovsky_run.h"
 
 #include <cmath>
+#include <utility>
+#include <vector>
 
 #include "swell/bake/error.h"
 #include "swell/bake/mps_solver.h"
 #include "swell/bake/probes.h"
+#include "swell/bake/solver_run.h"
 
 namespace swell::bake {
 
@@ -14,13 +17,11 @@ LobovskyRun runLobovsky(const Scene& scene, double tEnd) {
     const Box tank = *scene.geometry.tank;
     const std::span<const LevelGauge> gauges = lobovskyH300Gauges();
     MpsSolver solver = makeSolver(scene);
-    ProbeParams probe;
-    probe.n0 = solver.densityConstants().n0;
-    probe.splashRatio = scene.output.splashRatio;
-    probe.spacing = scene.geometry.particleSpacing;
-    probe.stillWaterLevel = tank.y0; // heights from the tank floor
+    std::vector<double> gaugeX;
     for (const LevelGauge& g : gauges)
-        probe.gauges.push_back(tank.x0 + g.x); // x from the upstream wall
+        gaugeX.push_back(tank.x0 + g.x); // x from the upstream wall
+    // Heights from the tank floor.
+    const ProbeParams probe = probeParamsFor(solver, scene, tank.y0, std::move(gaugeX));
     LobovskyRun run;
     run.H = scene.geometry.water.at(0).height();
     run.particles = solver.particles().size();
@@ -34,15 +35,8 @@ LobovskyRun runLobovsky(const Scene& scene, double tEnd) {
         }
     };
     sample();
-    try {
-        while (solver.time() < tEnd - 1e-9) {
-            run.totals.add(solver.step());
-            sample();
-        }
-        run.outcome = "stable";
-    } catch (const DivergenceError& e) {
-        run.outcome = std::string("stopped: ") + e.what();
-    }
+    run.outcome =
+        runSteps(solver, run.totals, untilTime(tEnd), [&](const StepStats&) { sample(); });
     return run;
 }
 

@@ -10,6 +10,7 @@
 
 #include "swell/bake/error.h"
 #include "swell/bake/probes.h"
+#include "swell/bake/solver_run.h"
 #include "swell/bake/validation.h"
 
 namespace swell::bake {
@@ -82,12 +83,7 @@ StandingWaveReport runStandingWave(const Scene& scene) {
     MpsSolver solver = makeSolver(scene);
     r.particles = solver.particles().size();
     r.water = solver.particles().count(ParticleKind::Water);
-    ProbeParams probe;
-    probe.n0 = solver.densityConstants().n0;
-    probe.splashRatio = scene.output.splashRatio;
-    probe.spacing = l0;
-    probe.stillWaterLevel = water.y1;
-    probe.gauges = {tank.x0 + l0, tank.x1 - l0};
+    const ProbeParams probe = probeParamsFor(solver, scene, water.y1, {tank.x0 + l0, tank.x1 - l0});
     r.gauges = probe.gauges;
     r.elevations.resize(probe.gauges.size());
     const auto sample = [&] {
@@ -98,19 +94,12 @@ StandingWaveReport runStandingWave(const Scene& scene) {
     };
     sample();
     StepTotals totals;
-    try {
-        while (solver.time() < scene.run.endTime - 1e-9) {
-            totals.add(solver.step());
-            sample();
-        }
-        r.outcome = "stable";
-    } catch (const DivergenceError& e) {
-        r.outcome = std::string("stopped: ") + e.what();
-    }
+    r.outcome =
+        runSteps(solver, totals, untilTime(scene.run.endTime), [&](const StepStats&) { sample(); });
     r.steps = totals.steps;
     r.ppeIterationsMean = totals.ppeIterationsMean();
     r.solverSeconds = totals.seconds;
-    if (r.outcome != "stable")
+    if (r.outcome != kStable)
         return r;
     const double share = 1.0 / static_cast<double>(r.gauges.size());
     for (std::size_t g = 0; g < r.gauges.size(); ++g) {

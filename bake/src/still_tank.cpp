@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "swell/bake/error.h"
+#include "swell/bake/solver_run.h"
 
 namespace swell::bake {
 
@@ -65,60 +66,55 @@ StillTankReport runStillTank(const Scene& scene, double settle, long steps,
     long pCount = 0, speedCount = 0;
     std::vector<double> settledX, settledY, windowX, windowY;
     double windowStart = -1.0;
-    r.outcome = "stable";
-    try {
-        for (long k = 0; k < steps; ++k) {
-            const StepStats& s = solver.step();
-            totals.add(s);
-            if (onStep)
-                onStep(solver, s);
-            if (solver.time() < settle)
-                continue;
-            double p = 0.0;
-            for (std::size_t i : gauge)
-                p += P.p[i];
-            pSum += gauge.empty() ? 0.0 : p / static_cast<double>(gauge.size());
-            ++pCount;
-            r.maxSpeedBeforeShift = std::max(r.maxSpeedBeforeShift, s.maxSpeed);
-            if (settledX.empty()) {
-                settledX = P.x;
-                settledY = P.y;
-            }
-            if (windowStart < 0.0) {
-                windowStart = solver.time();
-                windowX = P.x;
-                windowY = P.y;
-            } else if (solver.time() >= windowStart + kDriftWindow - 1e-9) {
-                const double span = solver.time() - windowStart;
-                for (std::size_t i = 0; i < P.size(); ++i) {
-                    if (P.kind[i] == ParticleKind::Water) {
-                        maxDrift = std::max(
-                            maxDrift, std::hypot(P.x[i] - windowX[i], P.y[i] - windowY[i]) / span);
-                    }
-                }
-                windowStart = solver.time();
-                windowX = P.x;
-                windowY = P.y;
-            }
-            double stepMax = 0.0;
-            for (std::size_t i = 0; i < P.size(); ++i) {
-                if (P.kind[i] != ParticleKind::Water)
-                    continue;
-                const double speed = std::hypot(P.vx[i], P.vy[i]);
-                speedSum += speed;
-                stepMax = std::max(stepMax, speed);
-                ++speedCount;
-                const double dx = P.x[i] - settledX[i], dy = P.y[i] - settledY[i];
-                maxExcursion2 = std::max(maxExcursion2, dx * dx + dy * dy);
-            }
-            if (stepMax > r.maxSpeed) {
-                r.maxSpeed = stepMax;
-                r.fastest = fastestWaterParticle(solver, tank, l0);
-            }
+    const auto afterStep = [&](const StepStats& s) {
+        if (onStep)
+            onStep(solver, s);
+        if (solver.time() < settle)
+            return;
+        double p = 0.0;
+        for (std::size_t i : gauge)
+            p += P.p[i];
+        pSum += gauge.empty() ? 0.0 : p / static_cast<double>(gauge.size());
+        ++pCount;
+        r.maxSpeedBeforeShift = std::max(r.maxSpeedBeforeShift, s.maxSpeed);
+        if (settledX.empty()) {
+            settledX = P.x;
+            settledY = P.y;
         }
-    } catch (const DivergenceError& e) {
-        r.outcome = std::string("stopped: ") + e.what();
-    }
+        if (windowStart < 0.0) {
+            windowStart = solver.time();
+            windowX = P.x;
+            windowY = P.y;
+        } else if (solver.time() >= windowStart + kDriftWindow - 1e-9) {
+            const double span = solver.time() - windowStart;
+            for (std::size_t i = 0; i < P.size(); ++i) {
+                if (P.kind[i] == ParticleKind::Water) {
+                    maxDrift = std::max(
+                        maxDrift, std::hypot(P.x[i] - windowX[i], P.y[i] - windowY[i]) / span);
+                }
+            }
+            windowStart = solver.time();
+            windowX = P.x;
+            windowY = P.y;
+        }
+        double stepMax = 0.0;
+        for (std::size_t i = 0; i < P.size(); ++i) {
+            if (P.kind[i] != ParticleKind::Water)
+                continue;
+            const double speed = std::hypot(P.vx[i], P.vy[i]);
+            speedSum += speed;
+            stepMax = std::max(stepMax, speed);
+            ++speedCount;
+            const double dx = P.x[i] - settledX[i], dy = P.y[i] - settledY[i];
+            maxExcursion2 = std::max(maxExcursion2, dx * dx + dy * dy);
+        }
+        if (stepMax > r.maxSpeed) {
+            r.maxSpeed = stepMax;
+            r.fastest = fastestWaterParticle(solver, tank, l0);
+        }
+    };
+    r.outcome = runSteps(
+        solver, totals, [&](const MpsSolver&) { return totals.steps >= steps; }, afterStep);
     for (std::size_t i = 0; i < P.size(); ++i) {
         if (P.kind[i] == ParticleKind::Water && !tank.contains(P.x[i], P.y[i]))
             ++r.escaped;

@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 #include <omp.h>
 
+#include "small_scenes.h"
 #include "swell/bake/error.h"
 #include "swell/bake/scene.h"
 
@@ -46,14 +47,7 @@ void* operator new(std::size_t size) {
 
 namespace {
 
-Scene smallDamBreak() {
-    Scene s;
-    s.geometry.particleSpacing = 0.01;
-    s.geometry.tank = Box{0.0, 0.0, 0.4, 0.3};
-    s.geometry.water = {Box{0.0, 0.0, 0.1, 0.2}};
-    s.solver.time.dt = 0.001;
-    return s;
-}
+using swell::test::smallDamBreak;
 
 /// Runs `steps` steps and returns the DivergenceError message, or "" if none.
 std::string runUntilFailure(MpsSolver& solver, int steps) {

@@ -13,11 +13,13 @@
 #include <gtest/gtest.h>
 
 #include "swell/bake/bake_driver.h"
+#include "swell/bake/dam_break_run.h"
 #include "swell/bake/error.h"
 #include "swell/bake/lobovsky2014.h"
 #include "swell/bake/lobovsky_run.h"
 #include "swell/bake/regular_wave.h"
 #include "swell/bake/scene.h"
+#include "swell/bake/solver_run.h"
 #include "swell/bake/standing_wave.h"
 #include "swell/bake/still_tank.h"
 #include "swell/bake/validation.h"
@@ -29,33 +31,6 @@ using namespace swell::bake;
 namespace {
 
 const std::filesystem::path kScenes = SWELL_SCENES_DIR;
-
-struct DamBreakRun {
-    std::vector<FrontPoint> series;
-    std::string failure; // DivergenceError message, "" when stable
-};
-
-DamBreakRun runDamBreak(const Scene& scene, double tEnd) {
-    const Box col = scene.geometry.water.at(0);
-    const double a = col.width();
-    const double scale = std::sqrt(2.0 * scene.physics.gravity / a); // T = t sqrt(2 g / a)
-    MpsSolver solver = makeSolver(scene);
-    const double n0 = solver.densityConstants().n0;
-    DamBreakRun run;
-    run.series.push_back(
-        {0.0, surgeFront(solver.particles(), n0, scene.output.splashRatio, col.x0) / a});
-    try {
-        while (solver.time() * scale < tEnd) {
-            solver.step();
-            run.series.push_back(
-                {solver.time() * scale,
-                 surgeFront(solver.particles(), n0, scene.output.splashRatio, col.x0) / a});
-        }
-    } catch (const DivergenceError& e) {
-        run.failure = e.what();
-    }
-    return run;
-}
 
 /// Bakes a regular-wave scene with probes into a temporary folder and fits its gauge records
 /// in the scene's own window (what `swell-validate regular-wave` does).
@@ -338,7 +313,7 @@ TEST(Validation, SurgeFrontIgnoresSplashAndWalls) {
 TEST(Validation, DamBreakFrontFollowsMartinMoyceAtCiResolution) {
     const Scene scene = loadScene(kScenes / "dam_break_small.json"); // a/20
     const DamBreakRun run = runDamBreak(scene, 3.05);
-    ASSERT_EQ(run.failure, "");
+    ASSERT_EQ(run.outcome, kStable);
     const FrontError raw = pooled(compareFront(run.series, martinMoyceA225(), 0.8, 3.0),
                                   compareFront(run.series, martinMoyceA1125(), 0.8, 3.0));
     ASSERT_EQ(raw.points, 9);
@@ -364,7 +339,7 @@ TEST(Validation, TextbookSchemeDamBreakStaysWithinItsBound) {
     Scene scene = loadScene(kScenes / "dam_break_small.json", {"solver.scheme=textbook"});
     ASSERT_EQ(scene.solver.model.gradient, GradientModel::MinimumPressure);
     const DamBreakRun run = runDamBreak(scene, 3.05);
-    ASSERT_EQ(run.failure, "");
+    ASSERT_EQ(run.outcome, kStable);
     const FrontError raw = pooled(compareFront(run.series, martinMoyceA225(), 0.8, 3.0),
                                   compareFront(run.series, martinMoyceA1125(), 0.8, 3.0));
     RecordProperty("front_error_mean", fmt::format("{:.4f}", raw.mean));
@@ -410,6 +385,33 @@ TEST(Validation, LobovskyRunNeedsATankAndReadsTheColumnAtTheStart) {
         ADD_FAILURE() << "a scene without a tank was accepted";
     } catch (const SceneError& e) {
         EXPECT_EQ(e.key(), "geometry.tank");
+    }
+}
+
+// The dam-break run (runDamBreak) reads the front from the column's back face and stops at the
+// first step at or past the T asked for; a scene without water is an error naming the key.
+TEST(Validation, DamBreakRunReadsTheColumnAtTheStartAndStopsAtItsEnd) {
+    Scene scene = loadScene(kScenes / "dam_break_small.json");
+    const double l0 = scene.geometry.particleSpacing;
+    const DamBreakRun start = runDamBreak(scene, 0.0);
+    EXPECT_EQ(start.outcome, kStable);
+    EXPECT_EQ(start.totals.steps, 0);
+    ASSERT_EQ(start.series.size(), 1u);
+    EXPECT_EQ(start.a, scene.geometry.water.at(0).width());
+    // The front particle's centre sits l0 / 2 inside the column's face.
+    EXPECT_NEAR(start.series[0].Z, 1.0 - 0.5 * l0 / start.a, 1e-9);
+    const DamBreakRun run = runDamBreak(scene, 0.3);
+    ASSERT_EQ(run.outcome, kStable);
+    ASSERT_EQ(run.series.size(), static_cast<std::size_t>(run.totals.steps) + 1);
+    EXPECT_GE(run.series.back().T, 0.3);
+    EXPECT_LT(run.series[run.series.size() - 2].T, 0.3);
+    EXPECT_GT(run.series.back().Z, run.series.front().Z); // the column has started to collapse
+    scene.geometry.water.clear();
+    try {
+        runDamBreak(scene, 0.3);
+        ADD_FAILURE() << "a scene without water was accepted";
+    } catch (const SceneError& e) {
+        EXPECT_EQ(e.key(), "geometry.water");
     }
 }
 
@@ -636,16 +638,16 @@ TEST(Validation, StressSweepEitherStaysStableOrStopsWithAClearMessage) {
         if (!c.substeps)
             s.solver.time.substepCourant = 0.0;
         const DamBreakRun run = runDamBreak(s, 3.0);
-        RecordProperty(name, run.failure.empty() ? "stable" : run.failure);
-        if (run.failure.empty()) {
+        RecordProperty(name, run.outcome);
+        if (run.outcome == kStable) {
             for (const FrontPoint& p : run.series)
                 ASSERT_TRUE(std::isfinite(p.Z));
             EXPECT_GT(run.series.back().Z, 2.0);
             followed = followed || (c.dtFactor == 8.0 && c.substeps);
         } else {
             ++stopped;
-            EXPECT_NE(run.failure.find("step"), std::string::npos) << run.failure;
-            EXPECT_NE(run.failure.find("particle"), std::string::npos) << run.failure;
+            EXPECT_NE(run.outcome.find("step"), std::string::npos) << run.outcome;
+            EXPECT_NE(run.outcome.find("particle"), std::string::npos) << run.outcome;
         }
     }
     EXPECT_TRUE(followed) << "dt x 8 is followed in sub-steps under the default limits";

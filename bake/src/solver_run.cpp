@@ -1,0 +1,40 @@
+#include "swell/bake/solver_run.h"
+
+#include <utility>
+
+#include "swell/bake/error.h"
+
+namespace swell::bake {
+
+std::string runSteps(MpsSolver& solver, StepTotals& totals,
+                     const std::function<bool(const MpsSolver&)>& done,
+                     const std::function<void(const StepStats&)>& afterStep) {
+    try {
+        while (!done(solver)) {
+            const StepStats& s = solver.step();
+            totals.add(s);
+            if (afterStep)
+                afterStep(s);
+        }
+    } catch (const DivergenceError& e) {
+        return std::string("stopped: ") + e.what();
+    }
+    return kStable;
+}
+
+std::function<bool(const MpsSolver&)> untilTime(double tEnd) {
+    return [tEnd](const MpsSolver& solver) { return solver.time() >= tEnd - 1e-9; };
+}
+
+ProbeParams probeParamsFor(const MpsSolver& solver, const Scene& scene, double stillWaterLevel,
+                           std::vector<double> gauges) {
+    ProbeParams p;
+    p.n0 = solver.densityConstants().n0;
+    p.splashRatio = scene.output.splashRatio;
+    p.spacing = scene.geometry.particleSpacing;
+    p.stillWaterLevel = stillWaterLevel;
+    p.gauges = std::move(gauges);
+    return p;
+}
+
+} // namespace swell::bake
