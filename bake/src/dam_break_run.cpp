@@ -26,8 +26,7 @@ DamBreakRun runDamBreak(const Scene& scene, double tEnd) {
     };
     sample();
     run.outcome = runSteps(
-        solver, run.totals,
-        [&](const MpsSolver& s) { return s.time() * tScale >= tEnd; },
+        solver, run.totals, [&](const MpsSolver& s) { return s.time() * tScale >= tEnd; },
         [&](const StepStats&) { sample(); });
     return run;
 }
