@@ -148,7 +148,7 @@ json lobovsky(const Scene& scene, double tEnd, const std::string& csv) {
         }
         writeTextFile(csv, text, "--csv");
     }
-    if (out["outcome"] == "stable") {
+    if (run.outcome == kStable) {
         const double tLo = 0.0;
         const double tHi = std::min(1.5, tEnd);
         json list = json::array();
@@ -248,7 +248,7 @@ json regularWave(const Scene& scene, double from, double to, const std::string& 
     BakeSummary summary;
     try {
         summary = runBake(scene, opt);
-        out["outcome"] = "stable";
+        out["outcome"] = kStable;
     } catch (const DivergenceError& e) {
         out["outcome"] = std::string("stopped: ") + e.what();
         if (keep.empty())
@@ -330,7 +330,7 @@ json standingWave(const Scene& scene, const std::string& csv) {
                                 r.elevations[1][k]);
         writeTextFile(csv, text, "--csv");
     }
-    if (r.outcome == "stable") {
+    if (r.outcome == kStable) {
         json gauges = json::array();
         for (std::size_t g = 0; g < r.records.size(); ++g)
             gauges.push_back({{"x", r.gauges[g]},
@@ -374,7 +374,7 @@ json ensemble(Scene scene, int n, const std::function<json(const Scene&)>& run,
         scene.seed = static_cast<std::uint64_t>(m);
         json r = run(scene);
         r["seed"] = m;
-        if (r["outcome"] != "stable") {
+        if (r["outcome"] != kStable) {
             stable = false;
         } else {
             const Figures f = figures(r);
@@ -395,7 +395,7 @@ json ensemble(Scene scene, int n, const std::function<json(const Scene&)>& run,
     json out{{"scene", scene.name},
              {"ensemble", n},
              {"jitter", scene.geometry.jitter},
-             {"outcome", stable ? "stable" : "stopped: a member stopped (see members)"},
+             {"outcome", stable ? kStable : "stopped: a member stopped (see members)"},
              {"members", members}};
     // A figure no member measured reads null: an ensemble's other figures are never lost.
     for (const auto& [name, v] : values)
@@ -515,7 +515,7 @@ int main(int argc, char** argv) {
             for (const auto& [k, v] : out.items())
                 std::printf("%-26s %s\n", k.c_str(), v.dump().c_str());
         }
-        if (out["outcome"] == "stable")
+        if (out["outcome"] == kStable)
             return 0;
         // A stopped run keeps its figures in the report (stdout) and says why on stderr.
         std::fprintf(stderr, "swell-validate: %s: %s\n", cl.scene.c_str(),
