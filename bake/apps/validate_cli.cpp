@@ -18,8 +18,8 @@ CLI::Option* addEnsemble(CLI::App& run, ValidateCommandLine& cl) {
 std::optional<int> parseValidateCommandLine(int argc, const char* const* argv,
                                             ValidateCommandLine& cl, std::ostream& out,
                                             std::ostream& err) {
-    CLI::App app{"swell-validate: dam-break, lobovsky, still-tank, regular-wave and standing-wave "
-                 "validation runs of the MPS solver"};
+    CLI::App app{"swell-validate: dam-break, lobovsky, still-tank, regular-wave, standing-wave "
+                 "and solitary-wave validation runs of the MPS solver"};
     app.require_subcommand(1);
     app.fallthrough();
     app.add_option("--set", cl.sets, "override a scene key: section.key=value (repeatable)")
@@ -90,13 +90,25 @@ std::optional<int> parseValidateCommandLine(int argc, const char* const* argv,
     slosh->add_option("--csv", cl.csv, "write the elevation series t,eta_left,eta_right (m)");
     addEnsemble(*slosh, cl)->excludes("--csv");
 
+    auto* solitary = app.add_subcommand(
+        "solitary-wave", "run a tank whose piston makes one solitary wave (piston.kind solitary) "
+                         "and compare its celerity, height and width at output.gauges with "
+                         "theory");
+    solitary
+        ->add_option("scene", cl.scene,
+                     "scene JSON with piston.kind solitary and two or more output.gauges")
+        ->required();
+    solitary->add_option("--csv", cl.csv, "write the elevation series t,eta_<x>... (m)");
+    addEnsemble(*solitary, cl)->excludes("--csv");
+
     if (const auto rc = cli::parse(app, argc, argv, "swell-validate", 0, out, err))
         return rc;
     cl.run = *dam     ? ValidateCommandLine::Run::DamBreak
              : *lob   ? ValidateCommandLine::Run::Lobovsky
              : *still ? ValidateCommandLine::Run::StillTank
              : *wave  ? ValidateCommandLine::Run::RegularWave
-                      : ValidateCommandLine::Run::StandingWave;
+             : *slosh ? ValidateCommandLine::Run::StandingWave
+                      : ValidateCommandLine::Run::SolitaryWave;
     if (cl.scene.empty()) {
         err << "swell-validate: scene: an empty path (see --help)\n";
         return 2;

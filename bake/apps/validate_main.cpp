@@ -1,6 +1,7 @@
 // swell-validate: developer runs behind docs/validation.md (dam break against Martin & Moyce
 // and against the water levels of Lobovsky et al. 2014, regular waves against linear wavemaker
-// theory, still-tank hydrostatics, a standing wave against linear theory). Thin: scene loading, the
+// theory, still-tank hydrostatics, a standing wave against linear theory, a solitary wave against
+// Boussinesq's and Rayleigh's theory). Thin: scene loading, the
 // solver and the comparisons are library code.
 #include <chrono>
 #include <cmath>
@@ -31,6 +32,7 @@
 #include "swell/bake/probes.h"
 #include "swell/bake/regular_wave.h"
 #include "swell/bake/scene.h"
+#include "swell/bake/solitary_wave.h"
 #include "swell/bake/solver_run.h"
 #include "swell/bake/standing_wave.h"
 #include "swell/bake/still_tank.h"
@@ -350,6 +352,59 @@ json standingWave(const Scene& scene, const std::string& csv) {
     return out;
 }
 
+/// A solitary wave (solitary_wave.h, runSolitaryWave): its crest at each gauge, its celerity
+/// against sqrt(g (h + A)), the height it loses and its width against Boussinesq's.
+json solitaryWave(const Scene& scene, const std::string& csv) {
+    const SolitaryWaveReport r = runSolitaryWave(scene);
+    json out{{"scene", scene.name},
+             {"l0", scene.geometry.particleSpacing},
+             {"depth", r.depth},
+             {"height", r.height},
+             {"height_over_depth", r.height / r.depth},
+             {"stroke", r.stroke},
+             {"celerity_theory", r.theory.celerity},
+             {"gauges", r.gauges},
+             {"particles", r.particles},
+             {"water", r.water},
+             {"outcome", r.outcome}};
+    if (!csv.empty()) {
+        std::string text = "t";
+        for (double x : r.gauges)
+            text += fmt::format(",eta_{}", x);
+        text += '\n';
+        for (std::size_t k = 0; k < r.times.size(); ++k) {
+            text += fmt::format("{:.5f}", r.times[k]);
+            for (const std::vector<double>& e : r.elevations)
+                text += fmt::format(",{:.6f}", e[k]);
+            text += '\n';
+        }
+        writeTextFile(csv, text, "--csv");
+    }
+    if (r.outcome == kStable) {
+        const SolitaryWaveCheck& c = r.check;
+        json crests = json::array();
+        for (const SolitaryCrest& k : c.crests)
+            crests.push_back({{"x", k.x},
+                              {"time", k.time},
+                              {"amplitude", k.amplitude},
+                              {"amplitude_over_height", k.amplitude / r.height},
+                              {"still_level", k.stillLevel},
+                              {"width_error", k.widthError}});
+        out["crests"] = crests;
+        out["celerity"] = c.celerity;
+        out["celerity_error"] = c.celerityError;
+        out["first_amplitude_over_height"] = c.firstAmplitudeOverHeight;
+        out["decay_total"] = c.decayTotal;
+        out["distance_over_depth"] = (c.crests.back().x - c.crests.front().x) / r.depth;
+        out["mean_width_error"] = c.meanWidthError;
+    }
+    out["steps"] = r.steps;
+    out["ppe_iterations_mean"] = r.ppeIterationsMean;
+    out["solver_seconds"] = r.solverSeconds;
+    out["us_per_particle_step"] = usPerParticleStep(r.solverSeconds, r.steps, r.particles);
+    return out;
+}
+
 json toJson(const Spread& s) {
     return {{"mean", s.mean}, {"sd", s.sd}, {"min", s.min}, {"max", s.max}, {"members", s.count}};
 }
@@ -446,6 +501,13 @@ Figures standingWaveFigures(const json& r) {
             {"first_amplitude_over_theory", r["first_amplitude_over_theory"].get<double>()}};
 }
 
+Figures solitaryWaveFigures(const json& r) {
+    return {{"celerity_error", r["celerity_error"].get<double>()},
+            {"first_amplitude_over_height", r["first_amplitude_over_height"].get<double>()},
+            {"decay_total", r["decay_total"].get<double>()},
+            {"mean_width_error", r["mean_width_error"].get<double>()}};
+}
+
 Figures damBreakFigures(const json& r) {
     return {{"front_error_mean", r["front_error_mean"].get<double>()},
             {"aligned_front_error_mean", r["aligned_front_error_mean"].get<double>()},
@@ -493,6 +555,11 @@ int main(int argc, char** argv) {
                 return standingWave(s, single ? cl.csv : "");
             };
             figures = standingWaveFigures;
+        } else if (cl.run == Run::SolitaryWave) {
+            run = [&](const Scene& s, bool single) {
+                return solitaryWave(s, single ? cl.csv : "");
+            };
+            figures = solitaryWaveFigures;
         } else {
             const long steps =
                 cl.steps >= 0 ? cl.steps : std::lround(scene.run.endTime / scene.solver.time.dt);

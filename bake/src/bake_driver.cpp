@@ -238,7 +238,8 @@ long totalSteps(const Scene& scene) {
 
 std::vector<std::string> sceneWarnings(const Scene& scene) {
     std::vector<std::string> out;
-    if (!scene.piston || !scene.geometry.tank)
+    // A solitary stroke's height is checked against the depth where the scene is loaded.
+    if (!scene.piston || !scene.geometry.tank || scene.piston->kind == PistonKind::Solitary)
         return out;
     const PistonParams& p = *scene.piston;
     const double depth = stillWaterLevel(scene) - scene.geometry.tank->y0;

@@ -404,7 +404,8 @@ Scene parseScene(const json& j) {
     if (const json* pj = top.get("piston")) {
         Section s(*pj, "piston");
         PistonParams p;
-        p.kind = s.enumeration("kind", p.kind, {PistonKind::Sinusoidal, PistonKind::Random});
+        p.kind = s.enumeration("kind", p.kind,
+                               {PistonKind::Sinusoidal, PistonKind::Random, PistonKind::Solitary});
         p.period = s.number("period", p.period, 0.0, kInf, true, " (s)");
         p.stroke = s.number("stroke", p.stroke, 0.0, kInf, false, " (m)");
         p.periodMin = s.number("period_min", p.periodMin, 0.0, kInf, true, " (s)");
@@ -412,10 +413,17 @@ Scene parseScene(const json& j) {
         p.strokeMin = s.number("stroke_min", p.strokeMin, 0.0, kInf, false, " (m)");
         p.strokeMax = s.number("stroke_max", p.strokeMax, 0.0, kInf, false, " (m)");
         p.rampTime = s.number("ramp_time", p.rampTime, 0.0, kInf, false, " (s)");
+        p.height = s.number("height", p.height, 0.0, kInf, true, " (m)");
         s.finish();
         p.seed = scene.seed;
         if (!scene.geometry.tank)
             throw SceneError("piston", "needs geometry.tank: the piston is the tank's back wall");
+        const bool solitary = p.kind == PistonKind::Solitary;
+        if (solitary) {
+            // Goring's stroke is made for the water it pushes: the still water over the bed.
+            p.depth = stillWaterLevel(scene) - scene.geometry.tank->y0;
+            p.gravity = scene.physics.gravity;
+        }
         try {
             (void)PistonMotion(p, scene.run.endTime);
         } catch (const std::invalid_argument& e) {
@@ -425,10 +433,12 @@ Scene parseScene(const json& j) {
                              colon == std::string::npos ? what : what.substr(colon + 2));
         }
         const bool sinus = p.kind == PistonKind::Sinusoidal;
-        const double forward = sinus ? 0.5 * p.stroke : p.strokeMax;
+        const double forward = sinus      ? 0.5 * p.stroke
+                               : solitary ? PistonMotion(p, scene.run.endTime).at(kInf).displacement
+                                          : p.strokeMax;
         if (forward >= 0.5 * scene.geometry.tank->width()) {
             throw SceneError(
-                sinus ? "piston.stroke" : "piston.stroke_max",
+                sinus ? "piston.stroke" : (solitary ? "piston.height" : "piston.stroke_max"),
                 fmt::format("the piston would travel {} m, at least half the tank width {} m",
                             forward, scene.geometry.tank->width()));
         }
@@ -606,6 +616,8 @@ json toJson(const Scene& sc) {
                              {"stroke_min", p.strokeMin},
                              {"stroke_max", p.strokeMax},
                              {"ramp_time", p.rampTime}};
+        if (p.kind == PistonKind::Solitary) // only there, so other scenes serialize as before
+            out["piston"]["height"] = p.height;
     }
     if (sc.recycling) {
         const RecyclingParams& r = *sc.recycling;

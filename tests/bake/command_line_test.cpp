@@ -94,6 +94,13 @@ TEST(CommandLine, SwellValidateRefusesNonsenseValues) {
                   "swell-validate", "--csv");
     expectRefused(validate({"standing-wave", "s.json", "--settle", "2"}), "swell-validate",
                   "--settle");
+    // The solitary wave: the same options.
+    EXPECT_FALSE(validate({"solitary-wave", "s.json"}).rc.has_value());
+    EXPECT_FALSE(validate({"solitary-wave", "s.json", "--csv", "eta.csv"}).rc.has_value());
+    EXPECT_FALSE(validate({"solitary-wave", "s.json", "--ensemble", "4"}).rc.has_value());
+    expectRefused(validate({"solitary-wave", "s.json", "--ensemble", "2", "--csv", "eta.csv"}),
+                  "swell-validate", "--csv");
+    expectRefused(validate({"solitary-wave", "s.json", "--keep", "d"}), "swell-validate", "--keep");
     // The dam breaks and the still tank run as ensembles too; an ensemble has no single
     // series to write.
     EXPECT_FALSE(validate({"lobovsky", "s.json", "--ensemble", "4"}).rc.has_value());

@@ -121,3 +121,68 @@ TEST(PistonMotion, MoreRandomCyclesThanTheLimitAreRefused) {
     }
     EXPECT_NO_THROW(PistonMotion(p, 0.5)); // 5e5 cycles
 }
+
+namespace {
+
+PistonParams solitaryParams(double height, double depth) {
+    PistonParams p;
+    p.kind = PistonKind::Solitary;
+    p.height = height;
+    p.depth = depth;
+    p.gravity = 9.81;
+    return p;
+}
+
+} // namespace
+
+TEST(PistonMotion, SolitaryStrokeIsGoringsAndItsVelocityTheWavesWater) {
+    // H = 0.04 m in h = 0.2 m (scenes/solitary_wave.json): k = sqrt(3 H / (4 h^3)) = 1.936 /m,
+    // c = sqrt(g (h + H)) = 1.534 m/s. Goring (1978): the stroke is about sqrt(16 H h / 3)
+    // = 0.2066 m, and the piston is fastest under the crest, at c H / (h + H) = 0.2557 m/s.
+    const PistonParams p = solitaryParams(0.04, 0.2);
+    const SolitaryWaveShape w = solitaryWaveShape(p.height, p.depth, p.gravity);
+    EXPECT_NEAR(w.wavenumber, std::sqrt(3.75), 1e-12);
+    EXPECT_NEAR(w.celerity, std::sqrt(9.81 * 0.24), 1e-12);
+    const PistonMotion m(p, 10.0);
+    const double stroke = m.at(100.0).displacement;
+    EXPECT_NEAR(stroke / std::sqrt(16.0 * 0.04 * 0.2 / 3.0), 1.0, 0.01) << stroke;
+    EXPECT_EQ(m.at(100.0).velocity, 0.0);
+    // The stroke ends where theta = k (c t - X) - 4 reaches 4.
+    EXPECT_NEAR(w.wavenumber * (w.celerity * m.strokeEnd() - stroke), 8.0, 0.01);
+    double fastest = 0.0, previous = 0.0;
+    const double h = 1e-5;
+    for (double t = 1e-3; t < m.strokeEnd() - 1e-3; t += 1e-3) {
+        const PistonState s = m.at(t);
+        EXPECT_GE(s.displacement, previous) << "t = " << t; // one forward stroke
+        previous = s.displacement;
+        const double fd = (m.at(t + h).displacement - m.at(t - h).displacement) / (2 * h);
+        EXPECT_NEAR(s.velocity, fd, 1e-6) << "t = " << t;
+        // dX/dt = c eta / (h + eta) with eta at the piston (the equation it integrates).
+        const double sech =
+            1.0 / std::cosh(w.wavenumber * (w.celerity * t - s.displacement) - kSolitaryHalfWidth);
+        const double eta = p.height * sech * sech;
+        EXPECT_NEAR(s.velocity, w.celerity * eta / (p.depth + eta), 1e-8) << "t = " << t;
+        fastest = std::max(fastest, s.velocity);
+    }
+    EXPECT_NEAR(fastest, w.celerity * 0.04 / 0.24, 1e-4);
+    // It starts and ends at 1.3e-3 of that speed (sech^2(4)): no ramp.
+    EXPECT_LT(m.at(1e-9).velocity, 2e-3 * fastest);
+}
+
+TEST(PistonMotion, SolitaryRefusesHeightsThatBreakAndNamesTheField) {
+    const auto fieldOf = [](const PistonParams& p) -> std::string {
+        try {
+            PistonMotion m(p, 1.0);
+        } catch (const std::invalid_argument& e) {
+            return std::string(e.what()).substr(0, std::string(e.what()).find(':'));
+        }
+        return "";
+    };
+    EXPECT_EQ(fieldOf(solitaryParams(0.04, 0.2)), "");
+    EXPECT_EQ(fieldOf(solitaryParams(0.78 * 0.2, 0.2)), "");              // McCowan's highest
+    EXPECT_EQ(fieldOf(solitaryParams(0.79 * 0.2, 0.2)), "piston.height"); // breaks
+    EXPECT_EQ(fieldOf(solitaryParams(0.0, 0.2)), "piston.height");
+    EXPECT_EQ(fieldOf(solitaryParams(0.04, 0.0)), "piston.depth");
+    EXPECT_EQ(fieldOf(solitaryParams(std::nan(""), 0.2)), "piston.height");
+    EXPECT_THROW(solitaryWaveShape(0.04, 0.2, 0.0), std::invalid_argument);
+}

@@ -55,7 +55,8 @@ std::string errorMessage(const json& j) {
 TEST(Scene, ShippedScenesLoad) {
     for (const char* name :
          {"still_tank.json", "still_tank_small.json", "dam_break.json", "dam_break_small.json",
-          "standing_wave.json", "standing_wave_small.json"}) {
+          "standing_wave.json", "standing_wave_small.json", "solitary_wave.json",
+          "solitary_wave_small.json"}) {
         SCOPED_TRACE(name);
         const Scene s = loadScene(kScenes / name);
         EXPECT_FALSE(s.name.empty());
@@ -348,6 +349,36 @@ TEST(Scene, PistonAndGaugeErrorsNameTheKey) {
     j["output"]["still_water_level"] = "top";
     EXPECT_EQ(errorKey(j), "output.still_water_level");
     EXPECT_EQ(errorKey(withPiston()), "<accepted>");
+}
+
+TEST(Scene, SolitaryPistonTakesItsDepthFromTheWaterAndNamesItsKeys) {
+    json j = withPiston();
+    j["piston"] = json::parse(R"({"kind": "solitary", "height": 0.03})");
+    const Scene a = parseScene(j);
+    ASSERT_TRUE(a.piston.has_value());
+    EXPECT_EQ(a.piston->kind, PistonKind::Solitary);
+    EXPECT_DOUBLE_EQ(a.piston->depth, 0.1); // the still water over the tank's bed
+    EXPECT_DOUBLE_EQ(a.piston->gravity, a.physics.gravity);
+    EXPECT_DOUBLE_EQ(a.geometry.bedExtensionBack, 0.0); // it only moves forward
+    EXPECT_EQ(toJson(a)["piston"]["height"], 0.03);
+    EXPECT_EQ(toJson(parseScene(toJson(a))), toJson(a));
+    // Other kinds serialize as before: no height.
+    EXPECT_FALSE(toJson(parseScene(withPiston()))["piston"].contains("height"));
+
+    j["piston"]["height"] = 0.08; // H / h = 0.8: above McCowan's 0.78, the wave breaks
+    EXPECT_EQ(errorKey(j), "piston.height");
+    j["piston"]["height"] = 0.0;
+    EXPECT_EQ(errorKey(j), "piston.height");
+    j["piston"]["height"] = 0.03;
+    j["geometry"]["water"] = json::array();
+    EXPECT_EQ(errorKey(j), "geometry.water"); // no water, no depth to make the wave for
+    // A stroke (sqrt(16 H h / 3) = 0.204 m for H = 0.078, h = 0.1) past half a 0.4 m tank.
+    j = withPiston();
+    j["geometry"]["tank"]["x1"] = 0.4;
+    j["geometry"]["water"][0]["x1"] = 0.4;
+    j["output"]["gauges"] = json::parse("[0.3]");
+    j["piston"] = json::parse(R"({"kind": "solitary", "height": 0.078})");
+    EXPECT_EQ(errorKey(j), "piston.height");
 }
 
 TEST(Scene, RippleScenesLoadAndRecyclingErrorsNameTheKey) {

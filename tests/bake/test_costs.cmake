@@ -9,3 +9,5 @@ set_tests_properties(Validation.StillTankAtHalfTheStepIsCalmWithTheDampingAgains
     PROPERTIES COST 100)
 set_tests_properties(Validation.StandingWaveKeepsLinearTheorysPeriodAtCiResolution
     PROPERTIES COST 50)
+set_tests_properties(Validation.SolitaryWaveKeepsItsCelerityAtCiResolution
+    PROPERTIES COST 60)
