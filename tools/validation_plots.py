@@ -1,21 +1,25 @@
 #!/usr/bin/env python3
 """Plots of the bake against the experiments it is validated on (docs/validation.md 7.2):
 the dam-break surge front against Martin & Moyce (1952), raw and on the experiment's time
-origin, and the Lobovsky et al. (2014) water levels at gauges H1..H4, each at several
-resolutions, from swell-validate runs of the shipped scenes.
+origin, the Lobovsky et al. (2014) water levels at gauges H1..H4, and a solitary wave's records
+at five gauges against Boussinesq's wave (7.31), each at several resolutions, from
+swell-validate runs of the shipped scenes.
 
     /usr/bin/python3 tools/validation_plots.py [--bin build/bin] [--out out/validation]
         [--threads N] [--quick]
 
-Writes OUT/dam_break_front.png, OUT/lobovsky_gauges.png and OUT/validation_plots.json (each
-run's command, its swell-validate JSON, the commit). --quick runs the CI resolutions only
-(a/20, H/15; seconds) instead of a/20, a/50, a/80 and H/15, H/30, H/60 (a few minutes).
+Writes OUT/dam_break_front.png, OUT/lobovsky_gauges.png, OUT/solitary_wave.png and
+OUT/validation_plots.json (each run's command, its swell-validate JSON, the commit). --quick runs
+the CI resolutions only (a/20, H/15, h/10; under a minute) instead of a/20, a/50, a/80, H/15,
+H/30, H/60 and h/10, h/20, h/40 (about 20 minutes with one thread, most of it the solitary wave
+at h/40).
 The experimental points come from `swell-validate ... --records`, i.e. the very records the
 checks compare with. Exit status 1 with one line on stderr when a run fails.
 """
 import argparse
 import csv
 import json
+import math
 import pathlib
 import subprocess
 import sys
@@ -41,7 +45,13 @@ LOBOVSKY = [
     # solver's sub-steps (solver.substep_courant 0.5, under the default limit 0.8) follow it.
     ("H/60", "lobovsky.json", ["geometry.particle_spacing=0.005", "solver.dt=0.0004"]),
 ]
+SOLITARY = [
+    ("h/10", "solitary_wave_small.json", []),
+    ("h/20", "solitary_wave.json", []),
+    ("h/40", "solitary_wave.json", ["geometry.particle_spacing=0.005"]),
+]
 COLOURS = ["tab:blue", "tab:orange", "tab:green"]
+GAUGE_COLOURS = ["tab:blue", "tab:orange", "tab:green", "tab:red", "tab:purple", "tab:brown"]
 
 
 def fail(message):
@@ -63,14 +73,17 @@ def run(binary, threads, kind, label, scene, sets, out):
         cmd += ["--threads", str(threads)]
     for s in sets:
         cmd += ["--set", s]
-    cmd += [kind, str(ROOT / "scenes" / scene), "--csv", str(series), "--records", str(records)]
+    cmd += [kind, str(ROOT / "scenes" / scene), "--csv", str(series)]
+    if kind != "solitary-wave":  # theory, not records, is what it is compared with
+        cmd += ["--records", str(records)]
     p = subprocess.run(cmd, capture_output=True, text=True)
     if p.returncode != 0:
         last = (p.stderr.strip().splitlines() or ["(no message on stderr)"])[-1]
         fail(f"{kind} {label} ({scene}) failed with status {p.returncode}: {last}")
     result = json.loads(p.stdout.strip().splitlines()[-1])
     return {"label": label, "command": " ".join(cmd), "result": result,
-            "series": read_csv(series), "records": read_csv(records)}
+            "series": read_csv(series),
+            "records": read_csv(records) if kind != "solitary-wave" else []}
 
 
 def plot_dam_break(runs, path):
@@ -158,12 +171,53 @@ def plot_lobovsky(runs, path):
     plt.close(fig)
 
 
+def boussinesq(amplitude, depth, gravity, crest_time, times):
+    """Boussinesq's solitary wave of crest `amplitude` as a gauge records it: A sech^2(k c (t - tc)),
+    k = sqrt(3 A / (4 h^3)), c = sqrt(g (h + A))."""
+    k = math.sqrt(3.0 * amplitude / (4.0 * depth ** 3))
+    c = math.sqrt(gravity * (depth + amplitude))
+    return [amplitude / math.cosh(k * c * (t - crest_time)) ** 2 for t in times]
+
+
+def plot_solitary(runs, path):
+    fig, axes = plt.subplots(len(runs), 1, figsize=(11, 3.0 * len(runs) + 0.6), sharex=True,
+                             squeeze=False)
+    for ax, run_ in zip(axes[:, 0], runs):
+        res = run_["result"]
+        H, h, c = res["height"], res["depth"], res["celerity_theory"]
+        k, g = math.sqrt(3.0 * H / (4.0 * h ** 3)), c * c / (h + H)  # c = sqrt(g (h + H))
+        t = [float(r["t"]) for r in run_["series"]]
+        for crest, colour in zip(res["crests"], GAUGE_COLOURS):
+            x = crest["x"]
+            eta = [float(r[f"eta_{x:g}"]) - crest["still_level"] for r in run_["series"]]
+            ax.plot(t, eta, color=colour, lw=1.0,
+                    label=f"x = {x:g} m: A = {crest['amplitude_over_height']:.2f} H")
+            # Theory's wave of height H: its crest at x = c t - 4 / k (Goring's stroke).
+            ax.plot(t, boussinesq(H, h, g, (x + 4.0 / k) / c, t),
+                    "--", color=colour, lw=0.8)
+        ax.set_ylabel("eta - still level (m)")
+        ax.set_ylim(-0.15 * H, 1.15 * H)
+        ax.grid(alpha=0.3)
+        ax.set_title(f"{run_['label']}: celerity {100 * res['celerity_error']:+.1f} % of "
+                     f"sqrt(g (h + A)), {100 * res['decay_total']:.1f} % of the crest lost over "
+                     f"{res['distance_over_depth']:.0f} h, width {100 * res['mean_width_error']:+.0f} %",
+                     fontsize=10)
+        ax.legend(fontsize=7, loc="upper right", ncol=5)
+    axes[-1, 0].set_xlabel("t (s)")
+    axes[-1, 0].set_xlim(1.5, max(float(r["t"]) for r in runs[0]["series"]))
+    fig.suptitle("Solitary wave, H / h = 0.2 (Goring's stroke): records (solid) against "
+                 "Boussinesq's wave of height H at theory's time (dashed)")
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--bin", default=str(ROOT / "build" / "bin"))
     ap.add_argument("--out", default=str(ROOT / "out" / "validation"))
     ap.add_argument("--threads", type=int, default=0, help="swell-validate --threads (0: all)")
-    ap.add_argument("--quick", action="store_true", help="CI resolutions only (a/20, H/15)")
+    ap.add_argument("--quick", action="store_true", help="CI resolutions only (a/20, H/15, h/10)")
     args = ap.parse_args()
     if args.threads < 0:
         fail(f"--threads {args.threads}: must be 0 (all) or more")
@@ -171,20 +225,24 @@ def main():
     if not (binary / "swell-validate").is_file():
         fail(f"--bin {binary}: no swell-validate there (run tools/build)")
     out.mkdir(parents=True, exist_ok=True)
-    cases = (DAM_BREAK[:1], LOBOVSKY[:1]) if args.quick else (DAM_BREAK, LOBOVSKY)
+    cases = (DAM_BREAK[:1], LOBOVSKY[:1], SOLITARY[:1]) if args.quick else (DAM_BREAK, LOBOVSKY,
+                                                                           SOLITARY)
     dam = [run(binary, args.threads, "dam-break", *c, out) for c in cases[0]]
     lob = [run(binary, args.threads, "lobovsky", *c, out) for c in cases[1]]
+    sol = [run(binary, args.threads, "solitary-wave", *c, out) for c in cases[2]]
     plot_dam_break(dam, out / "dam_break_front.png")
     plot_lobovsky(lob, out / "lobovsky_gauges.png")
+    plot_solitary(sol, out / "solitary_wave.png")
     commit = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"],
                             capture_output=True, text=True).stdout.strip() or "unknown"
     summary = {"commit": commit, "quick": args.quick,
                "runs": [{"kind": kind, "label": r["label"], "command": r["command"],
                          "result": r["result"]}
-                        for kind, rs in (("dam-break", dam), ("lobovsky", lob)) for r in rs]}
+                        for kind, rs in (("dam-break", dam), ("lobovsky", lob),
+                                         ("solitary-wave", sol)) for r in rs]}
     (out / "validation_plots.json").write_text(json.dumps(summary, indent=1) + "\n")
     print(f"wrote {out / 'dam_break_front.png'}, {out / 'lobovsky_gauges.png'}, "
-          f"{out / 'validation_plots.json'}")
+          f"{out / 'solitary_wave.png'}, {out / 'validation_plots.json'}")
 
 
 if __name__ == "__main__":

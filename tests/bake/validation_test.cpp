@@ -474,9 +474,11 @@ TEST(Validation, StandingWaveKeepsLinearTheorysPeriodAtCiResolution) {
 
 TEST(Validation, SolitaryWaveKeepsItsCelerityAtCiResolution) {
     // Goring's stroke for H = 0.04 m in h = 0.2 m, read at 10-30 h (docs/validation.md 7.31).
-    // At h/10 the unjittered record reads celerity +2.1 % against sqrt(g (h + A)), the first
-    // crest 0.86 H, 22 % of it lost over 20 h, width +17 % against Boussinesq's for its
-    // height; at h/20 +3.7 %, 0.93 H, 9.4 %, +12.5 %.
+    // At h/10 four jittered members read celerity +4.7 +- 2.6 % (+0.9 to +6.7 %) against
+    // sqrt(g (h + A)), the first crest 0.83-0.88 H, 20-26 % of it lost over 20 h, width +15 to
+    // +21 % against Boussinesq's for its height (h/20: +3.0 +- 1.1 %, 0.94 H, 8.5 +- 2.0 %,
+    // +12 +- 2 %). The bounds cover the members with a margin; a wave running 10 % off its
+    // theory, or losing a third of its height, fails.
     const Scene scene = loadScene(kScenes / "solitary_wave_small.json");
     ASSERT_EQ(scene.solver.scheme, Scheme::Swell);
     const SolitaryWaveReport r = runSolitaryWave(scene);
@@ -487,7 +489,7 @@ TEST(Validation, SolitaryWaveKeepsItsCelerityAtCiResolution) {
     RecordProperty("celerity_error", fmt::format("{:.4f}", c.celerityError));
     RecordProperty("decay_total", fmt::format("{:.4f}", c.decayTotal));
     ASSERT_EQ(c.crests.size(), 5u);
-    EXPECT_NEAR(c.celerityError, 0.0, 0.06);
+    EXPECT_NEAR(c.celerityError, 0.0, 0.10);
     EXPECT_GT(c.firstAmplitudeOverHeight, 0.75);
     EXPECT_LT(c.firstAmplitudeOverHeight, 1.05);
     EXPECT_LT(c.decayTotal, 0.35);

@@ -150,6 +150,33 @@ class Validate(unittest.TestCase):
         self.assertIn("decay_per_period_sd", rows[0])
         self.assertIn("| -0.015 ± 0.0071 |", bake.standing_wave_table(rows))
 
+    def test_solitary_wave_rows_per_scheme_with_spread_and_table(self):
+        def member(err, decay):
+            return {"outcome": "stable", "steps": 6000, "particles": 4742, "water": 3250, "l0": 0.02,
+                    "solver_seconds": 35.0, "celerity_theory": 1.5344, "celerity": 1.5344 * (1 + err),
+                    "celerity_error": err, "first_amplitude_over_height": 0.86, "decay_total": decay,
+                    "mean_width_error": 0.17}
+        with tempfile.TemporaryDirectory() as tmp:
+            ctx = common.Context(quick=True, log=None, out=tmp, members=2)
+            commands = []
+
+            def fake_run(cmd, timeout=900):
+                commands.append([str(c) for c in cmd])
+                return Result({"outcome": "stable", "members": [member(0.02, 0.20), member(0.04, 0.24)]})
+            ctx.run = fake_run
+            rows = bake.solitary_wave(ctx)
+        # Quick: the h/10 scene only, both schemes, each an ensemble.
+        self.assertEqual(len(rows), 2)
+        self.assertTrue(all("solitary-wave" in c and c[-2:] == ["--ensemble", "2"] for c in commands))
+        self.assertTrue(any("solver.scheme=textbook" in c for c in commands[1]))
+        self.assertEqual(rows[0]["resolution"], "h/10")
+        self.assertAlmostEqual(rows[0]["celerity_error"], 0.03)
+        self.assertAlmostEqual(rows[0]["decay_total"], 0.22)
+        self.assertIn("celerity_error_sd", rows[0])
+        self.assertIn("| 0.03 ± 0.014 |", bake.solitary_wave_table(rows))
+        self.assertIn("scenes/solitary_wave_small.json", bake.solitary_wave_text())
+        self.assertIn("solitary_wave", bake.CSVS)  # a part of its own: tools/bench --only solitary_wave
+
 
 class Members(unittest.TestCase):
     def parse(self, argv):

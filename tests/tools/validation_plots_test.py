@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""tools/validation_plots.py --quick: both plots written from stable runs of the CI scenes,
+"""tools/validation_plots.py --quick: the three plots written from stable runs of the CI scenes,
 every experimental point of the records in its CSV, a clear error for a missing binary; and
 the swell-validate behaviour those plots rely on (clear errors, stopped runs, ensembles).
 
@@ -19,20 +19,21 @@ BIN = pathlib.Path(sys.argv.pop(1) if len(sys.argv) > 1 else ROOT / "build" / "b
 
 
 class ValidationPlots(unittest.TestCase):
-    def test_quick_run_writes_both_plots_from_stable_runs(self):
+    def test_quick_run_writes_the_plots_from_stable_runs(self):
         with tempfile.TemporaryDirectory() as tmp:
             out = pathlib.Path(tmp)
             p = subprocess.run([sys.executable, str(TOOL), "--quick", "--threads", "1",
                                 "--bin", str(BIN), "--out", str(out)],
                                capture_output=True, text=True)
             self.assertEqual(p.returncode, 0, p.stderr)
-            for name in ("dam_break_front.png", "lobovsky_gauges.png"):
+            for name in ("dam_break_front.png", "lobovsky_gauges.png", "solitary_wave.png"):
                 data = (out / name).read_bytes()
                 self.assertEqual(data[:8], b"\x89PNG\r\n\x1a\n", name)
                 self.assertGreater(len(data), 20_000, name)  # axes, points and lines drawn
             summary = json.loads((out / "validation_plots.json").read_text())
             kinds = [(r["kind"], r["label"]) for r in summary["runs"]]
-            self.assertEqual(kinds, [("dam-break", "a/20"), ("lobovsky", "H/15")])
+            self.assertEqual(kinds, [("dam-break", "a/20"), ("lobovsky", "H/15"),
+                                     ("solitary-wave", "h/10")])
             for r in summary["runs"]:
                 self.assertEqual(r["result"]["outcome"], "stable", r["command"])
                 self.assertIn("swell-validate", r["command"])
