@@ -26,6 +26,20 @@ std::function<bool(const MpsSolver&)> untilTime(double tEnd) {
     return [tEnd](const MpsSolver& solver) { return solver.time() >= tEnd - 1e-9; };
 }
 
+GaugeRecords recordGauges(MpsSolver& solver, const ProbeParams& probe, double tEnd) {
+    GaugeRecords r;
+    r.elevations.resize(probe.gauges.size());
+    const auto sample = [&] {
+        const ProbeSample s = sampleProbes(solver.particles(), solver.time(), probe);
+        r.times.push_back(s.time);
+        for (std::size_t g = 0; g < r.elevations.size(); ++g)
+            r.elevations[g].push_back(s.elevations[g]);
+    };
+    sample();
+    r.outcome = runSteps(solver, r.totals, untilTime(tEnd), [&](const StepStats&) { sample(); });
+    return r;
+}
+
 ProbeParams probeParamsFor(const MpsSolver& solver, const Scene& scene, double stillWaterLevel,
                            std::vector<double> gauges) {
     ProbeParams p;

@@ -5,6 +5,7 @@
 #include <numbers>
 #include <numeric>
 #include <stdexcept>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -83,22 +84,15 @@ StandingWaveReport runStandingWave(const Scene& scene) {
     MpsSolver solver = makeSolver(scene);
     r.particles = solver.particles().size();
     r.water = solver.particles().count(ParticleKind::Water);
-    const ProbeParams probe = probeParamsFor(solver, scene, water.y1, {tank.x0 + l0, tank.x1 - l0});
-    r.gauges = probe.gauges;
-    r.elevations.resize(probe.gauges.size());
-    const auto sample = [&] {
-        const ProbeSample s = sampleProbes(solver.particles(), solver.time(), probe);
-        r.times.push_back(s.time);
-        for (std::size_t g = 0; g < r.elevations.size(); ++g)
-            r.elevations[g].push_back(s.elevations[g]);
-    };
-    sample();
-    StepTotals totals;
-    r.outcome =
-        runSteps(solver, totals, untilTime(scene.run.endTime), [&](const StepStats&) { sample(); });
-    r.steps = totals.steps;
-    r.ppeIterationsMean = totals.ppeIterationsMean();
-    r.solverSeconds = totals.seconds;
+    r.gauges = {tank.x0 + l0, tank.x1 - l0};
+    GaugeRecords rec =
+        recordGauges(solver, probeParamsFor(solver, scene, water.y1, r.gauges), scene.run.endTime);
+    r.outcome = std::move(rec.outcome);
+    r.times = std::move(rec.times);
+    r.elevations = std::move(rec.elevations);
+    r.steps = rec.totals.steps;
+    r.ppeIterationsMean = rec.totals.ppeIterationsMean();
+    r.solverSeconds = rec.totals.seconds;
     if (r.outcome != kStable)
         return r;
     const double share = 1.0 / static_cast<double>(r.gauges.size());

@@ -7,6 +7,7 @@
 
 #include "small_scenes.h"
 #include "swell/bake/mps_solver.h"
+#include "swell/bake/probes.h"
 #include "swell/bake/scene.h"
 #include "swell/bake/solver_run.h"
 
@@ -62,4 +63,25 @@ TEST(SolverRun, ProbeParamsComeFromTheSolverAndTheScene) {
     EXPECT_EQ(p.spacing, 0.01);
     EXPECT_EQ(p.stillWaterLevel, 0.2);
     EXPECT_EQ(p.gauges, (std::vector<double>{0.05, 0.3}));
+}
+
+TEST(SolverRun, RecordGaugesSamplesBeforeTheFirstStepAndAfterEveryStep) {
+    const Scene scene = smallDamBreak();
+    MpsSolver solver = makeSolver(scene);
+    const ProbeParams probe = probeParamsFor(solver, scene, 0.0, {0.02, 0.05});
+    const ProbeSample start = sampleProbes(solver.particles(), 0.0, probe);
+    const GaugeRecords r = recordGauges(solver, probe, 0.005);
+    EXPECT_EQ(r.outcome, kStable);
+    EXPECT_EQ(r.totals.steps, 5);
+    ASSERT_EQ(r.times.size(), 6u); // t = 0 and after each of the five steps
+    EXPECT_EQ(r.times.front(), 0.0);
+    EXPECT_NEAR(r.times.back(), 0.005, 1e-12);
+    ASSERT_EQ(r.elevations.size(), 2u);
+    for (std::size_t g = 0; g < 2; ++g) {
+        ASSERT_EQ(r.elevations[g].size(), 6u);
+        EXPECT_EQ(r.elevations[g].front(), start.elevations[g]) << g;
+        // The same as sampling the solver's state after the run.
+        EXPECT_EQ(r.elevations[g].back(),
+                  sampleProbes(solver.particles(), solver.time(), probe).elevations[g]);
+    }
 }

@@ -33,4 +33,16 @@ std::function<bool(const MpsSolver&)> untilTime(double tEnd);
 ProbeParams probeParamsFor(const MpsSolver& solver, const Scene& scene, double stillWaterLevel,
                            std::vector<double> gauges);
 
+/// The surface at a run's gauges, as the wave checks (standing, solitary) read it.
+struct GaugeRecords {
+    std::string outcome; ///< runSteps's
+    StepTotals totals;
+    std::vector<double> times;                   ///< sample times (s), 0 first
+    std::vector<std::vector<double>> elevations; ///< per gauge of `probe`, at `times` (m)
+};
+
+/// Samples `probe` (sampleProbes) before the first step and after every step while runSteps
+/// takes `solver` to tEnd (s).
+GaugeRecords recordGauges(MpsSolver& solver, const ProbeParams& probe, double tEnd);
+
 } // namespace swell::bake
