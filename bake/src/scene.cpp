@@ -423,9 +423,15 @@ Scene parseScene(const json& j) {
             // Goring's stroke is made for the water it pushes: the still water over the bed.
             p.depth = stillWaterLevel(scene) - scene.geometry.tank->y0;
             p.gravity = scene.physics.gravity;
+            if (!(p.depth > 0.0))
+                throw SceneError("piston.kind",
+                                 "solitary needs still water above the tank's bed: its depth");
         }
+        double solitaryStroke = 0.0;
         try {
-            (void)PistonMotion(p, scene.run.endTime);
+            const PistonMotion motion(p, scene.run.endTime);
+            if (solitary)
+                solitaryStroke = motion.at(kInf).displacement;
         } catch (const std::invalid_argument& e) {
             const std::string what = e.what(); // "piston.<field>: problem"
             const auto colon = what.find(':');
@@ -433,9 +439,7 @@ Scene parseScene(const json& j) {
                              colon == std::string::npos ? what : what.substr(colon + 2));
         }
         const bool sinus = p.kind == PistonKind::Sinusoidal;
-        const double forward = sinus      ? 0.5 * p.stroke
-                               : solitary ? PistonMotion(p, scene.run.endTime).at(kInf).displacement
-                                          : p.strokeMax;
+        const double forward = sinus ? 0.5 * p.stroke : solitary ? solitaryStroke : p.strokeMax;
         if (forward >= 0.5 * scene.geometry.tank->width()) {
             throw SceneError(
                 sinus ? "piston.stroke" : (solitary ? "piston.height" : "piston.stroke_max"),

@@ -372,6 +372,10 @@ TEST(Scene, SolitaryPistonTakesItsDepthFromTheWaterAndNamesItsKeys) {
     j["piston"]["height"] = 0.03;
     j["geometry"]["water"] = json::array();
     EXPECT_EQ(errorKey(j), "geometry.water"); // no water, no depth to make the wave for
+    j = withPiston();
+    j["piston"] = json::parse(R"({"kind": "solitary", "height": 0.03})");
+    j["output"]["still_water_level"] = 0.0; // at the bed: no depth either
+    EXPECT_EQ(errorKey(j), "piston.kind");
     // A stroke (sqrt(16 H h / 3) = 0.204 m for H = 0.078, h = 0.1) past half a 0.4 m tank.
     j = withPiston();
     j["geometry"]["tank"]["x1"] = 0.4;
