@@ -311,48 +311,42 @@ def lobovsky_estimate(rows, scheme, l0):
     return done[0]["wall_s"] * (finest / l0) ** 3
 
 
-# ---------------------------------------------------------------- standing wave
+# ---------------------------------------------------------------- held-out waves
+def per_resolution(ctx, note, kind, scenes, spread, figures):
+    """Rows of a held-out wave check: both schemes on each (h/N, scene) of `scenes` (quick: the
+    first), each row the run's common columns with `figures(json)` between its outcome and times."""
+    ctx.note_load(note)
+    rows = []
+    for per, scene_name in scenes[:1] if ctx.quick else scenes:
+        for sname, sset in SCHEMES:
+            r, members = validate(ctx, kind, scene_name, dict(sset))
+
+            def row_of(j, per=per, scene_name=scene_name, sname=sname, r=r):
+                n, parts = j.get("steps") or 0, j.get("particles") or 0
+                row = {"resolution": "h/%d" % per, "scene": scene_name[:-len(".json")], "l0_m": j.get("l0"),
+                       "scheme": sname, "particles": parts, "water": j.get("water"), "steps": n,
+                       "outcome": validate_outcome(r, j)}
+                row.update(figures(j))
+                row.update({"wall_s": j.get("wall_seconds", r.wall),
+                            "us_per_particle_step": us_per_particle_step(j, n, parts)})
+                return row
+            rows.append(each_member(r, members, row_of, spread))
+    return rows
+
+
 def standing_wave(ctx):
-    ctx.note_load("standing wave")
-    rows = []
-    for per, scene_name in SLOSH_SCENES[:1] if ctx.quick else SLOSH_SCENES:
-        for sname, sset in SCHEMES:
-            r, members = validate(ctx, "standing-wave", scene_name, dict(sset))
-
-            def row_of(j, per=per, scene_name=scene_name):
-                n, parts = j.get("steps") or 0, j.get("particles") or 0
-                return {
-                    "resolution": "h/%d" % per, "scene": scene_name[:-len(".json")], "l0_m": j.get("l0"),
-                    "scheme": sname, "particles": parts, "water": j.get("water"), "steps": n,
-                    "outcome": validate_outcome(r, j), "period_theory_s": j.get("period_theory"),
-                    "period_s": j.get("period"), "period_error": j.get("period_error"),
-                    "decay_per_period": j.get("decay_per_period"),
-                    "first_amplitude_over_theory": j.get("first_amplitude_over_theory"),
-                    "wall_s": j.get("wall_seconds", r.wall), "us_per_particle_step": us_per_particle_step(j, n, parts)}
-            rows.append(each_member(r, members, row_of, SLOSH_SPREAD))
-    return rows
+    return per_resolution(ctx, "standing wave", "standing-wave", SLOSH_SCENES, SLOSH_SPREAD, lambda j: {
+        "period_theory_s": j.get("period_theory"), "period_s": j.get("period"),
+        "period_error": j.get("period_error"), "decay_per_period": j.get("decay_per_period"),
+        "first_amplitude_over_theory": j.get("first_amplitude_over_theory")})
 
 
-# ---------------------------------------------------------------- solitary wave
 def solitary_wave(ctx):
-    ctx.note_load("solitary wave")
-    rows = []
-    for per, scene_name in SOLITARY_SCENES[:1] if ctx.quick else SOLITARY_SCENES:
-        for sname, sset in SCHEMES:
-            r, members = validate(ctx, "solitary-wave", scene_name, dict(sset))
-
-            def row_of(j, per=per, scene_name=scene_name):
-                n, parts = j.get("steps") or 0, j.get("particles") or 0
-                return {
-                    "resolution": "h/%d" % per, "scene": scene_name[:-len(".json")], "l0_m": j.get("l0"),
-                    "scheme": sname, "particles": parts, "water": j.get("water"), "steps": n,
-                    "outcome": validate_outcome(r, j), "celerity_theory_m_s": j.get("celerity_theory"),
-                    "celerity_m_s": j.get("celerity"), "celerity_error": j.get("celerity_error"),
-                    "first_amplitude_over_height": j.get("first_amplitude_over_height"),
-                    "decay_total": j.get("decay_total"), "mean_width_error": j.get("mean_width_error"),
-                    "wall_s": j.get("wall_seconds", r.wall), "us_per_particle_step": us_per_particle_step(j, n, parts)}
-            rows.append(each_member(r, members, row_of, SOLITARY_SPREAD))
-    return rows
+    return per_resolution(ctx, "solitary wave", "solitary-wave", SOLITARY_SCENES, SOLITARY_SPREAD, lambda j: {
+        "celerity_theory_m_s": j.get("celerity_theory"), "celerity_m_s": j.get("celerity"),
+        "celerity_error": j.get("celerity_error"),
+        "first_amplitude_over_height": j.get("first_amplitude_over_height"),
+        "decay_total": j.get("decay_total"), "mean_width_error": j.get("mean_width_error")})
 
 
 # ---------------------------------------------------------------- the section
