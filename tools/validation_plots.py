@@ -73,8 +73,9 @@ def run(binary, threads, kind, label, scene, sets, out):
         cmd += ["--threads", str(threads)]
     for s in sets:
         cmd += ["--set", s]
+    with_records = kind != "solitary-wave"  # compared with theory, not with records
     cmd += [kind, str(ROOT / "scenes" / scene), "--csv", str(series)]
-    if kind != "solitary-wave":  # theory, not records, is what it is compared with
+    if with_records:
         cmd += ["--records", str(records)]
     p = subprocess.run(cmd, capture_output=True, text=True)
     if p.returncode != 0:
@@ -83,7 +84,7 @@ def run(binary, threads, kind, label, scene, sets, out):
     result = json.loads(p.stdout.strip().splitlines()[-1])
     return {"label": label, "command": " ".join(cmd), "result": result,
             "series": read_csv(series),
-            "records": read_csv(records) if kind != "solitary-wave" else []}
+            "records": read_csv(records) if with_records else []}
 
 
 def plot_dam_break(runs, path):

@@ -61,6 +61,32 @@ void writeTextFile(const std::filesystem::path& path, const std::string& text, c
     }
 }
 
+/// Writes a wave check's gauge records (GaugeRecords) to `path` as CSV: a column t (s), then one
+/// per gauge, named by `columns`, of the elevations (m).
+void writeGaugeSeries(const std::filesystem::path& path, const GaugeRecords& r,
+                      const std::vector<std::string>& columns) {
+    std::string text = "t";
+    for (const std::string& c : columns)
+        text += "," + c;
+    text += '\n';
+    for (std::size_t k = 0; k < r.times.size(); ++k) {
+        text += fmt::format("{:.5f}", r.times[k]);
+        for (const std::vector<double>& e : r.elevations)
+            text += fmt::format(",{:.6f}", e[k]);
+        text += '\n';
+    }
+    writeTextFile(path, text, "--csv");
+}
+
+/// A wave check's cost in its report: steps, PPE iterations, solver time, and that time per
+/// step and particle.
+void addRunCost(json& out, const GaugeRecords& r, std::size_t particles) {
+    out["steps"] = r.steps;
+    out["ppe_iterations_mean"] = r.ppeIterationsMean;
+    out["solver_seconds"] = r.solverSeconds;
+    out["us_per_particle_step"] = usPerParticleStep(r.solverSeconds, r.steps, particles);
+}
+
 json damBreak(const Scene& scene, double tEnd, const std::string& csv) {
     const DamBreakRun run = runDamBreak(scene, tEnd);
     const std::vector<FrontPoint>& series = run.series;
@@ -325,13 +351,8 @@ json standingWave(const Scene& scene, const std::string& csv) {
              {"particles", r.particles},
              {"water", r.water},
              {"outcome", r.outcome}};
-    if (!csv.empty()) {
-        std::string text = "t,eta_left,eta_right\n";
-        for (std::size_t k = 0; k < r.times.size(); ++k)
-            text += fmt::format("{:.5f},{:.6f},{:.6f}\n", r.times[k], r.elevations[0][k],
-                                r.elevations[1][k]);
-        writeTextFile(csv, text, "--csv");
-    }
+    if (!csv.empty())
+        writeGaugeSeries(csv, r, {"eta_left", "eta_right"});
     if (r.outcome == kStable) {
         json gauges = json::array();
         for (std::size_t g = 0; g < r.records.size(); ++g)
@@ -345,10 +366,7 @@ json standingWave(const Scene& scene, const std::string& csv) {
         out["decay_per_period"] = r.decayPerPeriod;
         out["first_amplitude_over_theory"] = r.firstAmplitudeOverTheory;
     }
-    out["steps"] = r.steps;
-    out["ppe_iterations_mean"] = r.ppeIterationsMean;
-    out["solver_seconds"] = r.solverSeconds;
-    out["us_per_particle_step"] = usPerParticleStep(r.solverSeconds, r.steps, r.particles);
+    addRunCost(out, r, r.particles);
     return out;
 }
 
@@ -368,17 +386,10 @@ json solitaryWave(const Scene& scene, const std::string& csv) {
              {"water", r.water},
              {"outcome", r.outcome}};
     if (!csv.empty()) {
-        std::string text = "t";
+        std::vector<std::string> columns;
         for (double x : r.gauges)
-            text += fmt::format(",eta_{}", x);
-        text += '\n';
-        for (std::size_t k = 0; k < r.times.size(); ++k) {
-            text += fmt::format("{:.5f}", r.times[k]);
-            for (const std::vector<double>& e : r.elevations)
-                text += fmt::format(",{:.6f}", e[k]);
-            text += '\n';
-        }
-        writeTextFile(csv, text, "--csv");
+            columns.push_back(fmt::format("eta_{}", x));
+        writeGaugeSeries(csv, r, columns);
     }
     if (r.outcome == kStable) {
         const SolitaryWaveCheck& c = r.check;
@@ -398,10 +409,7 @@ json solitaryWave(const Scene& scene, const std::string& csv) {
         out["distance_over_depth"] = (c.crests.back().x - c.crests.front().x) / r.depth;
         out["mean_width_error"] = c.meanWidthError;
     }
-    out["steps"] = r.steps;
-    out["ppe_iterations_mean"] = r.ppeIterationsMean;
-    out["solver_seconds"] = r.solverSeconds;
-    out["us_per_particle_step"] = usPerParticleStep(r.solverSeconds, r.steps, r.particles);
+    addRunCost(out, r, r.particles);
     return out;
 }
 

@@ -81,7 +81,7 @@ PistonMotion::PistonMotion(const PistonParams& p, double endTime) : m_params(p) 
         double t = 0.0, x = 0.0;
         m_table.push_back({0.0, 0.0, v(0.0, 0.0)});
         for (int i = 0; i < kSteps; ++i) {
-            const double k1 = v(t, x);
+            const double k1 = m_table.back().velocity; // v(t, x), computed with the last row
             const double k2 = v(t + 0.5 * dt, x + 0.5 * dt * k1);
             const double k3 = v(t + 0.5 * dt, x + 0.5 * dt * k2);
             const double k4 = v(t + dt, x + dt * k3);

@@ -198,14 +198,8 @@ SolitaryWaveReport runSolitaryWave(const Scene& scene) {
     MpsSolver solver = makeSolver(scene);
     r.particles = solver.particles().size();
     r.water = solver.particles().count(ParticleKind::Water);
-    GaugeRecords rec = recordGauges(
+    static_cast<GaugeRecords&>(r) = recordGauges(
         solver, probeParamsFor(solver, scene, stillWaterLevel(scene), r.gauges), scene.run.endTime);
-    r.outcome = std::move(rec.outcome);
-    r.times = std::move(rec.times);
-    r.elevations = std::move(rec.elevations);
-    r.steps = rec.totals.steps;
-    r.ppeIterationsMean = rec.totals.ppeIterationsMean();
-    r.solverSeconds = rec.totals.seconds;
     if (r.outcome != kStable)
         return r;
     try {

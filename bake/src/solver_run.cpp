@@ -36,7 +36,11 @@ GaugeRecords recordGauges(MpsSolver& solver, const ProbeParams& probe, double tE
             r.elevations[g].push_back(s.elevations[g]);
     };
     sample();
-    r.outcome = runSteps(solver, r.totals, untilTime(tEnd), [&](const StepStats&) { sample(); });
+    StepTotals totals;
+    r.outcome = runSteps(solver, totals, untilTime(tEnd), [&](const StepStats&) { sample(); });
+    r.steps = totals.steps;
+    r.ppeIterationsMean = totals.ppeIterationsMean();
+    r.solverSeconds = totals.seconds;
     return r;
 }
 

@@ -5,7 +5,6 @@
 #include <numbers>
 #include <numeric>
 #include <stdexcept>
-#include <utility>
 
 #include <fmt/format.h>
 
@@ -85,14 +84,8 @@ StandingWaveReport runStandingWave(const Scene& scene) {
     r.particles = solver.particles().size();
     r.water = solver.particles().count(ParticleKind::Water);
     r.gauges = {tank.x0 + l0, tank.x1 - l0};
-    GaugeRecords rec =
+    static_cast<GaugeRecords&>(r) =
         recordGauges(solver, probeParamsFor(solver, scene, water.y1, r.gauges), scene.run.endTime);
-    r.outcome = std::move(rec.outcome);
-    r.times = std::move(rec.times);
-    r.elevations = std::move(rec.elevations);
-    r.steps = rec.totals.steps;
-    r.ppeIterationsMean = rec.totals.ppeIterationsMean();
-    r.solverSeconds = rec.totals.seconds;
     if (r.outcome != kStable)
         return r;
     const double share = 1.0 / static_cast<double>(r.gauges.size());

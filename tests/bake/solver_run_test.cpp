@@ -72,7 +72,7 @@ TEST(SolverRun, RecordGaugesSamplesBeforeTheFirstStepAndAfterEveryStep) {
     const ProbeSample start = sampleProbes(solver.particles(), 0.0, probe);
     const GaugeRecords r = recordGauges(solver, probe, 0.005);
     EXPECT_EQ(r.outcome, kStable);
-    EXPECT_EQ(r.totals.steps, 5);
+    EXPECT_EQ(r.steps, 5);
     ASSERT_EQ(r.times.size(), 6u); // t = 0 and after each of the five steps
     EXPECT_EQ(r.times.front(), 0.0);
     EXPECT_NEAR(r.times.back(), 0.005, 1e-12);

@@ -17,6 +17,7 @@
 
 #include "swell/bake/piston_motion.h"
 #include "swell/bake/scene.h"
+#include "swell/bake/solver_run.h"
 
 namespace swell::bake {
 
@@ -75,23 +76,17 @@ SolitaryWaveCheck analyseSolitaryWave(const PistonParams& piston, std::span<cons
                                       const std::vector<std::vector<double>>& elevations,
                                       std::span<const CrestWindow> windows);
 
-/// One run of a solitary-wave scene.
-struct SolitaryWaveReport {
-    /// "stable", or "stopped: " and the divergence detector's message.
-    std::string outcome;
+/// One run of a solitary-wave scene: the records (outcome, times, elevations at the gauges,
+/// steps, PPE iterations, solver time) and their analysis.
+struct SolitaryWaveReport : GaugeRecords {
     SolitaryWaveShape theory; ///< of the stroke's height H
     double height = 0.0;      ///< H (m)
     double depth = 0.0;       ///< h (m)
     double stroke = 0.0;      ///< the piston's full travel (m)
     std::size_t particles = 0, water = 0;
-    std::vector<double> gauges;                  ///< output.gauges (m)
-    std::vector<CrestWindow> windows;            ///< per gauge (solitaryCrestWindows)
-    std::vector<double> times;                   ///< sample times (s), 0 first
-    std::vector<std::vector<double>> elevations; ///< per gauge, at `times` (m)
-    SolitaryWaveCheck check;                     ///< when stable
-    long steps = 0;
-    double ppeIterationsMean = 0.0;
-    double solverSeconds = 0.0;
+    std::vector<double> gauges;       ///< output.gauges (m)
+    std::vector<CrestWindow> windows; ///< per gauge (solitaryCrestWindows)
+    SolitaryWaveCheck check;          ///< when stable
 };
 
 /// Runs `scene` (a tank whose back wall is a solitary piston, two or more output.gauges) to

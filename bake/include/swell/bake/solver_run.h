@@ -33,12 +33,16 @@ std::function<bool(const MpsSolver&)> untilTime(double tEnd);
 ProbeParams probeParamsFor(const MpsSolver& solver, const Scene& scene, double stillWaterLevel,
                            std::vector<double> gauges);
 
-/// The surface at a run's gauges, as the wave checks (standing, solitary) read it.
+/// The surface at a run's gauges, as the wave checks (standing, solitary) read it; their
+/// reports extend it.
 struct GaugeRecords {
-    std::string outcome; ///< runSteps's
-    StepTotals totals;
+    /// "stable", or "stopped: " and the divergence detector's message (runSteps).
+    std::string outcome;
     std::vector<double> times;                   ///< sample times (s), 0 first
     std::vector<std::vector<double>> elevations; ///< per gauge of `probe`, at `times` (m)
+    long steps = 0;
+    double ppeIterationsMean = 0.0;
+    double solverSeconds = 0.0;
 };
 
 /// Samples `probe` (sampleProbes) before the first step and after every step while runSteps

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "swell/bake/scene.h"
+#include "swell/bake/solver_run.h"
 
 namespace swell::bake {
 
@@ -43,28 +44,22 @@ struct SloshRecord {
 /// of different sizes, or with fewer than three upward crossings (two whole periods).
 SloshRecord analyseSlosh(std::span<const double> t, std::span<const double> eta);
 
-/// One run of a standing-wave scene and what its two gauges read.
-struct StandingWaveReport {
-    /// "stable", or "stopped: " and the divergence detector's message.
-    std::string outcome;
+/// One run of a standing-wave scene and what its two gauges read: the records (outcome, times,
+/// elevations at the gauges, steps, PPE iterations, solver time) and their analysis.
+struct StandingWaveReport : GaugeRecords {
     StandingWaveTheory theory;
     std::size_t particles = 0, water = 0;
     /// Gauge x (m): one spacing in from each side wall, where the first mode's elevation is
     /// largest; the elevation is the top of the highest non-splash water particle within l0,
     /// from the water's mean level y1 (sampleProbes), after every step.
     std::vector<double> gauges;
-    std::vector<double> times;                   ///< sample times (s), 0 first
-    std::vector<std::vector<double>> elevations; ///< per gauge, at `times` (m)
-    std::vector<SloshRecord> records;            ///< per gauge, when stable
-    double period = 0.0;                         ///< mean of the gauges' periods (s)
-    double periodError = 0.0;                    ///< period / theory.period - 1
-    double decayPerPeriod = 0.0;                 ///< mean of the gauges'
+    std::vector<SloshRecord> records; ///< per gauge, when stable
+    double period = 0.0;              ///< mean of the gauges' periods (s)
+    double periodError = 0.0;         ///< period / theory.period - 1
+    double decayPerPeriod = 0.0;      ///< mean of the gauges'
     /// The first period's amplitude over the cosine's A |cos k (x - x0)| at the gauge, mean of
     /// the gauges: about 1 for a clean first mode.
     double firstAmplitudeOverTheory = 0.0;
-    long steps = 0;
-    double ppeIterationsMean = 0.0;
-    double solverSeconds = 0.0;
 };
 
 /// Runs `scene` (a tank, geometry.water[0] with a cosine top) to run.end_time. Throws
