@@ -653,7 +653,8 @@ def plot(rows, out_dir):
     bl.plot(os.path.join(out_dir, "bake_error_vs_cost.png"),
             "Bake error against cost: %s and textbook MPS schemes" % DEFAULT_SCHEME,
             "solver time per particle-step (µs, 1 thread)", "error (see legend)", series, logx=True, logy=True,
-            annotate=annotate, legend_extra=extra, figsize=(9, 6), plain_x=True)
+            annotate=annotate, legend_extra=extra, figsize=(12, 6), plain_x=True,
+            legend_outside=True)
 
 
 def point_label(r):

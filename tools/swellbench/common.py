@@ -388,13 +388,14 @@ def lower_bar(y, sd, logy):
 
 
 def plot(path, title, xlabel, ylabel, series, logx=False, logy=False, annotate=None, legend_extra=(),
-         figsize=(6.4, 4.2), plain_x=False):
+         figsize=(6.4, 4.2), plain_x=False, legend_outside=False):
     """series: [(label, xs, ys)] or [(label, xs, ys, style)], style: keyword arguments of
     matplotlib's plot (color, linestyle, marker, ...) over the default "o-", and "yerr": one
     error bar per point (None: none); a label starting
     with "_" stays out of the legend. legend_extra: [(label, style)], legend entries without
     data (what a colour or a line style stands for). annotate: {label: [text per point]}.
     plain_x: x tick labels as plain numbers, minor ticks too (a log axis within a decade or two).
+    legend_outside: the legend to the right of the axes, where it hides no point (many series).
     Writes a PNG; returns False when matplotlib is missing."""
     try:
         import matplotlib
@@ -439,7 +440,10 @@ def plot(path, title, xlabel, ylabel, series, logx=False, logy=False, annotate=N
     ax.set_xlabel(xlabel)
     ax.set_ylabel(ylabel)
     ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=8)
+    if legend_outside:
+        ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0)
+    else:
+        ax.legend(fontsize=8)
     fig.tight_layout()
     os.makedirs(os.path.dirname(path), exist_ok=True)
     fig.savefig(path)
