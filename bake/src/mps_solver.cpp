@@ -193,6 +193,7 @@ MpsSolver::MpsSolver(const PhysicsParams& physics, const SolverParams& solver, P
     }
     m_surface.assign(n, 0);
     m_layer.assign(n, 0);
+    m_nearWall.assign(n, 0);
     m_row.assign(n, -1);
     m_rowParticle.assign(n, 0);
     // One PPE row per particle at most, each with room for a full neighbour list + diagonal.
@@ -506,6 +507,11 @@ void MpsSolver::numberDensityAndSurface() {
     // the truncated neighbourhoods' density target, and the surface particles' shift: taken
     // once here, in parallel.
     const bool norm = distribution || packing || shifting || model.truncatedDensity > 0.0;
+    // Which particles have a wall particle within kWallReach: only where the damping against
+    // the shift takes a gain of its own there (shiftParticles).
+    const bool wallReach =
+        shifting && model.shiftDamping && model.shiftDampingWallGain != model.shiftDampingGain;
+    const double wall2 = kWallReach * kWallReach * m_l0 * m_l0;
     std::size_t surface = 0;
 #pragma omp parallel for schedule(static, kParticleChunk) reduction(+ : surface) if (n >= kParallelMin)
     for (std::size_t i = 0; i < n; ++i) {
@@ -515,6 +521,7 @@ void MpsSolver::numberDensityAndSurface() {
         double cx = 0.0, cy = 0.0;
         double sR = 0.0;
         double sP = 0.0;
+        bool nearWall = false;
         const bool shiftSums = shifting && !isFixed(m_p.kind[i]); // fixed particles never shift
         forNeighbours(
             wide ? m_grid.neighbors(i) : m_grid.shortNeighbors(i), m_xStar, m_yStar, i, scan2,
@@ -527,6 +534,8 @@ void MpsSolver::numberDensityAndSurface() {
                     if (r2 >= reN2)
                         return;
                 }
+                if (wallReach && r2 < wall2 && m_p.kind[j] == ParticleKind::Wall)
+                    nearWall = true;
                 const double w = mpsWeight(std::sqrt(r2), m_reN);
                 s += w;       // K&O 1996 particle number density n* = sum_j w(|r*_j - r*_i|)
                 fx += dx * w; // neighbour distribution (Khayyer, Gotoh & Shao 2009)
@@ -550,6 +559,7 @@ void MpsSolver::numberDensityAndSurface() {
         m_fNorm[i] = norm ? std::hypot(m_fx[i], m_fy[i]) : 0.0;
         m_shiftX[i] = cx;
         m_shiftY[i] = cy;
+        m_nearWall[i] = nearWall ? 1 : 0;
         if (m_p.kind[i] == ParticleKind::Dummy) {
             m_surface[i] = kNotInPpe;
         } else {
@@ -898,16 +908,19 @@ void MpsSolver::dampAgainstShift(std::size_t i, double sx, double sy, double len
     // particle along it steadily: the shift then moves it back every step and its velocity
     // grows to a value that moves it nowhere. u_s = u . s/|s| < 0 is its velocity against the
     // shift, |s| / (|u_s| dt) the part of that motion the shift cancels, and rho = min(1,
-    // g |s| / (|u_s| dt)) with g = shift_damping_gain; u_s -> u_s (1 - rho^3) takes all of it
-    // from a particle the shift holds in place (or, at g = 2, undoes at least half of) and
-    // almost none from one the shift barely slows (a surge's front, a wave's crest).
+    // g |s| / (|u_s| dt)) with g = shift_damping_gain (shift_damping_wall_gain next to a wall);
+    // u_s -> u_s (1 - rho^3) takes all of it from a particle the shift holds in place (or, at
+    // g = 2, undoes at least half of) and almost none from one the shift barely slows (a
+    // surge's front, a wave's crest).
     if (!(len > 0.0))
         return;
     const double ex = sx / len, ey = sy / len;
     const double against = -(m_p.vx[i] * ex + m_p.vy[i] * ey); // -u_s
     if (!(against > 0.0))
         return;
-    const double rho = std::min(1.0, m_par.model.shiftDampingGain * len / (against * dt));
+    const double gain =
+        m_nearWall[i] != 0 ? m_par.model.shiftDampingWallGain : m_par.model.shiftDampingGain;
+    const double rho = std::min(1.0, gain * len / (against * dt));
     const double take = against * rho * rho * rho;
     m_p.vx[i] += take * ex;
     m_p.vy[i] += take * ey;

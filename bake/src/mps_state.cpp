@@ -91,6 +91,7 @@ void MpsSolver::removeWater(std::span<const std::size_t> indices) {
         v->resize(k);
     }
     m_row.resize(k);
+    m_nearWall.resize(k);
 
     // The neighbour lists name particles by index: build them again from the positions of the
     // last build (the Verlet reference stays). Where a particle was moved since (its NaN

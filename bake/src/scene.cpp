@@ -318,6 +318,8 @@ Scene parseScene(const json& j) {
         m.shiftingVelocity = s.boolean("shifting_velocity", m.shiftingVelocity);
         m.shiftDamping = s.boolean("shift_damping", m.shiftDamping);
         m.shiftDampingGain = s.number("shift_damping_gain", m.shiftDampingGain, 0.0, 10.0, true);
+        m.shiftDampingWallGain =
+            s.number("shift_damping_wall_gain", m.shiftDampingWallGain, 0.0, 10.0, true);
         m.truncatedDensity = s.number("truncated_density", m.truncatedDensity, 0.0, 1.0, false);
         m.higherOrderLaplacian = s.boolean("higher_order_laplacian", m.higherOrderLaplacian);
         if (m.shifting > 0.0 && m.surfaceTest != SurfaceTest::Distribution) {
@@ -592,6 +594,7 @@ json toJson(const Scene& sc) {
           {"shifting", s.model.shifting},
           {"shifting_velocity", s.model.shiftingVelocity},
           {"shift_damping", s.model.shiftDamping},
+          {"shift_damping_wall_gain", s.model.shiftDampingWallGain},
           {"higher_order_laplacian", s.model.higherOrderLaplacian},
           {"preconditioner", std::string(toString(s.pressure.preconditioner))},
           {"ppe_tolerance", s.pressure.tolerance},

@@ -337,6 +337,51 @@ TEST(MpsSolver, ShiftDampingGainTakesMoreOfTheSameSurfaceVelocity) {
     EXPECT_GT(onlySurfaceParticlesSlowDown(solver, unitSolver), 0u);
 }
 
+TEST(MpsSolver, ShiftDampingWallGainActsOnlyNextToTheWalls) {
+    // solver.shift_damping_wall_gain: from the same dam-break state, one step at wall gain 2
+    // and one at the default scheme's 1.5 put every particle in the same place with the same
+    // pressure; only the velocities of free-surface particles with a wall particle within
+    // kWallReach l0 differ (the column's top at the left wall, the surge front on the bed),
+    // none is faster at 2, and the open surface (the column's top away from the walls, the
+    // collapsing face) keeps the same bits.
+    Scene scene = smallDamBreak();
+    scene.solver = schemeParams(Scheme::Swell);
+    Scene defaultScene = scene;
+    ASSERT_EQ(defaultScene.solver.model.shiftDampingWallGain, 1.5);
+    ASSERT_EQ(defaultScene.solver.model.shiftDampingGain, 1.0);
+    scene.solver.model.shiftDampingWallGain = 2.0;
+    MpsSolver solver = makeSolver(scene);
+    MpsSolver defaultSolver = makeSolver(defaultScene);
+    oneStepFromTheSameState(solver, defaultSolver);
+    ASSERT_EQ(solver.surfaceFlags(), defaultSolver.surfaceFlags());
+    EXPECT_GT(onlySurfaceParticlesSlowDown(solver, defaultSolver), 0u);
+    const Particles& a = solver.particles();
+    const Particles& b = defaultSolver.particles();
+    const double l0 = scene.geometry.particleSpacing;
+    // The distance to the nearest wall particle after the step; the test read it at r*,
+    // within the step's motion (far below 0.5 l0 here) of these positions.
+    auto wallDistance = [&](std::size_t i) {
+        double best = std::numeric_limits<double>::infinity();
+        for (std::size_t j = 0; j < a.size(); ++j) {
+            if (a.kind[j] == ParticleKind::Wall)
+                best = std::min(best, std::hypot(a.x[j] - a.x[i], a.y[j] - a.y[i]));
+        }
+        return best;
+    };
+    std::size_t openSurface = 0;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        if (a.kind[i] != ParticleKind::Water || solver.surfaceFlags()[i] != 1)
+            continue;
+        const double d = wallDistance(i);
+        if (a.vx[i] != b.vx[i] || a.vy[i] != b.vy[i]) {
+            EXPECT_LT(d, (kWallReach + 0.5) * l0) << "particle " << i;
+        }
+        if (d > (kWallReach + 0.5) * l0)
+            ++openSurface;
+    }
+    EXPECT_GT(openSurface, 10u) << "the scene must have open surface to leave alone";
+}
+
 TEST(MpsSolver, TruncatedDensityRaisesThePressureUnderTheSurface) {
     // solver.truncated_density: the rows a free surface truncates aim at n0 P (1 - k |f|),
     // below n0 P, so from the same state the density term no longer asks them to pull their

@@ -168,6 +168,7 @@ private:
     std::vector<double> m_shiftX, m_shiftY; // shifting: sum (r_j - r_i) / r^2 w at r*
     std::vector<std::uint8_t> m_surface;    // 1 free surface (p = 0), 0 inside, kNotInPpe
     std::vector<std::uint8_t> m_layer;      // 1 on the surface layer (classification)
+    std::vector<std::uint8_t> m_nearWall;   // 1: a wall particle within kWallReach at r*
     std::vector<std::int32_t> m_row;        // PPE row of each particle, -1 if none
     std::vector<std::uint32_t> m_rowParticle;
 
