@@ -594,7 +594,6 @@ json toJson(const Scene& sc) {
           {"shifting", s.model.shifting},
           {"shifting_velocity", s.model.shiftingVelocity},
           {"shift_damping", s.model.shiftDamping},
-          {"shift_damping_wall_gain", s.model.shiftDampingWallGain},
           {"higher_order_laplacian", s.model.higherOrderLaplacian},
           {"preconditioner", std::string(toString(s.pressure.preconditioner))},
           {"ppe_tolerance", s.pressure.tolerance},
@@ -611,6 +610,8 @@ json toJson(const Scene& sc) {
     const ModelParams plain;
     if (s.model.shiftDampingGain != plain.shiftDampingGain)
         out["solver"]["shift_damping_gain"] = s.model.shiftDampingGain;
+    if (s.model.shiftDampingWallGain != plain.shiftDampingWallGain)
+        out["solver"]["shift_damping_wall_gain"] = s.model.shiftDampingWallGain;
     if (s.model.truncatedDensity != plain.truncatedDensity)
         out["solver"]["truncated_density"] = s.model.truncatedDensity;
     if (sc.piston) {

@@ -45,9 +45,6 @@ const std::map<int, std::string> kDigests = {
     // 5: the default scheme takes from free-surface particles the velocity their shift undoes
     // (solver.shift_damping).
     {5, "273f98b93e7f969b"},
-    // 6: the default scheme's damping against the shift at gain 1.5 next to the walls
-    // (solver.shift_damping_wall_gain).
-    {6, "794d6d57f0d3b895"},
 };
 
 json guardScene() {
@@ -120,11 +117,11 @@ TEST(NumericsVersion, DigestSeesASmallChangeOfTheNumbers) {
     EXPECT_NE(digest(run(j)), base);
 }
 
-TEST(NumericsVersion, TheWallGainAtTheOpenSurfacesGainGivesNumericsFive) {
-    // Numerics 6 changed only the damping's gain next to the walls (1.5); set back to the
-    // open surface's gain, the solver gives numerics 5's bits, so docs/validation.md's
-    // numerics 5 figures can be run again with --set solver.shift_damping_wall_gain=1.
+TEST(NumericsVersion, TheWallGainKeyGivesTheBitsItWasMeasuredWith) {
+    // solver.shift_damping_wall_gain 1.5 (opt-in, docs/validation.md 7.37) was measured as a
+    // candidate numerics 6; its state on the guard scene is pinned here so those figures can be
+    // run again.
     json j = guardScene();
-    j["solver"]["shift_damping_wall_gain"] = 1.0;
-    EXPECT_EQ(digest(run(j)), kDigests.at(5));
+    j["solver"]["shift_damping_wall_gain"] = 1.5;
+    EXPECT_EQ(digest(run(j)), "794d6d57f0d3b895");
 }

@@ -16,8 +16,7 @@ namespace swell::bake {
 /// more, in tests/bake/numerics_version_test.cpp, which then fails and names the new digest to
 /// record). Recorded in checkpoints and in the cache metadata ("numerics_version").
 // 3: sub-steps (solver.substep_courant); 4: the default scheme's packing factor (re_packing);
-// 5: the default scheme's damping against the shift (solver.shift_damping); 6: its gain next to
-// the walls (solver.shift_damping_wall_gain).
-inline constexpr int kNumericsVersion = 6;
+// 5: the default scheme's damping against the shift (solver.shift_damping).
+inline constexpr int kNumericsVersion = 5;
 
 } // namespace swell::bake
