@@ -557,8 +557,8 @@ TEST(Scene, ShiftDampingIsTheDefaultSchemesAndNeedsShifting) {
 
 TEST(Scene, ShiftDampingGainAndTruncatedDensityAreOptInAndRangeChecked) {
     // Neither scheme sets them (gain 1, k 0: numerics 5's results; docs/validation.md 7.26
-    // measured them on and did not adopt them). Both keys
-    // are range-checked, name themselves in the error and reload from the scene record.
+    // measured them on and did not adopt them). Both keys are range-checked, name themselves
+    // in the error and reload from the scene record.
     for (const char* scheme : {"swell", "textbook"}) {
         json j = minimal();
         j["solver"]["scheme"] = scheme;
