@@ -1,6 +1,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <functional>
+#include <initializer_list>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -38,6 +39,15 @@ std::string errorKey(const json& j) {
         return e.key();
     }
     return "<accepted>";
+}
+
+/// Each of `bad` as solver.<key> of the minimal scene is a SceneError naming solver.<key>.
+void expectSolverKeyRejects(const std::string& key, std::initializer_list<json> bad) {
+    for (const json& value : bad) {
+        json j = minimal();
+        j["solver"][key] = value;
+        EXPECT_EQ(errorKey(j), "solver." + key) << value;
+    }
 }
 
 /// The message of the SceneError that parsing `j` throws, "<accepted>" when it throws none.
@@ -579,19 +589,8 @@ TEST(Scene, ShiftDampingGainAndTruncatedDensityAreOptInAndRangeChecked) {
     const json plainRecord = toJson(parseScene(minimal()));
     EXPECT_FALSE(plainRecord["solver"].contains("shift_damping_gain"));
     EXPECT_FALSE(plainRecord["solver"].contains("truncated_density"));
-    for (const double bad : {0.0, -1.0, 10.5}) {
-        j = minimal();
-        j["solver"]["shift_damping_gain"] = bad;
-        EXPECT_EQ(errorKey(j), "solver.shift_damping_gain") << bad;
-    }
-    for (const double bad : {-0.1, 1.5}) {
-        j = minimal();
-        j["solver"]["truncated_density"] = bad;
-        EXPECT_EQ(errorKey(j), "solver.truncated_density") << bad;
-    }
-    j = minimal();
-    j["solver"]["truncated_density"] = "half";
-    EXPECT_EQ(errorKey(j), "solver.truncated_density");
+    expectSolverKeyRejects("shift_damping_gain", {0.0, -1.0, 10.5});
+    expectSolverKeyRejects("truncated_density", {-0.1, 1.5, "half"});
 }
 
 TEST(Scene, ShiftDampingWallGainIsOptInAndRangeChecked) {
@@ -610,14 +609,7 @@ TEST(Scene, ShiftDampingWallGainIsOptInAndRangeChecked) {
     EXPECT_EQ(walls.solver.model.shiftDampingWallGain, 1.5);
     EXPECT_EQ(toJson(walls)["solver"]["shift_damping_wall_gain"], 1.5);
     EXPECT_EQ(toJson(parseScene(toJson(walls))), toJson(walls));
-    for (const double bad : {0.0, -1.0, 10.5}) {
-        j = minimal();
-        j["solver"]["shift_damping_wall_gain"] = bad;
-        EXPECT_EQ(errorKey(j), "solver.shift_damping_wall_gain") << bad;
-    }
-    j = minimal();
-    j["solver"]["shift_damping_wall_gain"] = "high";
-    EXPECT_EQ(errorKey(j), "solver.shift_damping_wall_gain");
+    expectSolverKeyRejects("shift_damping_wall_gain", {0.0, -1.0, 10.5, "high"});
 }
 
 TEST(Scene, NumberBeyondADoubleIsASceneErrorNamingTheFile) {
