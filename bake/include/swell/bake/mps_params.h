@@ -187,8 +187,8 @@ struct ModelParams {
     /// bursts: the H/40 still tank's top row at a wall keeps 1-6 % of sqrt(gH) for as long as
     /// it runs (docs/validation.md 7.36). At 1.5 all eight members settle below 1 % by 30 s,
     /// while the open surface, where a gain of 1.5 costs the waves their height (7.32), keeps
-    /// shift_damping_gain; opt-in, not the default (7.37). At shift_damping_gain it changes
-    /// no bit.
+    /// shift_damping_gain; opt-in, not the default (7.37, 7.38). At shift_damping_gain it
+    /// changes no bit.
     double shiftDampingWallGain = 1.0;
     /// The density term of a water particle whose neighbourhood the free surface truncates
     /// (neighbour distribution |f| above kFullNeighbourhood) aims at n0 P (1 - k |f|) instead
@@ -268,7 +268,8 @@ inline SolverParams schemeParams(Scheme scheme) {
         // shiftDampingGain, shiftDampingWallGain and truncatedDensity stay off: on the open
         // surface they make the standing and travelling waves decay faster (7.26, 7.32); next
         // to the walls only (wall gain 1.5) the H/40 still tank settles by 30 s, but the
-        // shipped wave's unjittered CI record reads 9.6 % low at 2.5 h (7.37).
+        // shipped wave's unjittered CI record reads 9.6 % low at 2.5 h (7.37), and unjittered
+        // variants -5.6 +- 4.3 % against numerics 5's -2.0 +- 1.0 % (7.38).
         p.model.collisionDistance = 0.8;
         p.model.restitution = 0.0;
         // A wider number-density kernel than the textbook 2.1 l0: 2.8 l0 reaches the lattice
