@@ -79,7 +79,11 @@ std::optional<int> parseValidateCommandLine(int argc, const char* const* argv,
         ->check(cli::finiteRange(0.0, 1e6));
     auto* keep =
         wave->add_option("--keep", cl.keep, "keep the cache and probes CSV in this folder");
-    addEnsemble(*wave, cl)->excludes(keep);
+    auto* probes = wave->add_option("--probes", cl.probes,
+                                    "fit this probes CSV (from --keep or swell-bake --probes of "
+                                    "the same scene and --set values) instead of baking")
+                       ->excludes(keep);
+    addEnsemble(*wave, cl)->excludes(keep)->excludes(probes);
 
     auto* slosh = app.add_subcommand(
         "standing-wave", "run a closed tank whose water starts at rest with a cosine top "

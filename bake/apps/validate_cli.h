@@ -28,6 +28,7 @@ struct ValidateCommandLine {
     double waveFrom = -1.0;     ///< regular-wave --from (s); -1: the default window
     double waveTo = -1.0;       ///< regular-wave --to (s); -1: the default window
     std::string keep;           ///< regular-wave --keep
+    std::string probes;         ///< regular-wave --probes: fit this record, bake nothing
     int ensemble = 0;           ///< --ensemble: members (0: one run of the scene)
 };
 

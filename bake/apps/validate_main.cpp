@@ -262,8 +262,27 @@ json stillTank(const Scene& scene, double settle, long steps, long trace) {
     return out;
 }
 
-json regularWave(const Scene& scene, double from, double to, const std::string& keep) {
+/// Bakes the scene with probes, or reads the probes CSV `probes` a bake of it wrote (then
+/// nothing is baked and the bake's figures are left out); `keep`: where the bake's cache and
+/// probes stay.
+std::vector<ProbeSample> regularWaveRecord(const Scene& scene, const std::string& keep,
+                                           const std::string& probes, json& out) {
     namespace fs = std::filesystem;
+    if (!probes.empty()) {
+        std::vector<ProbeSample> samples = readProbeCsv(probes, scene.output.gauges);
+        // A record that stops early (a bake that was cut off) would be fitted over less than
+        // its windows: refused, naming where it ends.
+        const double last = samples.empty() ? 0.0 : samples.back().time;
+        const WaveWindow window = regularWaveWindow(scene);
+        if (last < window.end - 1.5 * scene.output.frameInterval) {
+            throw std::runtime_error(
+                fmt::format("{}: the record ends at t = {} s, before the fit window closes at {} s",
+                            probes, last, window.end));
+        }
+        out["probes"] = probes;
+        out["outcome"] = kStable;
+        return samples;
+    }
     const fs::path dir =
         keep.empty() ? fs::temp_directory_path() / fmt::format("swell_regular_wave_{}", ::getpid())
                      : fs::path(keep);
@@ -272,40 +291,69 @@ json regularWave(const Scene& scene, double from, double to, const std::string& 
     opt.output = dir / (scene.name + ".swell");
     opt.probes = dir / (scene.name + ".probes.csv");
     opt.threads = omp_get_max_threads();
-    json out{{"scene", scene.name}, {"l0", scene.geometry.particleSpacing}};
-    BakeSummary summary;
     try {
-        summary = runBake(scene, opt);
+        const BakeSummary summary = runBake(scene, opt);
         out["outcome"] = kStable;
+        out["water"] = summary.particlesWater;
+        out["fixed"] = summary.particlesWall;
+        out["steps"] = summary.steps;
+        out["ms_per_step"] = summary.msPerStep;
+        out["us_per_particle_step"] =
+            1e3 * summary.msPerStep /
+            static_cast<double>(summary.particlesWater + summary.particlesWall);
+        out["ppe_iterations_mean"] = summary.ppeIterationsMean;
     } catch (const DivergenceError& e) {
         out["outcome"] = std::string("stopped: ") + e.what();
         if (keep.empty())
             fs::remove_all(dir);
-        return out;
+        return {};
     }
-    const std::vector<ProbeSample> samples = readProbeCsv(opt.probes);
+    std::vector<ProbeSample> samples = readProbeCsv(opt.probes);
     if (keep.empty())
         fs::remove_all(dir);
+    return samples;
+}
+
+/// The regular-wave check (regular_wave.h) of a bake of `scene` (regularWaveRecord): each
+/// gauge's height in its own window and the phases in the common one, or every figure in
+/// [from, to] where --from / --to set it.
+json regularWave(const Scene& scene, double from, double to, const std::string& keep,
+                 const std::string& probes) {
+    json out{{"scene", scene.name}, {"l0", scene.geometry.particleSpacing}};
+    const std::vector<ProbeSample> samples = regularWaveRecord(scene, keep, probes, out);
+    if (out["outcome"] != kStable)
+        return out;
     WaveWindow window = regularWaveWindow(scene);
-    if (from >= 0.0)
-        window.start = from;
-    if (to >= 0.0)
-        window.end = to;
-    const RegularWaveCheck c = checkRegularWave(scene, samples, window);
-    out["water"] = summary.particlesWater;
-    out["fixed"] = summary.particlesWall;
-    out["steps"] = summary.steps;
+    std::vector<WaveWindow> gaugeWindows = regularWaveGaugeWindows(scene);
+    if (from >= 0.0 || to >= 0.0) { // one window for every gauge, as the user set it
+        if (from >= 0.0)
+            window.start = from;
+        if (to >= 0.0)
+            window.end = to;
+        gaugeWindows.assign(gaugeWindows.size(), window);
+    }
+    const RegularWaveCheck c = checkRegularWave(scene, samples, window, gaugeWindows);
     out["depth"] = c.depth;
     out["kh"] = c.theory.kh;
     out["window"] = {c.window.start, c.window.end};
     out["samples"] = c.samples;
     out["gauges"] = c.gauges;
+    json windows = json::array();
+    for (const WaveWindow& w : c.gaugeWindows)
+        windows.push_back({w.start, w.end});
+    out["gauge_windows"] = windows;
+    out["gauge_samples"] = c.gaugeSamples;
     out["height_theory"] = c.theory.height;
     out["heights"] = c.heights;
     json errors = json::array();
-    for (std::size_t g = 0; g < c.heights.size(); ++g)
+    json commonErrors = json::array();
+    for (std::size_t g = 0; g < c.heights.size(); ++g) {
         errors.push_back(c.heightError(g));
+        commonErrors.push_back(c.heightsCommonWindow[g] / c.theory.height - 1.0);
+    }
     out["height_errors"] = errors;
+    // Every gauge in the common window, as the check read it before 2026-12-04 (7.39).
+    out["height_errors_common_window"] = commonErrors;
     out["wavelength_theory"] = c.theory.wavelength;
     out["wavelength"] = c.wavelength;
     out["wavelength_error"] = c.wavelengthError();
@@ -318,7 +366,8 @@ json regularWave(const Scene& scene, double from, double to, const std::string& 
     std::vector<double> times;
     for (const ProbeSample& s : samples)
         times.push_back(s.time);
-    const RegularWaveCheck lin = checkRegularWave(scene, linearTheoryRecord(scene, times), window);
+    const RegularWaveCheck lin =
+        checkRegularWave(scene, linearTheoryRecord(scene, times), window, c.gaugeWindows);
     json linErrors = json::array();
     for (std::size_t g = 0; g < lin.heights.size(); ++g)
         linErrors.push_back(lin.heightError(g));
@@ -326,11 +375,6 @@ json regularWave(const Scene& scene, double from, double to, const std::string& 
     out["theory_record_decay_per_wavelength"] = lin.decayPerWavelength;
     out["theory_record_decay_total"] = lin.decayTotal;
     out["steepness_theory"] = c.theory.steepness;
-    out["ms_per_step"] = summary.msPerStep;
-    out["us_per_particle_step"] =
-        1e3 * summary.msPerStep /
-        static_cast<double>(summary.particlesWater + summary.particlesWall);
-    out["ppe_iterations_mean"] = summary.ppeIterationsMean;
     out["ppe_tolerance"] = scene.solver.pressure.tolerance;
     return out;
 }
@@ -555,7 +599,7 @@ int main(int argc, char** argv) {
             figures = lobovskyFigures;
         } else if (cl.run == Run::RegularWave) {
             run = [&](const Scene& s, bool single) {
-                return regularWave(s, cl.waveFrom, cl.waveTo, single ? cl.keep : "");
+                return regularWave(s, cl.waveFrom, cl.waveTo, single ? cl.keep : "", cl.probes);
             };
             figures = regularWaveFigures;
         } else if (cl.run == Run::StandingWave) {

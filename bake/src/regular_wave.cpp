@@ -45,57 +45,94 @@ LinearPistonWave theoryOf(const Scene& scene, double& depth) {
     return linearPistonWave(p.stroke, p.period, depth, scene.physics.gravity);
 }
 
+/// The window of a gauge at x (WaveWindow's rule for that one gauge).
+WaveWindow gaugeWindow(const Scene& scene, double h, double x) {
+    const PistonParams& p = *scene.piston;
+    // Group velocity of linear theory: c_g = c / 2 (1 + 2kh / sinh 2kh), c = omega / k.
+    const double cg = groupVelocity(2.0 * std::numbers::pi / p.period, h, scene.physics.gravity);
+    const Box& tank = *scene.geometry.tank;
+    WaveWindow win;
+    win.start = p.rampTime + (x - tank.x0) / cg + p.period;
+    const double reflected = (2.0 * (tank.x1 - tank.x0) - (x - tank.x0)) / cg;
+    win.end = std::min(scene.run.endTime, reflected);
+    return win;
+}
+
 } // namespace
 
 WaveWindow regularWaveWindow(const Scene& scene) {
     double h = 0.0;
     (void)theoryOf(scene, h); // validates the scene, sets the still-water depth h
-    const PistonParams& p = *scene.piston;
-    // Group velocity of linear theory: c_g = c / 2 (1 + 2kh / sinh 2kh), c = omega / k.
-    const double cg = groupVelocity(2.0 * std::numbers::pi / p.period, h, scene.physics.gravity);
+    // The farthest gauge is the last the grown wave reaches and the first the reflection
+    // (from the far wall) reaches: its window lies inside every other gauge's.
     const auto gMax = std::max_element(scene.output.gauges.begin(), scene.output.gauges.end());
-    const Box& tank = *scene.geometry.tank;
-    WaveWindow win;
-    win.start = p.rampTime + (*gMax - tank.x0) / cg + p.period;
-    // The reflection reaches the farthest gauge (nearest to the far wall) first.
-    const double reflected = (2.0 * (tank.x1 - tank.x0) - (*gMax - tank.x0)) / cg;
-    win.end = std::min(scene.run.endTime, reflected);
-    return win;
+    return gaugeWindow(scene, h, *gMax);
+}
+
+std::vector<WaveWindow> regularWaveGaugeWindows(const Scene& scene) {
+    double h = 0.0;
+    (void)theoryOf(scene, h); // validates the scene, sets the still-water depth h
+    std::vector<WaveWindow> out;
+    for (double x : scene.output.gauges)
+        out.push_back(gaugeWindow(scene, h, x));
+    return out;
 }
 
 RegularWaveCheck checkRegularWave(const Scene& scene, std::span<const ProbeSample> samples,
-                                  const WaveWindow& window) {
+                                  const WaveWindow& window,
+                                  std::span<const WaveWindow> gaugeWindows) {
     RegularWaveCheck out;
     out.theory = theoryOf(scene, out.depth);
     out.window = window;
     out.gauges = scene.output.gauges;
     const std::size_t nGauges = out.gauges.size();
-    std::vector<double> t;
-    std::vector<std::vector<double>> v(nGauges);
+    if (gaugeWindows.empty()) {
+        out.gaugeWindows.assign(nGauges, window);
+    } else if (gaugeWindows.size() == nGauges) {
+        out.gaugeWindows.assign(gaugeWindows.begin(), gaugeWindows.end());
+    } else {
+        throw std::invalid_argument(
+            fmt::format("{} gauge windows for {} gauges", gaugeWindows.size(), nGauges));
+    }
+    const auto inside = [](const WaveWindow& w, double t) { return t >= w.start && t <= w.end; };
+    // Per gauge: the samples of its own window and of the common window.
+    std::vector<std::vector<double>> tOwn(nGauges), vOwn(nGauges), tCommon(nGauges),
+        vCommon(nGauges);
     for (const ProbeSample& s : samples) {
-        if (s.time < window.start || s.time > window.end)
-            continue;
-        if (s.elevations.size() != nGauges) {
-            throw std::invalid_argument(
-                fmt::format("probe sample at t = {} s has {} gauges, the scene {}", s.time,
-                            s.elevations.size(), nGauges));
-        }
+        const bool common = inside(window, s.time);
+        if (common)
+            ++out.samples;
         for (std::size_t g = 0; g < nGauges; ++g) {
+            const bool own = inside(out.gaugeWindows[g], s.time);
+            if (!common && !own)
+                continue;
+            if (s.elevations.size() != nGauges) {
+                throw std::invalid_argument(
+                    fmt::format("probe sample at t = {} s has {} gauges, the scene {}", s.time,
+                                s.elevations.size(), nGauges));
+            }
             if (!std::isfinite(s.elevations[g])) {
                 throw std::invalid_argument(
                     fmt::format("gauge at x = {} m is dry at t = {} s, inside the fit window",
                                 out.gauges[g], s.time));
             }
-            v[g].push_back(s.elevations[g]);
+            if (own) {
+                tOwn[g].push_back(s.time);
+                vOwn[g].push_back(s.elevations[g]);
+            }
+            if (common) {
+                tCommon[g].push_back(s.time);
+                vCommon[g].push_back(s.elevations[g]);
+            }
         }
-        t.push_back(s.time);
     }
-    out.samples = t.size();
     const double omega = 2.0 * std::numbers::pi / scene.piston->period;
-    std::vector<HarmonicFit> fits;
+    std::vector<HarmonicFit> fits; // in the common window: the phases
     for (std::size_t g = 0; g < nGauges; ++g) {
-        fits.push_back(fitHarmonic(t, v[g], omega)); // throws for fewer than 3 samples
-        out.heights.push_back(2.0 * fits.back().amplitude);
+        fits.push_back(fitHarmonic(tCommon[g], vCommon[g], omega)); // throws below 3 samples
+        out.heightsCommonWindow.push_back(2.0 * fits.back().amplitude);
+        out.heights.push_back(2.0 * fitHarmonic(tOwn[g], vOwn[g], omega).amplitude);
+        out.gaugeSamples.push_back(tOwn[g].size());
     }
     // Phase lag between the first two gauges: the wave reaches the farther one later.
     const double twoPi = 2.0 * std::numbers::pi;
@@ -190,7 +227,8 @@ std::vector<ProbeSample> linearTheoryRecord(const Scene& scene, std::span<const 
     return out;
 }
 
-std::vector<ProbeSample> readProbeCsv(const std::filesystem::path& path) {
+std::vector<ProbeSample> readProbeCsv(const std::filesystem::path& path,
+                                      std::span<const double> gauges) {
     std::ifstream in(path);
     if (!in)
         throw std::runtime_error(fmt::format("{}: cannot open the probes file", path.string()));
@@ -198,6 +236,11 @@ std::vector<ProbeSample> readProbeCsv(const std::filesystem::path& path) {
     if (!std::getline(in, line) || line.rfind("time,front_x", 0) != 0) {
         throw std::runtime_error(fmt::format(
             "{}:1: not a probes file (header must start with time,front_x)", path.string()));
+    }
+    if (!gauges.empty() && line != probeCsvHeader(gauges)) {
+        throw std::runtime_error(
+            fmt::format("{}:1: the header '{}' is not the scene's gauges ('{}')", path.string(),
+                        line, probeCsvHeader(gauges)));
     }
     const auto columns = static_cast<std::size_t>(std::count(line.begin(), line.end(), ',')) + 1;
     std::vector<ProbeSample> out;

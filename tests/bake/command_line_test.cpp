@@ -86,6 +86,12 @@ TEST(CommandLine, SwellValidateRefusesNonsenseValues) {
                   "--ensemble");
     expectRefused(validate({"regular-wave", "s.json", "--ensemble", "2", "--keep", "d"}),
                   "swell-validate", "--keep");
+    // A kept record is fitted again, with nothing baked: not with --keep or --ensemble.
+    EXPECT_FALSE(validate({"regular-wave", "s.json", "--probes", "p.csv"}).rc.has_value());
+    expectRefused(validate({"regular-wave", "s.json", "--probes", "p.csv", "--keep", "d"}),
+                  "swell-validate", "--probes");
+    expectRefused(validate({"regular-wave", "s.json", "--probes", "p.csv", "--ensemble", "2"}),
+                  "swell-validate", "--probes");
     // The standing wave: a scene, a series to write, or an ensemble of members.
     EXPECT_FALSE(validate({"standing-wave", "s.json"}).rc.has_value());
     EXPECT_FALSE(validate({"standing-wave", "s.json", "--csv", "eta.csv"}).rc.has_value());

@@ -1,4 +1,4 @@
-// Regular-wave check (regular_wave.h): fit window, fits against synthetic gauge records made
+// Regular-wave check (regular_wave.h): fit windows, fits against synthetic gauge records made
 // from linear theory itself, and the probes CSV reader.
 #include <algorithm>
 #include <cmath>
@@ -142,6 +142,87 @@ TEST(RegularWave, FitsDecayAndWavelengthOverAllGauges) {
     EXPECT_NEAR(two.wavelength, L, 1e-6);
 }
 
+// Each gauge's own window (docs/validation.md 7.39): WaveWindow's rule for that gauge alone.
+// The grown wave reaches a nearer gauge earlier and the far wall's reflection reaches it
+// later, so its window holds the farthest gauge's, which is the common window.
+TEST(RegularWave, EachGaugesWindowOpensAfterItsOwnArrivalAndClosesBeforeItsOwnReflection) {
+    const Scene scene = loadScene(kScenes / "progressive_wave.json");
+    const double T = scene.piston->period;
+    const double cg = groupVelocity(2.0 * std::numbers::pi / T, 0.2, 9.81);
+    const std::vector<WaveWindow> w = regularWaveGaugeWindows(scene);
+    const WaveWindow common = regularWaveWindow(scene);
+    const auto& g = scene.output.gauges;
+    ASSERT_EQ(w.size(), g.size());
+    for (std::size_t i = 0; i < g.size(); ++i) {
+        EXPECT_NEAR(w[i].start, scene.piston->rampTime + g[i] / cg + T, 1e-9) << g[i];
+        const double reflected = (2.0 * scene.geometry.tank->x1 - g[i]) / cg;
+        EXPECT_DOUBLE_EQ(w[i].end, std::min(scene.run.endTime, reflected)) << g[i];
+        EXPECT_LE(w[i].start, common.start) << g[i];
+        EXPECT_GE(w[i].end, common.end) << g[i];
+    }
+    const auto far = std::max_element(g.begin(), g.end()) - g.begin();
+    EXPECT_DOUBLE_EQ(w[static_cast<std::size_t>(far)].start, common.start);
+    EXPECT_DOUBLE_EQ(w[static_cast<std::size_t>(far)].end, common.end);
+    // The shipped scene: the gauge at 2.5 h sees about six periods of the grown wave where the
+    // common window holds two.
+    EXPECT_GT((w.front().end - w.front().start) / T, 5.5);
+    // A tank so short that the reflection reaches a gauge before the run ends closes there.
+    Scene shortTank = scene;
+    shortTank.geometry.tank->x1 = 5.0;
+    const std::vector<WaveWindow> ws = regularWaveGaugeWindows(shortTank);
+    EXPECT_NEAR(ws.back().end, (2.0 * 5.0 - g.back()) / cg, 1e-9);
+    EXPECT_LT(ws.back().end, shortTank.run.endTime);
+    Scene surging = loadScene(kScenes / "surging_small.json");
+    EXPECT_THROW(regularWaveGaugeWindows(surging), SceneError);
+}
+
+// Heights in each gauge's own window, phases in the common one: a nearest gauge whose record
+// before the common window is a lower wave a quarter period out of phase reads a lower height
+// in its own window, while its phase (the wavelength) and its common-window height are the
+// regular wave's.
+TEST(RegularWave, HeightsAreFittedInEachGaugesOwnWindowAndPhasesInTheCommonOne) {
+    const Scene scene = loadScene(kScenes / "progressive_wave.json");
+    const WaveWindow common = regularWaveWindow(scene);
+    const std::vector<WaveWindow> own = regularWaveGaugeWindows(scene);
+    const double L = 1.2, H = 0.03;
+    std::vector<ProbeSample> rec = linearRecord(scene, H, L, scene.run.endTime, 0.01);
+    const double omega = 2.0 * std::numbers::pi / scene.piston->period;
+    const double x = scene.output.gauges.front();
+    const double k = 2.0 * std::numbers::pi / L;
+    for (ProbeSample& s : rec) {
+        if (s.time < common.start)
+            s.elevations.front() =
+                0.5 * 0.5 * H * std::cos(k * x - omega * s.time + 0.5 * std::numbers::pi) + 0.003;
+    }
+    const RegularWaveCheck c = checkRegularWave(scene, rec, common, own);
+    ASSERT_EQ(c.gaugeWindows.size(), own.size());
+    EXPECT_DOUBLE_EQ(c.gaugeWindows.front().start, own.front().start);
+    EXPECT_NEAR(c.heightsCommonWindow.front(), H, 1e-7);
+    // The fit of the two parts, weighted by their shares of the window: |f2 + 0.5 i f1| H.
+    const double f1 = (common.start - own.front().start) / (own.front().end - own.front().start);
+    EXPECT_NEAR(c.heights.front(), std::hypot(1.0 - f1, 0.5 * f1) * H, 0.02 * H);
+    for (std::size_t g = 1; g < c.heights.size(); ++g)
+        EXPECT_NEAR(c.heights[g], H, 1e-7) << g;
+    EXPECT_NEAR(c.wavelength, L, 1e-6);
+    EXPECT_NEAR(c.wavelengthFit, L, 1e-6);
+    EXPECT_GT(c.gaugeSamples.front(), c.samples);
+    EXPECT_EQ(c.gaugeSamples.back(), c.samples);
+    // Without own windows every gauge reads the common window.
+    const RegularWaveCheck one = checkRegularWave(scene, rec, common);
+    EXPECT_NEAR(one.heights.front(), H, 1e-7);
+    EXPECT_EQ(one.gaugeSamples.front(), one.samples);
+    // A dry sample inside the nearest gauge's own window but before the common one is an error
+    // only where that window is fitted; a list of windows of the wrong size is refused.
+    for (ProbeSample& s : rec) {
+        if (s.time > own.front().start + 0.1 && s.time < own.front().start + 0.2)
+            s.elevations.front() = std::nan("");
+    }
+    EXPECT_NO_THROW(checkRegularWave(scene, rec, common));
+    EXPECT_THROW(checkRegularWave(scene, rec, common, own), std::invalid_argument);
+    EXPECT_THROW(checkRegularWave(scene, rec, common, std::span(own).first(2)),
+                 std::invalid_argument);
+}
+
 // Linear theory's own record of the ramped piston (linearTheoryRecord): Biesel's height and the
 // dispersion wavelength once the wave train has arrived, still water before the fastest
 // (shallow-water) waves could arrive, and for the shipped kh = 1.0 case the window and fits
@@ -160,6 +241,12 @@ TEST(RegularWave, LinearTheoryRecordOfTheRampedPistonIsBieselsWaveAfterItArrives
         EXPECT_NEAR(c.heightError(g), 0.0, 0.01) << c.gauges[g];
     EXPECT_NEAR(c.decayPerWavelength, 0.0, 0.003);
     EXPECT_NEAR(c.wavelengthFitError(), 0.0, 0.002);
+    // Each gauge in its own window reads it as undamped too (measured: within 0.4 %): the
+    // longer windows of the nearer gauges start after the wave front has passed.
+    const RegularWaveCheck own = checkRegularWave(scene, rec, w, regularWaveGaugeWindows(scene));
+    for (std::size_t g = 0; g < own.heights.size(); ++g)
+        EXPECT_NEAR(own.heightError(g), 0.0, 0.01) << own.gauges[g];
+    EXPECT_NEAR(own.decayPerWavelength, 0.0, 0.003);
     // Nothing reaches the farthest gauge (4.28 m) before sqrt(g h) = 1.40 m/s could carry it
     // there (3.05 s): at most 0.1 % of the height before 2 s.
     const double H = c.theory.height;
@@ -199,6 +286,18 @@ TEST(RegularWave, ReadsProbeCsvAndNamesTheLineOfABadValue) {
     EXPECT_DOUBLE_EQ(s[1].time, 0.02);
     EXPECT_DOUBLE_EQ(s[1].elevations[1], -0.001);
     EXPECT_TRUE(std::isnan(s[0].elevations[1]));
+    // Read for a scene: its gauges must be the header's, or the record is another scene's.
+    const std::vector<double> same{0.5, 0.8}, other{0.5, 0.9};
+    EXPECT_EQ(readProbeCsv(path, same).size(), 2U);
+    try {
+        readProbeCsv(path, other);
+        ADD_FAILURE() << "no error for another scene's gauges";
+    } catch (const std::runtime_error& e) {
+        EXPECT_NE(std::string(e.what()).find(":1: the header 'time,front_x,gauge_0.5,gauge_0.8'"),
+                  std::string::npos)
+            << e.what();
+        EXPECT_NE(std::string(e.what()).find("gauge_0.9"), std::string::npos) << e.what();
+    }
     {
         std::ofstream f(path);
         f << "time,front_x,gauge_0.5\n0,1.5,0.001\n0.02,1.5,abc\n";

@@ -34,7 +34,7 @@ namespace {
 const std::filesystem::path kScenes = SWELL_SCENES_DIR;
 
 /// Bakes a regular-wave scene with probes into a temporary folder and fits its gauge records
-/// in the scene's own window (what `swell-validate regular-wave` does).
+/// in the scene's own windows (what `swell-validate regular-wave` does).
 RegularWaveCheck bakeRegularWave(const char* sceneFile) {
     const Scene scene = loadScene(kScenes / sceneFile);
     const swell::test::TempDir dir("swell_wave_");
@@ -43,7 +43,8 @@ RegularWaveCheck bakeRegularWave(const char* sceneFile) {
     opt.probes = dir / "w.csv";
     runBake(scene, opt);
     const std::vector<ProbeSample> samples = readProbeCsv(opt.probes);
-    return checkRegularWave(scene, samples, regularWaveWindow(scene));
+    return checkRegularWave(scene, samples, regularWaveWindow(scene),
+                            regularWaveGaugeWindows(scene));
 }
 
 } // namespace

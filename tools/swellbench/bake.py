@@ -473,8 +473,10 @@ def regular_wave_text(note):
         1e3 * bounds[-1])
     return ("**Regular waves against Biesel** (`swell-validate --json --threads 1 [--set "
             "geometry.particle_spacing=L0 --set solver.dt=DT] [--set solver.scheme=textbook] "
-            "regular-wave scenes/SCENE`, its default fit window: after the ramp and the wave's arrival "
-            "at the farthest gauge, before reflections return). The spacing sweep runs "
+            "regular-wave scenes/SCENE`, its default fit windows: each gauge's height over its own "
+            "window, from one period after the grown wave's arrival at that gauge until the far wall's "
+            "reflection reaches it or the run ends; the phases over the common window (window_s), the "
+            "farthest gauge's, docs/validation.md 7.39). The spacing sweep runs "
             "`scenes/%s` (%s); the progressive-wave scenes (full run only) keep their own l0 and dt. "
             "**H error** = H / H_Biesel - 1 at the first gauge; **L error** = L / L_theory - 1 with L "
             "from the phase lag between the first two gauges, **L fit error** the same with L from the "

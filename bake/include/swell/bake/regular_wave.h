@@ -35,21 +35,34 @@ struct WaveWindow {
 /// Throws SceneError when the scene has no sinusoidal piston, no tank or fewer than two gauges.
 WaveWindow regularWaveWindow(const Scene& scene);
 
+/// Each gauge's own window (docs/validation.md 7.39), in the order of scene.output.gauges: the
+/// rule of WaveWindow applied to that gauge alone. It opens one period after the fully grown
+/// wave passed that gauge and closes when the far wall's reflection reaches it, or at the end
+/// of the run. A gauge nearer the piston is reached earlier and reflected later, so its window
+/// holds more periods; the farthest gauge's own window is regularWaveWindow's. Throws like
+/// regularWaveWindow.
+std::vector<WaveWindow> regularWaveGaugeWindows(const Scene& scene);
+
 /// Wave height and length measured at the gauges against linear theory.
 struct RegularWaveCheck {
-    LinearPistonWave theory;     ///< Biesel height, dispersion wavelength
-    double depth = 0.0;          ///< still-water depth h (m)
-    WaveWindow window;           ///< samples used
-    std::size_t samples = 0;     ///< samples inside the window
-    std::vector<double> gauges;  ///< gauge x (m)
-    std::vector<double> heights; ///< H = 2 x amplitude of the harmonic fit at each gauge (m)
-    double wavelength = 0.0;     ///< 2 pi dx / (phase lag) between the first two gauges (m)
+    LinearPistonWave theory;    ///< Biesel height, dispersion wavelength
+    double depth = 0.0;         ///< still-water depth h (m)
+    WaveWindow window;          ///< the common window: the phases (wavelengths) are fitted in it
+    std::size_t samples = 0;    ///< samples inside the common window
+    std::vector<double> gauges; ///< gauge x (m)
+    std::vector<WaveWindow> gaugeWindows;  ///< each gauge's own window: its height is fitted in it
+    std::vector<std::size_t> gaugeSamples; ///< samples inside each gauge's own window
+    std::vector<double>
+        heights; ///< H = 2 x amplitude of the harmonic fit in each gauge's window (m)
+    std::vector<double> heightsCommonWindow; ///< the same fit in the common window (m)
+    double wavelength = 0.0; ///< 2 pi dx / (phase lag) between the first two gauges (m)
     /// Wavelength from the phase slope over ALL gauges (m): 2 pi / (least-squares slope of
     /// the unwrapped phase against x). The gauges are taken in order of x and each phase lag
     /// between neighbours in [0, 2 pi) (a wave travelling towards +x; neighbouring gauges must be
     /// less than a wavelength apart). Equals `wavelength` for two gauges.
     double wavelengthFit = 0.0;
-    /// Height decay along the tank, from a least-squares fit ln H = a + b x over all gauges:
+    /// Height decay along the tank, from a least-squares fit ln H = a + b x over all gauges
+    /// (`heights`, each gauge's own window):
     /// fractional loss per (theoretical) wavelength, 1 - exp(b L); positive when the wave decays.
     double decayPerWavelength = 0.0;
     /// 1 - H(last gauge) / H(first gauge), gauges in order of x.
@@ -60,11 +73,16 @@ struct RegularWaveCheck {
     double wavelengthFitError() const { return wavelengthFit / theory.wavelength - 1.0; }
 };
 
-/// Fits each gauge's record inside `window` with a cos wt + b sin wt + c at the piston's
-/// frequency. Throws SceneError for a scene without a sinusoidal piston or two gauges, and
-/// std::invalid_argument for too few samples or a dry gauge (NaN) inside the window.
+/// Fits each gauge's record with a cos wt + b sin wt + c at the piston's frequency: inside
+/// its own window in `gaugeWindows` (one per gauge, in the order of scene.output.gauges) for
+/// its height, and inside the common `window` for its phase, since a phase lag compares the
+/// gauges at the same times. Empty `gaugeWindows`: every gauge's height in `window` too.
+/// Throws SceneError for a scene without a sinusoidal piston or two gauges, and
+/// std::invalid_argument for a gaugeWindows of the wrong size, too few samples or a dry gauge
+/// (NaN) inside a window it is fitted in.
 RegularWaveCheck checkRegularWave(const Scene& scene, std::span<const ProbeSample> samples,
-                                  const WaveWindow& window);
+                                  const WaveWindow& window,
+                                  std::span<const WaveWindow> gaugeWindows = {});
 
 /// What linear theory records at the scene's gauges at `times` (s): the propagating wave of
 /// the piston's actual motion, ramp included, as a superposition of Biesel waves. The piston
@@ -73,13 +91,16 @@ RegularWaveCheck checkRegularWave(const Scene& scene, std::span<const ProbeSampl
 /// B = H / S of bieselHeightOverStroke and k from dispersionWavenumber, x from the paddle's
 /// rest position (for V = V0 cos wt this is the regular wave H / 2 cos(wt - kx),
 /// H = B S). The evanescent modes near the paddle are left out. Run through
-/// checkRegularWave with the record's window, it shows what the measurement itself makes of
+/// checkRegularWave with the record's windows, it shows what the measurement itself makes of
 /// an undamped wave train: the growth of the dispersive wave front, which the window's
 /// group-velocity rule neglects. Throws like checkRegularWave for an unsuitable scene.
 std::vector<ProbeSample> linearTheoryRecord(const Scene& scene, std::span<const double> times);
 
 /// Reads a probes CSV written by swell-bake --probes (header time,front_x,gauge_<x>...).
-/// Throws std::runtime_error naming the file and line for a malformed file.
-std::vector<ProbeSample> readProbeCsv(const std::filesystem::path& path);
+/// With `gauges`, the header must be the one a bake with those gauges writes (probeCsvHeader):
+/// a record of another scene is refused, not fitted. Throws std::runtime_error naming the
+/// file and line for a malformed file or another scene's header.
+std::vector<ProbeSample> readProbeCsv(const std::filesystem::path& path,
+                                      std::span<const double> gauges = {});
 
 } // namespace swell::bake
