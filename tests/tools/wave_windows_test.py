@@ -1,0 +1,75 @@
+#!/usr/bin/env python3
+"""tools/wave_windows.py: the runs file, the figures per window and the table of
+docs/validation.md 7.39, on made-up reports (the fit itself is swell-validate's, tested in
+tests/bake/regular_wave_test.cpp).
+
+    /usr/bin/python3 tests/tools/wave_windows_test.py
+"""
+import importlib.util
+import os
+import pathlib
+import stat
+import tempfile
+import unittest
+
+TOOL = pathlib.Path(__file__).resolve().parents[2] / "tools" / "wave_windows.py"
+spec = importlib.util.spec_from_file_location("wave_windows", TOOL)
+ww = importlib.util.module_from_spec(spec)
+spec.loader.exec_module(ww)
+
+
+def report(own, common, gauges=(0.5, 1.0, 1.5)):
+    return {"gauges": list(gauges), "height_errors": own, "height_errors_common_window": common,
+            "scene": "progressive_wave"}
+
+
+class WaveWindows(unittest.TestCase):
+    def test_runs_file_gives_group_dir_scene_and_sets(self):
+        runs = ww.parse_runs("# seeds\nmain_j /k/s1 scenes/w.json seed=1 geometry.jitter=1e-6\n\n"
+                             "main_u /k/u scenes/w.json  # as shipped\n")
+        self.assertEqual(len(runs), 2)
+        self.assertEqual(runs[0], {"group": "main_j", "dir": "/k/s1", "scene": "scenes/w.json",
+                                   "sets": ["seed=1", "geometry.jitter=1e-6"]})
+        self.assertEqual(runs[1]["sets"], [])
+
+    def test_a_bad_line_names_its_number(self):
+        for text in ("main_j /k/s1\n", "a b c seed\n"):
+            with self.assertRaisesRegex(ValueError, "line 1"):
+                ww.parse_runs(text)
+
+    def test_figures_read_the_nearest_and_farthest_gauge_in_the_windows_key(self):
+        # Gauges out of order: the nearest is x = 0.5 (index 1), the farthest x = 1.5 (index 0).
+        r = report([-0.02, 0.01, 0.04], [0.1, -0.03, 0.0], gauges=(1.5, 0.5, 1.0))
+        own = ww.figures(r, "height_errors")
+        self.assertAlmostEqual(own["first"], 0.01)
+        self.assertAlmostEqual(own["worst"], 0.04)
+        self.assertAlmostEqual(own["lost"], 1.0 - 0.98 / 1.01)
+        common = ww.figures(r, "height_errors_common_window")
+        self.assertAlmostEqual(common["first"], -0.03)
+        self.assertAlmostEqual(common["lost"], 1.0 - 1.1 / 0.97)
+
+    def test_table_gives_mean_sd_and_range_per_group_and_window(self):
+        groups = {"main_j": [report([0.01, 0.0, 0.0], [0.02, 0.0, 0.0]),
+                             report([-0.03, 0.0, 0.0], [0.06, 0.0, 0.0])],
+                  "main_u": [report([-0.011, 0.0, 0.0], [-0.012, 0.0, 0.0])]}
+        rows = ww.table(groups).splitlines()
+        self.assertEqual(len(rows), 2 + 4)
+        self.assertIn("| main_j | own | 2 | -1.0 +- 2.8 % (-3.0 to +1.0) |", rows[2])
+        self.assertIn("| main_j | common | 2 | +4.0 +- 2.8 % (+2.0 to +6.0) |", rows[3])
+        self.assertIn("| main_u | own | 1 | -1.1 % |", rows[4])
+
+    def test_a_failing_refit_is_an_error_naming_the_command(self):
+        with tempfile.TemporaryDirectory() as d:
+            fake = pathlib.Path(d) / "fake-validate"
+            fake.write_text("#!/bin/sh\necho 'the record ends at t = 4.98 s' >&2\nexit 1\n")
+            fake.chmod(fake.stat().st_mode | stat.S_IEXEC)
+            run = {"group": "g", "dir": d, "scene": "scenes/progressive_wave.json", "sets": ["seed=2"]}
+            with self.assertRaisesRegex(RuntimeError, "--set seed=2 regular-wave .*ends at t = 4.98"):
+                ww.refit(str(fake), run)
+            runs = pathlib.Path(d) / "runs.txt"
+            runs.write_text("g %s scenes/progressive_wave.json\n" % d)
+            self.assertEqual(ww.main([str(runs), "--validate", str(fake)]), 1)
+
+
+if __name__ == "__main__":
+    unittest.main()

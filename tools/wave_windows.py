@@ -1,0 +1,143 @@
+#!/usr/bin/env python3
+"""Kept regular-wave records fitted again, each gauge over its own window and over the common
+one: the table and plot of docs/validation.md 7.39.
+
+Each line of RUNS names one kept record (`swell-validate regular-wave SCENE --keep DIR`):
+
+    GROUP  DIR  SCENE  [KEY=VALUE ...]
+
+GROUP gathers records into one row of the table (a jittered ensemble, or unjittered
+variants); DIR holds SCENE's probes CSV; the KEY=VALUE pairs are the --set values the record
+was baked with, so the fit reads the same scene. Each record is fitted with `swell-validate
+--json [--set KEY=VALUE ...] regular-wave SCENE --probes DIR/<name>.probes.csv` (nothing is
+baked) and the table gives, per group and per window, the height error at the first gauge,
+the worst gauge and the height lost over the gauges, as mean +- sd (range).
+
+    /usr/bin/python3 tools/wave_windows.py RUNS [--plot PNG] [--validate build/bin/swell-validate]
+
+--plot draws one panel per group whose name ends in `_j` (jittered members: mean +- sd as a
+band), with the records of the groups named in the panel's `unjittered` list as crosses.
+"""
+import argparse
+import json
+import pathlib
+import statistics
+import subprocess
+import sys
+
+ROOT = pathlib.Path(__file__).resolve().parents[1]
+WINDOWS = (("own", "height_errors"), ("common", "height_errors_common_window"))
+
+
+def parse_runs(text):
+    """Lines GROUP DIR SCENE [KEY=VALUE ...] -> dicts; blank lines and # comments skipped."""
+    runs = []
+    for number, line in enumerate(text.splitlines(), 1):
+        line = line.split("#", 1)[0].strip()
+        if not line:
+            continue
+        parts = line.split()
+        if len(parts) < 3 or any("=" not in p for p in parts[3:]):
+            raise ValueError("line %d: want GROUP DIR SCENE [KEY=VALUE ...], got %r" % (number, line))
+        runs.append({"group": parts[0], "dir": parts[1], "scene": parts[2], "sets": parts[3:]})
+    return runs
+
+
+def refit(validate, run):
+    """swell-validate --probes on one kept record: its JSON report."""
+    probes = pathlib.Path(run["dir"]) / (pathlib.Path(run["scene"]).stem + ".probes.csv")
+    cmd = [validate, "--json"] + [a for s in run["sets"] for a in ("--set", s)]
+    cmd += ["regular-wave", run["scene"], "--probes", str(probes)]
+    done = subprocess.run(cmd, capture_output=True, text=True, cwd=ROOT)
+    if done.returncode != 0:
+        raise RuntimeError("%s: %s" % (" ".join(cmd), done.stderr.strip()))
+    return json.loads(done.stdout)
+
+
+def figures(report, key):
+    """Height error at the nearest gauge, the worst |error| and 1 - H(farthest) / H(nearest)."""
+    errors, x = report[key], report["gauges"]
+    near, far = x.index(min(x)), x.index(max(x))
+    return {"first": errors[near], "worst": max(abs(e) for e in errors),
+            "lost": 1.0 - (1.0 + errors[far]) / (1.0 + errors[near])}
+
+
+def spread(values):
+    """'mean +- sd (min to max)' in per cent; one value alone as itself."""
+    pct = [100.0 * v for v in values]
+    if len(pct) == 1:
+        return "%+.1f %%" % pct[0]
+    return "%+.1f +- %.1f %% (%+.1f to %+.1f)" % (statistics.mean(pct), statistics.stdev(pct),
+                                                min(pct), max(pct))
+
+
+def table(groups):
+    """Markdown rows: group, window, records, H at the first gauge, worst gauge, lost."""
+    rows = ["| group | window | records | H at the first gauge | worst gauge | lost over the gauges |",
+            "| --- | --- | --- | --- | --- | --- |"]
+    for name, reports in groups.items():
+        for window, key in WINDOWS:
+            f = [figures(r, key) for r in reports]
+            rows.append("| %s | %s | %d | %s | %s | %s |" % (
+                name, window, len(f), spread([v["first"] for v in f]),
+                spread([v["worst"] for v in f]), spread([v["lost"] for v in f])))
+    return "\n".join(rows)
+
+
+def plot(groups, path):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    panels = [g for g in groups if g.endswith("_j")]
+    fig, axs = plt.subplots(1, len(panels), figsize=(5 * len(panels), 5.4), sharey=True, squeeze=False)
+    for ax, name in zip(axs[0], panels):
+        members = groups[name]
+        x = members[0]["gauges"]
+        stem = name[:-len("_j")]
+        crosses = [r for g, rs in groups.items() if g.startswith(stem + "_u") for r in rs]
+        for (window, key), colour in zip(WINDOWS, ("C0", "C1")):
+            lab = "each gauge's own window" if window == "own" else "common window"
+            by_gauge = [[100.0 * r[key][i] for r in members] for i in range(len(x))]
+            mean = [statistics.mean(v) for v in by_gauge]
+            sd = [statistics.stdev(v) if len(v) > 1 else 0.0 for v in by_gauge]
+            ax.fill_between(x, [m - s for m, s in zip(mean, sd)], [m + s for m, s in zip(mean, sd)],
+                            color=colour, alpha=0.2)
+            ax.plot(x, mean, "-", color=colour, label="%s: jittered members, mean +- sd" % lab)
+            for i, r in enumerate(crosses):
+                ax.plot(x, [100.0 * v for v in r[key]], "x", color=colour, ms=6,
+                        label="%s: unjittered records" % lab if i == 0 else None)
+        ax.axhspan(-5, 5, color="0.93", zorder=0)
+        ax.axhline(0, color="k", lw=0.6)
+        ax.set_title("%s (%s), %d members" % (stem, members[0]["scene"], len(members)), fontsize=9)
+        ax.set_xlabel("gauge x (m)")
+        ax.grid(alpha=0.3)
+    axs[0][0].set_ylabel("H / H_Biesel - 1 (%)")
+    handles, labels = axs[0][0].get_legend_handles_labels()
+    fig.legend(handles, labels, loc="lower center", ncol=2, fontsize=8)
+    fig.suptitle("Regular waves: height at each gauge over each gauge's own window and over the "
+                 "common window (docs/validation.md 7.39); grey: the 5 % target", fontsize=10)
+    fig.tight_layout(rect=(0, 0.1, 1, 1))
+    fig.savefig(path, dpi=80)
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("runs", help="file of lines GROUP DIR SCENE [KEY=VALUE ...]")
+    ap.add_argument("--plot", help="write the plot to this PNG")
+    ap.add_argument("--validate", default=str(ROOT / "build" / "bin" / "swell-validate"))
+    a = ap.parse_args(argv)
+    groups = {}
+    try:
+        for run in parse_runs(pathlib.Path(a.runs).read_text()):
+            groups.setdefault(run["group"], []).append(refit(a.validate, run))
+    except (OSError, ValueError, RuntimeError) as e:
+        print("wave_windows: %s" % e, file=sys.stderr)
+        return 1
+    print(table(groups))
+    if a.plot:
+        plot(groups, a.plot)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
