@@ -13,7 +13,12 @@ was baked with, so the fit reads the same scene. Each record is fitted with `swe
 baked) and the table gives, per group and per window, the height error at the first gauge,
 the worst gauge and the height lost over the gauges, as mean +- sd (range).
 
-    /usr/bin/python3 tools/wave_windows.py RUNS [--plot PNG] [--validate build/bin/swell-validate]
+    /usr/bin/python3 tools/wave_windows.py RUNS [--plot PNG] [--periods X]
+        [--validate build/bin/swell-validate]
+
+--periods X also fits the gauge at x = X (m) one period at a time over its own window (the
+same harmonic fit: a cos wt + b sin wt + c at the piston's period) and gives each group's
+height error per period, mean +- sd.
 
 --plot draws one panel per group whose name ends in `_j` (jittered members: mean +- sd as a
 band), with the records of the groups named in the panel's `unjittered` list as crosses.
@@ -45,7 +50,7 @@ def parse_runs(text):
 
 def refit(validate, run):
     """swell-validate --probes on one kept record: its JSON report."""
-    probes = pathlib.Path(run["dir"]) / (pathlib.Path(run["scene"]).stem + ".probes.csv")
+    probes = probes_path(run)
     cmd = [validate, "--json"] + [a for s in run["sets"] for a in ("--set", s)]
     cmd += ["regular-wave", run["scene"], "--probes", str(probes)]
     done = subprocess.run(cmd, capture_output=True, text=True, cwd=ROOT)
@@ -82,6 +87,68 @@ def table(groups):
                 name, window, len(f), spread([v["first"] for v in f]),
                 spread([v["worst"] for v in f]), spread([v["lost"] for v in f])))
     return "\n".join(rows)
+
+
+def probes_path(run):
+    return pathlib.Path(run["dir"]) / (pathlib.Path(run["scene"]).stem + ".probes.csv")
+
+
+def read_gauge(path, x):
+    """Times and elevations of the gauge at x (column gauge_<x> as swell-bake writes it)."""
+    import csv
+    with open(path, newline="") as f:
+        rows = list(csv.DictReader(f))
+    column = "gauge_%g" % x
+    if not rows or column not in rows[0]:
+        raise ValueError("%s: no column %s" % (path, column))
+    return [float(r["time"]) for r in rows], [float(r[column]) for r in rows]
+
+
+def per_period(t, eta, period, start, end, height):
+    """H / height - 1 of the harmonic fit over each whole period from start up to end."""
+    import numpy as np
+    t, eta = np.asarray(t), np.asarray(eta)
+    w = 2.0 * np.pi / period
+    out = []
+    k = 0
+    while start + (k + 1) * period <= end + 1e-9:
+        a = start + k * period
+        m = (t >= a) & (t <= a + period)
+        design = np.c_[np.cos(w * t[m]), np.sin(w * t[m]), np.ones(int(m.sum()))]
+        c = np.linalg.lstsq(design, eta[m], rcond=None)[0]
+        out.append(2.0 * np.hypot(c[0], c[1]) / height - 1.0)
+        k += 1
+    return out
+
+
+def piston_period(run):
+    """The piston's period (s): the scene's, or the record's --set piston.period."""
+    for kv in run["sets"]:
+        key, value = kv.split("=", 1)
+        if key == "piston.period":
+            return float(value)
+    return float(json.loads((ROOT / run["scene"]).read_text())["piston"]["period"])
+
+
+def period_table(groups, runs_by_group, x, period=piston_period):
+    """Markdown rows: each group's height error per period at the gauge at x; period(run)
+    gives each record's piston period."""
+    lines, width = [], 0
+    for name, reports in groups.items():
+        series = []
+        for report, run in zip(reports, runs_by_group[name]):
+            g = report["gauges"].index(x) if x in report["gauges"] else None
+            if g is None:
+                raise ValueError("%s: no gauge at x = %g" % (run["scene"], x))
+            start, end = report["gauge_windows"][g]
+            t, eta = read_gauge(probes_path(run), x)
+            series.append(per_period(t, eta, period(run), start, end, report["height_theory"]))
+        n = min(len(v) for v in series)
+        width = max(width, n)
+        cells = [spread([v[i] for v in series]) for i in range(n)]
+        lines.append("| %s | %d | %s |" % (name, len(series), " | ".join(cells)))
+    head = "| group | records | %s |" % " | ".join("period %d" % (i + 1) for i in range(width))
+    return "\n".join([head, "| --- " * (width + 2) + "|"] + lines)
 
 
 def plot(groups, path):
@@ -124,16 +191,22 @@ def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("runs", help="file of lines GROUP DIR SCENE [KEY=VALUE ...]")
     ap.add_argument("--plot", help="write the plot to this PNG")
+    ap.add_argument("--periods", type=float, metavar="X",
+                    help="also fit the gauge at x = X (m) one period at a time")
     ap.add_argument("--validate", default=str(ROOT / "build" / "bin" / "swell-validate"))
     a = ap.parse_args(argv)
-    groups = {}
+    groups, runs_by_group = {}, {}
     try:
         for run in parse_runs(pathlib.Path(a.runs).read_text()):
             groups.setdefault(run["group"], []).append(refit(a.validate, run))
-    except (OSError, ValueError, RuntimeError) as e:
+            runs_by_group.setdefault(run["group"], []).append(run)
+        print(table(groups))
+        if a.periods is not None:
+            print()
+            print(period_table(groups, runs_by_group, a.periods))
+    except (OSError, ValueError, KeyError, RuntimeError) as e:
         print("wave_windows: %s" % e, file=sys.stderr)
         return 1
-    print(table(groups))
     if a.plot:
         plot(groups, a.plot)
     return 0

@@ -6,7 +6,8 @@ tests/bake/regular_wave_test.cpp).
     /usr/bin/python3 tests/tools/wave_windows_test.py
 """
 import importlib.util
-import os
+import json
+import math
 import pathlib
 import stat
 import tempfile
@@ -57,6 +58,39 @@ class WaveWindows(unittest.TestCase):
         self.assertIn("| main_j | own | 2 | -1.0 +- 2.8 % (-3.0 to +1.0) |", rows[2])
         self.assertIn("| main_j | common | 2 | +4.0 +- 2.8 % (+2.0 to +6.0) |", rows[3])
         self.assertIn("| main_u | own | 1 | -1.1 % |", rows[4])
+
+    def test_one_period_at_a_time_reads_each_periods_height(self):
+        # A 1 s wave of height 0.02 m until t = 3 s, then 0.03 m, sampled every 10 ms; a sine, so
+        # the sample at t = 3 s, which both periods next to it fit, is 0 either way.
+        with tempfile.TemporaryDirectory() as d:
+            path = pathlib.Path(d) / "w.probes.csv"
+            lines = ["time,front_x,gauge_0.5,gauge_1.13"]
+            for i in range(0, 601):
+                t = 0.01 * i
+                H = 0.02 if t < 3.0 else 0.03
+                lines.append("%g,nan,%.9g,0" % (t, 0.5 * H * math.sin(2 * math.pi * (t - 1.0)) + 0.001))
+            path.write_text("\n".join(lines) + "\n")
+            t, eta = ww.read_gauge(path, 0.5)
+            self.assertEqual(len(t), 601)
+            got = ww.per_period(t, eta, 1.0, 1.0, 5.5, 0.025)
+            self.assertEqual(len(got), 4)  # 1-2, 2-3, 3-4, 4-5 s; 5-6 s ends after 5.5 s
+            for value, want in zip(got, (-0.2, -0.2, 0.2, 0.2)):
+                self.assertAlmostEqual(value, want, places=6)
+            with self.assertRaisesRegex(ValueError, "no column gauge_0.8"):
+                ww.read_gauge(path, 0.8)
+            # The table: the record's own window of the gauge at 0.5 m, its period from the run.
+            rep = dict(report([0.0, 0.0], [0.0, 0.0], gauges=(0.5, 1.13)),
+                       gauge_windows=[[1.0, 5.5], [2.0, 5.5]], height_theory=0.025)
+            run = {"group": "g", "dir": d, "scene": "w.json", "sets": []}
+            rows = ww.period_table({"g": [rep]}, {"g": [run]}, 0.5, period=lambda r: 1.0).splitlines()
+            self.assertEqual(rows[0], "| group | records | period 1 | period 2 | period 3 | period 4 |")
+            self.assertEqual(rows[2], "| g | 1 | -20.0 % | -20.0 % | +20.0 % | +20.0 % |")
+
+    def test_a_records_own_piston_period_overrides_the_scenes(self):
+        run = {"group": "g", "dir": "d", "scene": "scenes/progressive_wave.json", "sets": []}
+        scene = json.loads((ww.ROOT / run["scene"]).read_text())
+        self.assertEqual(ww.piston_period(run), scene["piston"]["period"])
+        self.assertEqual(ww.piston_period(dict(run, sets=["seed=2", "piston.period=0.8"])), 0.8)
 
     def test_a_failing_refit_is_an_error_naming_the_command(self):
         with tempfile.TemporaryDirectory() as d:
