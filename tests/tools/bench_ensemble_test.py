@@ -126,6 +126,23 @@ class Validate(unittest.TestCase):
         self.assertIn("H2: experiment's two series", table)
         self.assertNotIn("H1: experiment's two series", table)
 
+    def test_regular_wave_rows_say_which_window_the_heights_were_read_over(self):
+        # Since 2026-12-04 swell-validate reports gauge_windows and reads each gauge's height over
+        # its own window; a stored row from before has no H_window and reads as "common".
+        j = {"outcome": "stable", "kh": 1.0, "gauges": [0.5, 0.8], "window": [7.6, 9.7],
+             "heights": [0.029], "height_errors": [-0.01], "height_theory": 0.0294,
+             "gauge_windows": [[3.6, 9.7], [7.6, 9.7]]}
+        with tempfile.TemporaryDirectory() as tmp:
+            ctx = common.Context(quick=True, log=None, out=tmp, members=0)
+            ctx.run = lambda cmd, timeout=900: Result(j)
+            rows = bake.regular_wave(ctx)
+        self.assertTrue(rows)
+        self.assertTrue(all(r["H_window"] == "own" for r in rows))
+        old = {k: v for k, v in rows[0].items() if k != "H_window"}
+        table = bake.regular_wave_table([rows[0], old]).splitlines()
+        self.assertIn("| 7.6-9.7 | own |", table[2])
+        self.assertIn("| 7.6-9.7 | common |", table[3])
+
     def test_standing_wave_rows_per_scheme_with_spread_and_table(self):
         def member(err, decay):
             return {"outcome": "stable", "steps": 6000, "particles": 1762, "water": 1250, "l0": 0.02,

@@ -207,6 +207,8 @@ def regular_wave(ctx):
                         "particles": (j.get("water") or 0) + (j.get("fixed") or 0) or None,
                         "water": j.get("water"), "steps": j.get("steps"), "outcome": validate_outcome(r, j),
                         "window_s": "%.1f-%.1f" % tuple(win) if win else None,
+                        # Since 2026-12-04 the first gauge's height is read over its own window.
+                        "H_window": "own" if j.get("gauge_windows") else "common",
                         "H_m": hs[0], "height_error": he[0], "theory_H_m": j.get("height_theory"),
                         "L_m": j.get("wavelength"), "wavelength_error": j.get("wavelength_error"),
                         "L_fit_m": j.get("wavelength_fit"), "wavelength_fit_error": j.get("wavelength_fit_error"),
@@ -473,10 +475,12 @@ def regular_wave_text(note):
         1e3 * bounds[-1])
     return ("**Regular waves against Biesel** (`swell-validate --json --threads 1 [--set "
             "geometry.particle_spacing=L0 --set solver.dt=DT] [--set solver.scheme=textbook] "
-            "regular-wave scenes/SCENE`, its default fit windows: each gauge's height over its own "
-            "window, from one period after the grown wave's arrival at that gauge until the far wall's "
-            "reflection reaches it or the run ends; the phases over the common window (window_s), the "
-            "farthest gauge's, docs/validation.md 7.39). The spacing sweep runs "
+            "regular-wave scenes/SCENE`, its default fit windows: the phases over the common window "
+            "(**window s**: after the ramp and the wave's arrival at the farthest gauge, before "
+            "reflections return); the heights over the window in **H window**: `own`, each gauge's "
+            "own window from the grown wave's arrival at that gauge until the far wall's reflection "
+            "reaches it or the run ends (since 2026-12-04, docs/validation.md 7.39), or `common` "
+            "(rows measured before). The spacing sweep runs "
             "`scenes/%s` (%s); the progressive-wave scenes (full run only) keep their own l0 and dt. "
             "**H error** = H / H_Biesel - 1 at the first gauge; **L error** = L / L_theory - 1 with L "
             "from the phase lag between the first two gauges, **L fit error** the same with L from the "
@@ -490,6 +494,7 @@ def regular_wave_table(rows):
         ("scene", "scene"), ("resolution", "resolution"), ("scheme", scheme_of),
         ("particles", "particles"), ("steps", "steps"),
         ("outcome", lambda r: r["outcome"][:60]), ("window s", "window_s"),
+        ("H window", lambda r: r.get("H_window") or "common"),
         ("H (m)", "H_m"), ("H Biesel (m)", "theory_H_m"), ("H error", "height_error"),
         ("L (m)", "L_m"), ("L theory (m)", "theory_L_m"), ("L error", "wavelength_error"),
         ("L fit error", "wavelength_fit_error"), ("decay / L", "decay_per_wavelength"),
