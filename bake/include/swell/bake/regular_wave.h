@@ -52,8 +52,7 @@ struct RegularWaveCheck {
     std::vector<double> gauges; ///< gauge x (m)
     std::vector<WaveWindow> gaugeWindows;  ///< each gauge's own window: its height is fitted in it
     std::vector<std::size_t> gaugeSamples; ///< samples inside each gauge's own window
-    std::vector<double>
-        heights; ///< H = 2 x amplitude of the harmonic fit in each gauge's window (m)
+    std::vector<double> heights; ///< H = 2 x harmonic amplitude, each in its own window (m)
     std::vector<double> heightsCommonWindow; ///< the same fit in the common window (m)
     double wavelength = 0.0; ///< 2 pi dx / (phase lag) between the first two gauges (m)
     /// Wavelength from the phase slope over ALL gauges (m): 2 pi / (least-squares slope of
