@@ -3,7 +3,6 @@
 // theory, still-tank hydrostatics, a standing wave against linear theory, a solitary wave against
 // Boussinesq's and Rayleigh's theory). Thin: scene loading, the
 // solver and the comparisons are library code.
-#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -271,17 +270,8 @@ std::vector<ProbeSample> regularWaveRecord(const Scene& scene, const std::string
     namespace fs = std::filesystem;
     if (!probes.empty()) {
         std::vector<ProbeSample> samples = readProbeCsv(probes, scene.output.gauges);
-        // A record that stops early (a bake that was cut off) would be fitted over less than
-        // its windows: refused, naming where it ends and where the last window closes.
-        const double last = samples.empty() ? 0.0 : samples.back().time;
-        double end = 0.0;
-        for (const WaveWindow& w : regularWaveGaugeWindows(scene))
-            end = std::max(end, w.end);
-        if (last < end - 1.5 * scene.output.frameInterval) {
-            throw std::runtime_error(
-                fmt::format("{}: the record ends at t = {} s, before the fit windows close at {} s",
-                            probes, last, end));
-        }
+        requireRecordCoversWindows(samples, regularWaveGaugeWindows(scene),
+                                   1.5 * scene.output.frameInterval, probes);
         out["probes"] = probes;
         out["outcome"] = kStable;
         return samples;

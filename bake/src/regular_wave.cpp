@@ -227,6 +227,20 @@ std::vector<ProbeSample> linearTheoryRecord(const Scene& scene, std::span<const 
     return out;
 }
 
+void requireRecordCoversWindows(std::span<const ProbeSample> samples,
+                                std::span<const WaveWindow> windows, double tolerance,
+                                const std::string& what) {
+    double end = 0.0;
+    for (const WaveWindow& w : windows)
+        end = std::max(end, w.end);
+    const double last = samples.empty() ? 0.0 : samples.back().time;
+    if (samples.empty() || last < end - tolerance) {
+        throw std::invalid_argument(
+            fmt::format("{}: the record ends at t = {} s, before the fit windows close at {} s",
+                        what, last, end));
+    }
+}
+
 std::vector<ProbeSample> readProbeCsv(const std::filesystem::path& path,
                                       std::span<const double> gauges) {
     std::ifstream in(path);

@@ -274,6 +274,27 @@ TEST(RegularWave, DryGaugeOrRandomPistonIsAClearError) {
     EXPECT_THROW(regularWaveWindow(surging), SceneError);
 }
 
+// A kept record fitted again (swell-validate regular-wave --probes) must reach the end of the
+// last window, or its nearer gauges would be fitted over less than their windows.
+TEST(RegularWave, ARecordCutShortOfTheLastWindowIsRefusedNamingBothTimes) {
+    const std::vector<WaveWindow> windows{{3.6, 12.0}, {7.6, 11.3}};
+    std::vector<ProbeSample> rec(2);
+    rec[0].time = 0.0;
+    rec[1].time = 11.995; // within the tolerance of 12 s
+    EXPECT_NO_THROW(requireRecordCoversWindows(rec, windows, 0.015, "p.csv"));
+    rec[1].time = 11.5; // past the common window (11.3 s), short of the nearest gauge's
+    try {
+        requireRecordCoversWindows(rec, windows, 0.015, "p.csv");
+        ADD_FAILURE() << "no error for a record cut short";
+    } catch (const std::invalid_argument& e) {
+        EXPECT_NE(std::string(e.what()).find("p.csv: the record ends at t = 11.5 s, before the "
+                                             "fit windows close at 12 s"),
+                  std::string::npos)
+            << e.what();
+    }
+    EXPECT_THROW(requireRecordCoversWindows({}, windows, 0.015, "p.csv"), std::invalid_argument);
+}
+
 TEST(RegularWave, ReadsProbeCsvAndNamesTheLineOfABadValue) {
     const swell::test::TempDir dir("swell_probes_");
     const auto path = dir / "probes.csv";

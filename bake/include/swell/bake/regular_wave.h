@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "swell/bake/piston_motion.h"
@@ -94,6 +95,13 @@ RegularWaveCheck checkRegularWave(const Scene& scene, std::span<const ProbeSampl
 /// an undamped wave train: the growth of the dispersive wave front, which the window's
 /// group-velocity rule neglects. Throws like checkRegularWave for an unsuitable scene.
 std::vector<ProbeSample> linearTheoryRecord(const Scene& scene, std::span<const double> times);
+
+/// Throws std::invalid_argument, naming `what`, when the record `samples` ends more than
+/// `tolerance` (s) before the last of `windows` closes: a record cut short (a bake that stopped)
+/// would be fitted over less than its windows.
+void requireRecordCoversWindows(std::span<const ProbeSample> samples,
+                                std::span<const WaveWindow> windows, double tolerance,
+                                const std::string& what);
 
 /// Reads a probes CSV written by swell-bake --probes (header time,front_x,gauge_<x>...).
 /// With `gauges`, the header must be the one a bake with those gauges writes (probeCsvHeader):
