@@ -95,13 +95,12 @@ RegularWaveCheck checkRegularWave(const Scene& scene, std::span<const ProbeSampl
             fmt::format("{} gauge windows for {} gauges", gaugeWindows.size(), nGauges));
     }
     const auto inside = [](const WaveWindow& w, double t) { return t >= w.start && t <= w.end; };
-    // Per gauge: the samples of its own window and of the common window.
-    std::vector<std::vector<double>> tOwn(nGauges), vOwn(nGauges), tCommon(nGauges),
-        vCommon(nGauges);
+    // Per gauge: the samples of its own window and of the common window (whose times are the
+    // same for every gauge: a dry gauge throws before anything is kept).
+    std::vector<std::vector<double>> tOwn(nGauges), vOwn(nGauges), vCommon(nGauges);
+    std::vector<double> tCommon;
     for (const ProbeSample& s : samples) {
         const bool common = inside(window, s.time);
-        if (common)
-            ++out.samples;
         for (std::size_t g = 0; g < nGauges; ++g) {
             const bool own = inside(out.gaugeWindows[g], s.time);
             if (!common && !own)
@@ -120,16 +119,17 @@ RegularWaveCheck checkRegularWave(const Scene& scene, std::span<const ProbeSampl
                 tOwn[g].push_back(s.time);
                 vOwn[g].push_back(s.elevations[g]);
             }
-            if (common) {
-                tCommon[g].push_back(s.time);
+            if (common)
                 vCommon[g].push_back(s.elevations[g]);
-            }
         }
+        if (common)
+            tCommon.push_back(s.time);
     }
+    out.samples = tCommon.size();
     const double omega = 2.0 * std::numbers::pi / scene.piston->period;
     std::vector<HarmonicFit> fits; // in the common window: the phases
     for (std::size_t g = 0; g < nGauges; ++g) {
-        fits.push_back(fitHarmonic(tCommon[g], vCommon[g], omega)); // throws below 3 samples
+        fits.push_back(fitHarmonic(tCommon, vCommon[g], omega)); // throws below 3 samples
         out.heightsCommonWindow.push_back(2.0 * fits.back().amplitude);
         out.heights.push_back(2.0 * fitHarmonic(tOwn[g], vOwn[g], omega).amplitude);
         out.gaugeSamples.push_back(tOwn[g].size());
