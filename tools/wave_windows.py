@@ -21,7 +21,8 @@ same harmonic fit: a cos wt + b sin wt + c at the piston's period) and gives eac
 height error per period, mean +- sd.
 
 --plot draws one panel per group whose name ends in `_j` (jittered members: mean +- sd as a
-band), with the records of the groups named in the panel's `unjittered` list as crosses.
+band), with the records of every group named like it with `_u...` in place of `_j` (NAME_u,
+NAME_uv: unjittered records) as crosses.
 """
 import argparse
 import json
