@@ -11,7 +11,8 @@ variants); DIR holds SCENE's probes CSV; the KEY=VALUE pairs are the --set value
 was baked with, so the fit reads the same scene. Each record is fitted with `swell-validate
 --json [--set KEY=VALUE ...] regular-wave SCENE --probes DIR/<name>.probes.csv` (nothing is
 baked) and the table gives, per group and per window, the height error at the first gauge,
-the worst gauge and the height lost over the gauges, as mean +- sd (range).
+the worst gauge and the height lost over the gauges (1 - H(last) / H(first), and along the
+least-squares line of ln H through all gauges, 7.40), as mean +- sd (range).
 
     /usr/bin/python3 tools/wave_windows.py RUNS [--plot PNG] [--periods X]
         [--validate build/bin/swell-validate]
@@ -26,6 +27,7 @@ NAME_uv: unjittered records) as crosses.
 """
 import argparse
 import json
+import math
 import pathlib
 import statistics
 import subprocess
@@ -60,12 +62,24 @@ def refit(validate, run):
     return json.loads(done.stdout)
 
 
+def fitted_loss(x, errors):
+    """1 - exp(b (max x - min x)), b the least-squares slope of ln H against x over all gauges
+    (H / H_Biesel = 1 + error): the height lost across the gauges along the line through them,
+    swell-validate's decay_total_fit (docs/validation.md 7.40)."""
+    logs = [math.log(1.0 + e) for e in errors]
+    mx, my = statistics.mean(x), statistics.mean(logs)
+    b = sum((a - mx) * (c - my) for a, c in zip(x, logs)) / sum((a - mx) ** 2 for a in x)
+    return 1.0 - math.exp(b * (max(x) - min(x)))
+
+
 def figures(report, key):
-    """Height error at the nearest gauge, the worst |error| and 1 - H(farthest) / H(nearest)."""
+    """Height error at the nearest gauge, the worst |error|, 1 - H(farthest) / H(nearest) and
+    the loss across the gauges along the line ln H = a + b x through all of them."""
     errors, x = report[key], report["gauges"]
     near, far = x.index(min(x)), x.index(max(x))
     return {"first": errors[near], "worst": max(abs(e) for e in errors),
-            "lost": 1.0 - (1.0 + errors[far]) / (1.0 + errors[near])}
+            "lost": 1.0 - (1.0 + errors[far]) / (1.0 + errors[near]),
+            "lost_fit": fitted_loss(x, errors)}
 
 
 def spread(values):
@@ -78,15 +92,18 @@ def spread(values):
 
 
 def table(groups):
-    """Markdown rows: group, window, records, H at the first gauge, worst gauge, lost."""
-    rows = ["| group | window | records | H at the first gauge | worst gauge | lost over the gauges |",
-            "| --- | --- | --- | --- | --- | --- |"]
+    """Markdown rows: group, window, records, H at the first gauge, worst gauge, lost (the
+    two-gauge ratio and the line through all gauges)."""
+    rows = ["| group | window | records | H at the first gauge | worst gauge | lost, last / first "
+            "gauge | lost, line through all gauges |",
+            "| --- | --- | --- | --- | --- | --- | --- |"]
     for name, reports in groups.items():
         for window, key in WINDOWS:
             f = [figures(r, key) for r in reports]
-            rows.append("| %s | %s | %d | %s | %s | %s |" % (
+            rows.append("| %s | %s | %d | %s | %s | %s | %s |" % (
                 name, window, len(f), spread([v["first"] for v in f]),
-                spread([v["worst"] for v in f]), spread([v["lost"] for v in f])))
+                spread([v["worst"] for v in f]), spread([v["lost"] for v in f]),
+                spread([v["lost_fit"] for v in f])))
     return "\n".join(rows)
 
 

@@ -354,6 +354,7 @@ json regularWave(const Scene& scene, double from, double to, const std::string& 
     out["wavelength_fit_error"] = c.wavelengthFitError();
     out["decay_per_wavelength"] = c.decayPerWavelength;
     out["decay_total"] = c.decayTotal;
+    out["decay_total_fit"] = c.decayOverSpan;
     // The same measurement of linear theory's record of the same piston (linearTheoryRecord):
     // what the window and fit alone make of an undamped wave train.
     std::vector<double> times;
@@ -367,6 +368,7 @@ json regularWave(const Scene& scene, double from, double to, const std::string& 
     out["theory_record_height_errors"] = linErrors;
     out["theory_record_decay_per_wavelength"] = lin.decayPerWavelength;
     out["theory_record_decay_total"] = lin.decayTotal;
+    out["theory_record_decay_total_fit"] = lin.decayOverSpan;
     out["steepness_theory"] = c.theory.steepness;
     out["ppe_tolerance"] = scene.solver.pressure.tolerance;
     return out;

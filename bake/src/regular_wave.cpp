@@ -161,8 +161,10 @@ RegularWaveCheck checkRegularWave(const Scene& scene, std::span<const ProbeSampl
     const double phaseSlope = lineSlope(xs, phase, kDistinctGauges);
     out.wavelengthFit =
         phaseSlope > 0.0 ? twoPi / phaseSlope : std::numeric_limits<double>::infinity();
-    out.decayPerWavelength =
-        1.0 - std::exp(lineSlope(xs, logH, kDistinctGauges) * out.theory.wavelength);
+    // The decay as H(x) = exp(a + b x): per wavelength and across the gauges' span.
+    const double decaySlope = lineSlope(xs, logH, kDistinctGauges);
+    out.decayPerWavelength = 1.0 - std::exp(decaySlope * out.theory.wavelength);
+    out.decayOverSpan = 1.0 - std::exp(decaySlope * (xs.back() - xs.front()));
     out.decayTotal = 1.0 - out.heights[order.back()] / out.heights[order.front()];
     return out;
 }

@@ -128,6 +128,7 @@ TEST(RegularWave, FitsDecayAndWavelengthOverAllGauges) {
     EXPECT_NEAR(c.wavelengthFitError(), L / c.theory.wavelength - 1.0, 1e-6);
     EXPECT_NEAR(c.decayPerWavelength, 1.0 - std::exp(-decay * c.theory.wavelength), 1e-6);
     EXPECT_NEAR(c.decayTotal, 1.0 - std::exp(-decay * span), 1e-6);
+    EXPECT_NEAR(c.decayOverSpan, 1.0 - std::exp(-decay * span), 1e-6);
     for (std::size_t k = 0; k < g.size(); ++k)
         EXPECT_NEAR(c.heights[k], 0.03 * std::exp(-decay * g[k]), 1e-7) << g[k];
     // No decay: zero. Two gauges: the fit is the two-gauge wavelength.
@@ -135,11 +136,31 @@ TEST(RegularWave, FitsDecayAndWavelengthOverAllGauges) {
         checkRegularWave(scene, linearRecord(scene, 0.03, L, scene.run.endTime, 0.01), w);
     EXPECT_NEAR(flat.decayPerWavelength, 0.0, 1e-7);
     EXPECT_NEAR(flat.decayTotal, 0.0, 1e-7);
+    EXPECT_NEAR(flat.decayOverSpan, 0.0, 1e-7);
     scene.output.gauges = {0.5, 1.13};
     const RegularWaveCheck two =
         checkRegularWave(scene, linearRecord(scene, 0.03, L, scene.run.endTime, 0.01), w);
     EXPECT_NEAR(two.wavelengthFit, two.wavelength, 1e-9);
     EXPECT_NEAR(two.wavelength, L, 1e-6);
+}
+
+// The height lost over the gauges' span is read off the line through all gauges, so an error
+// at the last gauge alone (a short window there) moves it by that gauge's share of the fit,
+// while the two-gauge ratio takes all of it. Seven gauges 0.63 m apart, undamped, the last
+// reading 6 % low: the fit loses 1 - 0.94^(9 / 14) = 3.9 %, the ratio 6 %.
+TEST(RegularWave, HeightLostOverTheSpanReadsEveryGauge) {
+    const Scene scene = loadScene(kScenes / "progressive_wave.json");
+    const WaveWindow w = regularWaveWindow(scene);
+    std::vector<ProbeSample> rec =
+        linearRecord(scene, 0.03, 1.26, scene.run.endTime, 0.01); // undamped
+    for (ProbeSample& s : rec)
+        s.elevations.back() *= 0.94;
+    const RegularWaveCheck c = checkRegularWave(scene, rec, w);
+    EXPECT_NEAR(c.decayTotal, 0.06, 1e-6);
+    // ln H against x: only the last point is off, by ln 0.94; over 7 gauges dx apart the slope
+    // is ln 0.94 (x_7 - mean x) / sum (x - mean x)^2 = ln 0.94 x 3 dx / (28 dx^2), span 6 dx.
+    EXPECT_NEAR(c.decayOverSpan, 1.0 - std::pow(0.94, 18.0 / 28.0), 1e-6);
+    EXPECT_LT(c.decayOverSpan, c.decayTotal);
 }
 
 // Each gauge's own window (docs/validation.md 7.39): WaveWindow's rule for that gauge alone.

@@ -756,6 +756,7 @@ TEST(Validation, ProgressiveWaveKeepsItsHeightOverThreeWavelengthsAtCiResolution
     for (std::size_t g = 0; g < c.heights.size(); ++g) {
         EXPECT_NEAR(c.heightError(g), 0.0, 0.10) << "gauge at x = " << c.gauges[g] << " m";
     }
+    EXPECT_LT(c.decayOverSpan, 0.10) << "lost over 3 L along the line through all gauges";
     EXPECT_LT(c.decayTotal, 0.10) << "1 - H(last gauge) / H(first gauge)";
     EXPECT_NEAR(c.wavelengthFitError(), 0.0, 0.03)
         << "L = " << c.wavelengthFit << " m, theory " << c.theory.wavelength;

@@ -131,7 +131,7 @@ class Validate(unittest.TestCase):
         # its own window; a stored row from before has no H_window and reads as "common".
         j = {"outcome": "stable", "kh": 1.0, "gauges": [0.5, 0.8], "window": [7.6, 9.7],
              "heights": [0.029], "height_errors": [-0.01], "height_theory": 0.0294,
-             "gauge_windows": [[3.6, 9.7], [7.6, 9.7]]}
+             "gauge_windows": [[3.6, 9.7], [7.6, 9.7]], "decay_total": 0.04, "decay_total_fit": 0.0217}
         with tempfile.TemporaryDirectory() as tmp:
             ctx = common.Context(quick=True, log=None, out=tmp, members=0)
             ctx.run = lambda cmd, timeout=900: Result(j)
@@ -142,6 +142,10 @@ class Validate(unittest.TestCase):
         table = bake.regular_wave_table([rows[0], old]).splitlines()
         self.assertIn("| 7.6-9.7 | own |", table[2])
         self.assertIn("| 7.6-9.7 | common |", table[3])
+        # The loss along the line through all gauges rides along as its own column.
+        self.assertAlmostEqual(rows[0]["decay_total_fit"], 0.0217)
+        self.assertIn("lost over the gauges", table[0])
+        self.assertIn("0.0217", table[2])
 
     def test_standing_wave_rows_per_scheme_with_spread_and_table(self):
         def member(err, decay):

@@ -49,6 +49,20 @@ class WaveWindows(unittest.TestCase):
         self.assertAlmostEqual(common["first"], -0.03)
         self.assertAlmostEqual(common["lost"], 1.0 - 1.1 / 0.97)
 
+    def test_the_fitted_loss_reads_the_line_through_all_gauges(self):
+        # A wave losing 2 % per metre at every gauge: the fit and the ratio agree.
+        x = (0.5, 1.0, 1.5, 2.0)
+        decaying = [0.98 ** (g - 0.5) - 1.0 for g in x]
+        f = ww.figures(report(decaying, decaying, gauges=x), "height_errors")
+        self.assertAlmostEqual(f["lost_fit"], 1.0 - 0.98 ** 1.5)
+        self.assertAlmostEqual(f["lost"], 1.0 - 0.98 ** 1.5)
+        # Undamped but the last gauge 6 % low: the line through four gauges takes
+        # (x_4 - mean) / sum (x - mean)^2 x span = 0.75 x 1.5 / 1.25 = 0.9 of it, the ratio all.
+        low = [0.0, 0.0, 0.0, -0.06]
+        f = ww.figures(report(low, low, gauges=x), "height_errors")
+        self.assertAlmostEqual(f["lost_fit"], 1.0 - 0.94 ** 0.9)
+        self.assertAlmostEqual(f["lost"], 0.06)
+
     def test_table_gives_mean_sd_and_range_per_group_and_window(self):
         groups = {"main_j": [report([0.01, 0.0, 0.0], [0.02, 0.0, 0.0]),
                              report([-0.03, 0.0, 0.0], [0.06, 0.0, 0.0])],

@@ -40,7 +40,7 @@ TANK_SPREAD = ("bed_pressure_ratio", "pressure_error", "max_speed_over_sqrt_gH")
 SLOSH_SPREAD = ("period_error", "decay_per_period", "first_amplitude_over_theory")
 SOLITARY_SPREAD = ("celerity_error", "first_amplitude_over_height", "decay_total", "mean_width_error")
 WAVE_SPREAD = ("H_m", "height_error", "wavelength_error", "wavelength_fit_error", "decay_per_wavelength",
-               "decay_total")
+               "decay_total", "decay_total_fit")
 
 
 def lobovsky_spread(field):
@@ -214,6 +214,7 @@ def regular_wave(ctx):
                         "L_fit_m": j.get("wavelength_fit"), "wavelength_fit_error": j.get("wavelength_fit_error"),
                         "theory_L_m": j.get("wavelength_theory"),
                         "decay_per_wavelength": j.get("decay_per_wavelength"), "decay_total": j.get("decay_total"),
+                        "decay_total_fit": j.get("decay_total_fit"),
                         "wall_s": j.get("wall_seconds", r.wall),
                         "us_per_particle_step": j.get("us_per_particle_step"),
                         "source": "swell-validate regular-wave"}
@@ -485,7 +486,9 @@ def regular_wave_text(note):
             "**H error** = H / H_Biesel - 1 at the first gauge; **L error** = L / L_theory - 1 with L "
             "from the phase lag between the first two gauges, **L fit error** the same with L from the "
             "phase slope over all gauges; **decay / L** = the fractional height loss per wavelength "
-            "from a fit ln H = a + b x over all gauges (positive: the wave decays). Scenes: %s:" % (
+            "from a fit ln H = a + b x over all gauges (positive: the wave decays), **lost over the gauges** "
+            "= 1 - exp(b (x_last - x_first)) along the same line (3 L in the progressive-wave scenes; "
+            "since 2026-12-04, docs/validation.md 7.40). Scenes: %s:" % (
                 WAVE_SCENE, rule, note or "-"))
 
 
@@ -498,6 +501,7 @@ def regular_wave_table(rows):
         ("H (m)", "H_m"), ("H Biesel (m)", "theory_H_m"), ("H error", "height_error"),
         ("L (m)", "L_m"), ("L theory (m)", "theory_L_m"), ("L error", "wavelength_error"),
         ("L fit error", "wavelength_fit_error"), ("decay / L", "decay_per_wavelength"),
+        ("lost over the gauges", "decay_total_fit"),
         ("wall s", "wall_s"), ("µs / particle-step", "us_per_particle_step")])
 
 
