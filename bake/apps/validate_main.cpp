@@ -355,8 +355,9 @@ json regularWave(const Scene& scene, double from, double to, const std::string& 
     out["decay_per_wavelength"] = c.decayPerWavelength;
     out["decay_total"] = c.decayTotal;
     out["decay_total_fit"] = c.decayOverSpan;
-    // The same measurement of linear theory's record of the same piston (linearTheoryRecord):
-    // what the window and fit alone make of an undamped wave train.
+    // The same measurement of linear theory's record of the same piston in the same tank
+    // (linearTheoryRecord, the far wall reflecting): what the windows and fits alone make of an
+    // undamped wave train.
     std::vector<double> times;
     for (const ProbeSample& s : samples)
         times.push_back(s.time);
@@ -369,6 +370,10 @@ json regularWave(const Scene& scene, double from, double to, const std::string& 
     out["theory_record_decay_per_wavelength"] = lin.decayPerWavelength;
     out["theory_record_decay_total"] = lin.decayTotal;
     out["theory_record_decay_total_fit"] = lin.decayOverSpan;
+    // The height lost over the gauges against what linear theory loses in the same tank and
+    // windows: 1 - (1 - lost) / (1 - lost by theory's record).
+    out["decay_total_fit_against_theory_record"] =
+        1.0 - (1.0 - c.decayOverSpan) / (1.0 - lin.decayOverSpan);
     out["steepness_theory"] = c.theory.steepness;
     out["ppe_tolerance"] = scene.solver.pressure.tolerance;
     return out;

@@ -169,28 +169,39 @@ RegularWaveCheck checkRegularWave(const Scene& scene, std::span<const ProbeSampl
     return out;
 }
 
-std::vector<ProbeSample> linearTheoryRecord(const Scene& scene, std::span<const double> times) {
+std::vector<ProbeSample> linearTheoryRecord(const Scene& scene, std::span<const double> times,
+                                            FarWall farWall) {
     double h = 0.0;
     (void)theoryOf(scene, h); // validates the scene, sets the still-water depth h
     const PistonParams& p = *scene.piston;
     const double g = scene.physics.gravity;
     const double x0 = scene.geometry.tank->x0; // the paddle's rest position
+    const double x1 = scene.geometry.tank->x1; // the far wall
     double tEnd = 0.0;
     for (double t : times)
         tEnd = std::max(tEnd, t);
-    // Piston velocity sampled 100 times per period up to the last time, then zero; the
-    // transform spans 8 times that, so the periodic wrap-around of the sampled transform
-    // reaches no requested time.
+    // Piston velocity sampled 100 times per period up to the last time, then zero. The sampled
+    // transform is periodic in its span: the wave that left the paddle at time s reaches a
+    // gauge at distance D after D / c_g, so the span must exceed the last time plus the slowest
+    // component's travel over the longest distance, or that component arrives wrapped around,
+    // at the start of the record.
     const double twoPi = 2.0 * std::numbers::pi;
     const double dt = p.period / 100.0;
     const PistonMotion motion(p, tEnd);
     std::vector<double> v;
     for (double t = 0.0; t <= tEnd; t += dt)
         v.push_back(motion.at(t).velocity);
-    const double span = 8.0 * std::max(tEnd, p.period);
-    const double dw = twoPi / span;
     // Frequencies up to 8 times the piston's: the ramp's spectrum is negligible beyond.
     const double omega = twoPi / p.period;
+    // The longest distance is the nearest gauge's mirror distance, with or without the wall, so
+    // that both records are made of the same components.
+    double farthest = 0.0;
+    for (double gx : scene.output.gauges)
+        farthest = std::max(farthest, 2.0 * (x1 - x0) - (gx - x0));
+    const double slowest = groupVelocity(8.0 * omega, h, g);
+    const double span =
+        std::max(8.0 * std::max(tEnd, p.period), 1.25 * (tEnd + farthest / slowest));
+    const double dw = twoPi / span;
     const int bins = static_cast<int>(std::ceil(8.0 * omega / dw));
     struct Component {
         double k, re, im; // wavenumber; B(kh) V(w) / w dw / pi, complex
@@ -217,10 +228,19 @@ std::vector<ProbeSample> linearTheoryRecord(const Scene& scene, std::span<const 
         s.time = t;
         s.frontX = std::numeric_limits<double>::quiet_NaN();
         for (double gx : scene.output.gauges) {
+            // The incident train at the gauge's distance from the paddle and, with a far wall,
+            // its mirror image (a perfectly reflecting wall: the same train from 2 x_1 - x).
             double eta = 0.0;
+            const double d = gx - x0;
+            const double mirror = 2.0 * (x1 - x0) - d;
             for (std::size_t m = 0; m < comps.size(); ++m) {
-                const double ph = static_cast<double>(m + 1) * dw * t - comps[m].k * (gx - x0);
+                const double wt = static_cast<double>(m + 1) * dw * t;
+                const double ph = wt - comps[m].k * d;
                 eta += comps[m].re * std::cos(ph) - comps[m].im * std::sin(ph);
+                if (farWall == FarWall::Reflects) {
+                    const double phr = wt - comps[m].k * mirror;
+                    eta += comps[m].re * std::cos(phr) - comps[m].im * std::sin(phr);
+                }
             }
             s.elevations.push_back(eta);
         }

@@ -98,8 +98,14 @@ RegularWaveCheck checkRegularWave(const Scene& scene, std::span<const ProbeSampl
 /// H = B S). The evanescent modes near the paddle are left out. Run through
 /// checkRegularWave with the record's windows, it shows what the measurement itself makes of
 /// an undamped wave train: the growth of the dispersive wave front, which the window's
-/// group-velocity rule neglects. Throws like checkRegularWave for an unsuitable scene.
-std::vector<ProbeSample> linearTheoryRecord(const Scene& scene, std::span<const double> times);
+/// group-velocity rule neglects. With `farWall` (the tank as the solver sees it) the tank's far
+/// wall reflects the train: each gauge also records the same wave at the mirror distance
+/// 2 (x_1 - x_paddle) - (x - x_paddle); the reflection's return from the paddle is left out
+/// (it reaches the gauges later still). Without it the channel is open. Throws like
+/// checkRegularWave for an unsuitable scene.
+enum class FarWall { Open, Reflects };
+std::vector<ProbeSample> linearTheoryRecord(const Scene& scene, std::span<const double> times,
+                                            FarWall farWall = FarWall::Reflects);
 
 /// Throws std::invalid_argument, naming `what`, when the record `samples` ends more than
 /// `tolerance` (s) before the last of `windows` closes: a record cut short (a bake that stopped)
