@@ -89,6 +89,9 @@ RegularWaveCheck checkRegularWave(const Scene& scene, std::span<const ProbeSampl
                                   const WaveWindow& window,
                                   std::span<const WaveWindow> gaugeWindows = {});
 
+/// Whether linear theory's tank ends in a reflecting wall at x_1 or opens into a channel.
+enum class FarWall { Open, Reflects };
+
 /// What linear theory records at the scene's gauges at `times` (s): the propagating wave of
 /// the piston's actual motion, ramp included, as a superposition of Biesel waves. The piston
 /// velocity V(t) (PistonMotion, zero after the last time) is Fourier transformed, and each
@@ -98,12 +101,11 @@ RegularWaveCheck checkRegularWave(const Scene& scene, std::span<const ProbeSampl
 /// H = B S). The evanescent modes near the paddle are left out. Run through
 /// checkRegularWave with the record's windows, it shows what the measurement itself makes of
 /// an undamped wave train: the growth of the dispersive wave front, which the window's
-/// group-velocity rule neglects. With `farWall` (the tank as the solver sees it) the tank's far
-/// wall reflects the train: each gauge also records the same wave at the mirror distance
-/// 2 (x_1 - x_paddle) - (x - x_paddle); the reflection's return from the paddle is left out
-/// (it reaches the gauges later still). Without it the channel is open. Throws like
-/// checkRegularWave for an unsuitable scene.
-enum class FarWall { Open, Reflects };
+/// group-velocity rule neglects. With FarWall::Reflects (the default: the tank as the solver
+/// sees it) the far wall reflects the train: each gauge also records the same wave from the
+/// mirror distance 2 (x_1 - x_paddle) - (x - x_paddle); the reflection's return from the
+/// paddle is left out (it reaches the gauges later still). FarWall::Open leaves the channel
+/// open. Throws like checkRegularWave for an unsuitable scene.
 std::vector<ProbeSample> linearTheoryRecord(const Scene& scene, std::span<const double> times,
                                             FarWall farWall = FarWall::Reflects);
 
