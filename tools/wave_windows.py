@@ -66,9 +66,7 @@ def fitted_loss(x, errors):
     """1 - exp(b (max x - min x)), b the least-squares slope of ln H against x over all gauges
     (H / H_Biesel = 1 + error): the height lost across the gauges along the line through them,
     swell-validate's decay_total_fit (docs/validation.md 7.40)."""
-    logs = [math.log(1.0 + e) for e in errors]
-    mx, my = statistics.mean(x), statistics.mean(logs)
-    b = sum((a - mx) * (c - my) for a, c in zip(x, logs)) / sum((a - mx) ** 2 for a in x)
+    b = statistics.linear_regression(x, [math.log(1.0 + e) for e in errors]).slope
     return 1.0 - math.exp(b * (max(x) - min(x)))
 
 

@@ -45,6 +45,12 @@ LinearPistonWave theoryOf(const Scene& scene, double& depth) {
     return linearPistonWave(p.stroke, p.period, depth, scene.physics.gravity);
 }
 
+/// The distance from the paddle's rest position to a gauge at x by way of the far wall: what
+/// the wave reflected there has travelled when it reaches the gauge.
+double mirrorDistance(const Box& tank, double x) {
+    return 2.0 * (tank.x1 - tank.x0) - (x - tank.x0);
+}
+
 /// The window of a gauge at x (WaveWindow's rule for that one gauge).
 WaveWindow gaugeWindow(const Scene& scene, double h, double x) {
     const PistonParams& p = *scene.piston;
@@ -53,7 +59,7 @@ WaveWindow gaugeWindow(const Scene& scene, double h, double x) {
     const Box& tank = *scene.geometry.tank;
     WaveWindow win;
     win.start = p.rampTime + (x - tank.x0) / cg + p.period;
-    const double reflected = (2.0 * (tank.x1 - tank.x0) - (x - tank.x0)) / cg;
+    const double reflected = mirrorDistance(tank, x) / cg;
     win.end = std::min(scene.run.endTime, reflected);
     return win;
 }
@@ -175,8 +181,7 @@ std::vector<ProbeSample> linearTheoryRecord(const Scene& scene, std::span<const 
     (void)theoryOf(scene, h); // validates the scene, sets the still-water depth h
     const PistonParams& p = *scene.piston;
     const double g = scene.physics.gravity;
-    const double x0 = scene.geometry.tank->x0; // the paddle's rest position
-    const double x1 = scene.geometry.tank->x1; // the far wall
+    const Box& tank = *scene.geometry.tank; // x0: the paddle's rest position; x1: the far wall
     double tEnd = 0.0;
     for (double t : times)
         tEnd = std::max(tEnd, t);
@@ -197,7 +202,8 @@ std::vector<ProbeSample> linearTheoryRecord(const Scene& scene, std::span<const 
     // that both records are made of the same components.
     double farthest = 0.0;
     for (double gx : scene.output.gauges)
-        farthest = std::max(farthest, 2.0 * (x1 - x0) - (gx - x0));
+        farthest = std::max(farthest, mirrorDistance(tank, gx));
+    // A quarter more than that travel time, for a margin.
     const double slowest = groupVelocity(8.0 * omega, h, g);
     const double span =
         std::max(8.0 * std::max(tEnd, p.period), 1.25 * (tEnd + farthest / slowest));
@@ -220,7 +226,15 @@ std::vector<ProbeSample> linearTheoryRecord(const Scene& scene, std::span<const 
         const double c = bieselHeightOverStroke(k * h) / w * dw / std::numbers::pi;
         comps.push_back({k, c * re, c * im});
     }
-    // eta(x, t) = (1 / pi) Re sum B V(w) / w e^{i (w t - k x)} dw
+    // eta(x, t) = (1 / pi) Re sum B V(w) / w e^{i (w t - k x)} dw, x the distance travelled
+    const auto train = [&](double distance, double t) {
+        double eta = 0.0;
+        for (std::size_t m = 0; m < comps.size(); ++m) {
+            const double ph = static_cast<double>(m + 1) * dw * t - comps[m].k * distance;
+            eta += comps[m].re * std::cos(ph) - comps[m].im * std::sin(ph);
+        }
+        return eta;
+    };
     std::vector<ProbeSample> out;
     out.reserve(times.size());
     for (double t : times) {
@@ -230,18 +244,9 @@ std::vector<ProbeSample> linearTheoryRecord(const Scene& scene, std::span<const 
         for (double gx : scene.output.gauges) {
             // The incident train at the gauge's distance from the paddle and, with a far wall,
             // its mirror image (a perfectly reflecting wall: the same train from 2 x_1 - x).
-            double eta = 0.0;
-            const double d = gx - x0;
-            const double mirror = 2.0 * (x1 - x0) - d;
-            for (std::size_t m = 0; m < comps.size(); ++m) {
-                const double wt = static_cast<double>(m + 1) * dw * t;
-                const double ph = wt - comps[m].k * d;
-                eta += comps[m].re * std::cos(ph) - comps[m].im * std::sin(ph);
-                if (farWall == FarWall::Reflects) {
-                    const double phr = wt - comps[m].k * mirror;
-                    eta += comps[m].re * std::cos(phr) - comps[m].im * std::sin(phr);
-                }
-            }
+            double eta = train(gx - tank.x0, t);
+            if (farWall == FarWall::Reflects)
+                eta += train(mirrorDistance(tank, gx), t);
             s.elevations.push_back(eta);
         }
         out.push_back(std::move(s));
