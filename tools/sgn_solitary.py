@@ -14,9 +14,10 @@ flat bed, no viscosity), in the form of Clamond, Dutykh & Mitsotakis (2017):
     q_t + (q u - u^2 / 2 + g h - h^2 u_x^2 / 2)_x = 0,   q = u - (h^3 u_x)_x / (3 h),
 
 periodic, pseudo-spectral in x (2/3 dealiasing), classical RK4 in time; u from q by conjugate
-gradients preconditioned by the still water's operator. It reads each gauge's record as
-`swell-validate solitary-wave` does: the crest's height over H, its time, and the time the
-record stays above half the crest against Boussinesq's wave of that crest (the width error;
+gradients preconditioned by the still water's operator. It reads each gauge's record the way
+`swell-validate solitary-wave` does (a parabola at the top, the half-crest crossings
+interpolated): the crest's height over H, its time, and the time the record stays above half
+the crest against Boussinesq's wave of that crest (the width error;
 the SGN solitary wave of a crest A is wider than Boussinesq's by sqrt(1 + A / h)), and over the
 gauges the height lost and the celerity against sqrt(g (h + A)). The crest starts at the
 piston's mid-stroke, so a gauge at x reads the wave after x - stroke / 2 of travel. Bed friction, which theory puts at about 1 % over 20 h at this
@@ -144,9 +145,15 @@ def read_crest(t, eta):
 
 def evolve(height, depth, k, distances, cells_per_depth=20.0, dt=None):
     """A sech^2 wave of `height` and wavenumber k, u = c eta / (h + eta), c = sqrt(g (h + height)),
-    its crest starting at x = 0, evolved until it has passed gauges at `distances` (m, ascending),
-    each sampled after every step. Returns, per gauge, (crest height, crest time, time above half
-    the crest), and the relative mass drift."""
+    its crest starting at x = 0, evolved until it has passed gauges at `distances` (m, ascending).
+    Returns, per gauge, (crest height, crest time, time above half the crest), and the relative
+    mass drift."""
+    times, records, drift = series(height, depth, k, distances, cells_per_depth, dt)
+    return [read_crest(times, records[:, g]) for g in range(len(distances))], drift
+
+
+def series(height, depth, k, distances, cells_per_depth=20.0, dt=None):
+    """evolve's run: (times, eta at each gauge after every step [step, gauge], mass drift)."""
     reach = max(distances)
     start = 8.0 / k  # the wave's back falls below 1e-6 of its height there
     length = start + reach + 11.0 / k + 0.25 * reach  # its front, and room for the tail it sheds
@@ -171,8 +178,18 @@ def evolve(height, depth, k, distances, cells_per_depth=20.0, dt=None):
         eta = h - depth
         times.append(t)
         records.append((1.0 - frac) * eta[left] + frac * eta[left + 1])
-    times, records = np.asarray(times), np.asarray(records)
-    return [read_crest(times, records[:, g]) for g in range(len(distances))], (h.sum() - mass) / mass
+    return np.asarray(times), np.asarray(records), (h.sum() - mass) / mass
+
+
+def goring_series(height, depth, gauges, cells_per_depth=20.0):
+    """Goring's wave under SGN as the gauges (m from the piston's rest position) record it:
+    (times from the piston's start, eta at each gauge [step, gauge]). The stroke's crest passes
+    the piston at mid-stroke, (4 / k + stroke / 2) / c after the start (Goring's
+    eta = H sech^2(k (c t - X) - 4)), where the SGN run starts it."""
+    k = boussinesq_k(height, depth)
+    offset = 0.5 * goring_stroke(height, depth)
+    times, records, _ = series(height, depth, k, [g - offset for g in gauges], cells_per_depth)
+    return times + (4.0 / k + offset) / math.sqrt(G * (depth + height)), records
 
 
 def goring_record(height, depth, gauges, cells_per_depth=20.0):
@@ -206,13 +223,21 @@ def main(argv):
     ap.add_argument("--cells", type=float, default=20.0, help="grid points per depth (20)")
     ap.add_argument("--json", action="store_true")
     args = ap.parse_args(argv)
+    if not (0.0 < args.depth <= 100.0):
+        ap.error("--depth must lie in (0, 100] m")
     if not (0.0 < args.height < 0.6 * args.depth):
-        ap.error("--height must lie in (0, 0.6 depth): the SGN solitary wave exists below that")
+        ap.error("--height must lie in (0, 0.6 depth): a solitary wave breaks at 0.78 h (McCowan "
+                 "1894), and Goring's first-order stroke is meant for waves well below that")
+    if not (5.0 <= args.cells <= 200.0):
+        ap.error("--cells must lie in [5, 200] points per depth")
     try:
         gauges = [float(v) for v in args.gauges.split(",")]
+    except ValueError:
+        ap.error("--gauges: %r is not a comma list of numbers (m)" % args.gauges)
+    try:
         r = goring_record(args.height, args.depth, gauges, args.cells)
     except ValueError as e:
-        ap.error(str(e))
+        ap.error("--gauges: %s" % e)
     if args.json:
         print(json.dumps(r))
         return 0

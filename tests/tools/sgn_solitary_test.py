@@ -56,12 +56,15 @@ class SgnSolitary(unittest.TestCase):
         with self.assertRaises(ValueError):
             sgn.goring_record(H, DEPTH, [2.0, 1.0], cells_per_depth=10.0)
 
-    def test_command_line_refuses_an_absurd_height(self):
-        err = io.StringIO()
-        with contextlib.redirect_stderr(err), self.assertRaises(SystemExit) as e:
-            sgn.main(["--height", "0.5"])
-        self.assertEqual(e.exception.code, 2)
-        self.assertIn("--height", err.getvalue())
+    def test_command_line_names_the_bad_option(self):
+        for argv, option in ((["--height", "0.5"], "--height"), (["--depth", "nan"], "--depth"),
+                             (["--cells", "1"], "--cells"), (["--gauges", "2,x"], "--gauges"),
+                             (["--gauges", "3,2"], "--gauges")):
+            err = io.StringIO()
+            with contextlib.redirect_stderr(err), self.assertRaises(SystemExit) as e:
+                sgn.main(argv)
+            self.assertEqual(e.exception.code, 2, argv)
+            self.assertIn(option, err.getvalue().splitlines()[-1], argv)
 
 
 if __name__ == "__main__":
