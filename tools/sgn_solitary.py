@@ -126,6 +126,8 @@ def read_crest(t, eta):
     """(crest height, crest time, time above half the crest) of one gauge's record: the crest from
     a parabola through the highest sample and its neighbours, the crossings interpolated."""
     p = int(np.argmax(eta))
+    if not (0 < p < len(eta) - 1) or eta[0] >= 0.5 * eta[p] or eta[-1] >= 0.5 * eta[p]:
+        raise RuntimeError("sgn_solitary: a gauge's record does not hold its whole crest")
     ym, y0, yp = eta[p - 1], eta[p], eta[p + 1]
     curvature = ym - 2.0 * y0 + yp
     s = 0.5 * (ym - yp) / curvature if curvature < 0.0 else 0.0
