@@ -40,7 +40,6 @@ class Sgn:
     """The SGN equations on a periodic domain of `length` m sampled at n points, still depth h0."""
 
     def __init__(self, length, n, h0):
-        self.h0 = h0
         self.x = np.arange(n) * (length / n)
         self.k = 2.0 * np.pi * np.fft.rfftfreq(n, length / n)
         self.keep = self.k < (2.0 / 3.0) * self.k[-1]
@@ -183,14 +182,24 @@ def series(height, depth, k, distances, cells_per_depth=20.0, dt=None):
     return np.asarray(times), np.asarray(records), (h.sum() - mass) / mass
 
 
+def goring_distances(height, depth, gauges):
+    """(Boussinesq's k, half the stroke, each gauge's distance from where the SGN run starts the
+    crest): the stroke's crest passes the piston at mid-stroke. Raises ValueError unless there are
+    two or more gauges, rising, beyond half the stroke."""
+    offset = 0.5 * goring_stroke(height, depth)
+    at = [g - offset for g in gauges]
+    if len(gauges) < 2 or at[0] <= 0.0 or any(b <= a for a, b in zip(at, at[1:])):
+        raise ValueError("need two or more gauges, rising, beyond half the stroke (%.3f m)" % offset)
+    return boussinesq_k(height, depth), offset, at
+
+
 def goring_series(height, depth, gauges, cells_per_depth=20.0):
     """Goring's wave under SGN as the gauges (m from the piston's rest position) record it:
     (times from the piston's start, eta at each gauge [step, gauge]). The stroke's crest passes
     the piston at mid-stroke, (4 / k + stroke / 2) / c after the start (Goring's
     eta = H sech^2(k (c t - X) - 4)), where the SGN run starts it."""
-    k = boussinesq_k(height, depth)
-    offset = 0.5 * goring_stroke(height, depth)
-    times, records, _ = series(height, depth, k, [g - offset for g in gauges], cells_per_depth)
+    k, offset, at = goring_distances(height, depth, gauges)
+    times, records, _ = series(height, depth, k, at, cells_per_depth)
     return times + (4.0 / k + offset) / math.sqrt(G * (depth + height)), records
 
 
@@ -200,11 +209,8 @@ def goring_record(height, depth, gauges, cells_per_depth=20.0):
     crest time (from the crest's start at mid-stroke) and width error (the time above half the
     crest against Boussinesq's wave of that crest), the height lost between the first and last
     gauge, and the celerity over the gauges against sqrt(g (h + A)), A the crests' mean."""
-    offset = 0.5 * goring_stroke(height, depth)
-    at = [g - offset for g in gauges]
-    if len(gauges) < 2 or at[0] <= 0.0 or any(b <= a for a, b in zip(at, at[1:])):
-        raise ValueError("need two or more gauges, rising, beyond half the stroke (%.3f m)" % offset)
-    crests, drift = evolve(height, depth, boussinesq_k(height, depth), at, cells_per_depth)
+    k, offset, at = goring_distances(height, depth, gauges)
+    crests, drift = evolve(height, depth, k, at, cells_per_depth)
     amplitudes = [a for a, _, _ in crests]
     times = [t for _, t, _ in crests]
     slope = np.polyfit(times, gauges, 1)[0]
