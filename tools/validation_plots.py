@@ -1,19 +1,19 @@
 #!/usr/bin/env python3
 """Plots of the bake against the experiments it is validated on (docs/validation.md 7.2):
 the dam-break surge front against Martin & Moyce (1952), raw and on the experiment's time
-origin, the Lobovsky et al. (2014) water levels at gauges H1..H4, and a solitary wave's records
+origin, the Lobovsky et al. (2014) water levels at gauges H1..H4, a solitary wave's records
 at five gauges against the stroke's wave under the Serre-Green-Naghdi equations (7.31, 7.41;
-tools/sgn_solitary.py), each at several resolutions, from swell-validate runs of the shipped
-scenes.
+tools/sgn_solitary.py) and a dam breaking onto a wet bed against Stoker's shallow-water solution
+(7.43), each at several resolutions, from swell-validate runs of the shipped scenes.
 
     /usr/bin/python3 tools/validation_plots.py [--bin build/bin] [--out out/validation]
         [--threads N] [--quick]
 
-Writes OUT/dam_break_front.png, OUT/lobovsky_gauges.png, OUT/solitary_wave.png and
-OUT/validation_plots.json (each run's command, its swell-validate JSON, the commit). --quick runs
-the CI resolutions only (a/20, H/15, h/10; under a minute) instead of a/20, a/50, a/80, H/15,
-H/30, H/60 and h/10, h/20, h/40 (about 20 minutes with one thread, most of it the solitary wave
-at h/40).
+Writes OUT/dam_break_front.png, OUT/lobovsky_gauges.png, OUT/solitary_wave.png,
+OUT/wet_dam_break.png and OUT/validation_plots.json (each run's command, its swell-validate JSON,
+the commit). --quick runs the CI resolutions only (a/20, H/15, h/10, h0/20 to 1.2 s; about a
+minute) instead of a/20, a/50, a/80, H/15, H/30, H/60, h/10, h/20, h/40 and h0/20, h0/40 (about
+25 minutes with one thread, most of it the solitary wave at h/40).
 The experimental points come from `swell-validate ... --records`, i.e. the very records the
 checks compare with. Exit status 1 with one line on stderr when a run fails.
 """
@@ -53,6 +53,12 @@ SOLITARY = [
     ("h/20", "solitary_wave.json", []),
     ("h/40", "solitary_wave.json", ["geometry.particle_spacing=0.005"]),
 ]
+WET_DAM_BREAK = [
+    ("h0/20", "wet_dam_break_small.json", []),
+    ("h0/40", "wet_dam_break.json", []),
+]
+# --quick: the CI scene to 1.2 s (the windows end there; three gauges still see the bore).
+WET_DAM_BREAK_QUICK = [("h0/20", "wet_dam_break_small.json", ["solver.end_time=1.2"])]
 COLOURS = ["tab:blue", "tab:orange", "tab:green"]
 GAUGE_COLOURS = ["tab:blue", "tab:orange", "tab:green", "tab:red", "tab:purple", "tab:brown"]
 
@@ -76,7 +82,7 @@ def run(binary, threads, kind, label, scene, sets, out):
         cmd += ["--threads", str(threads)]
     for s in sets:
         cmd += ["--set", s]
-    with_records = kind != "solitary-wave"  # compared with theory, not with records
+    with_records = kind in ("dam-break", "lobovsky")  # the others: compared with theory
     cmd += [kind, str(ROOT / "scenes" / scene), "--csv", str(series)]
     if with_records:
         cmd += ["--records", str(records)]
@@ -209,12 +215,66 @@ def plot_solitary(runs, path):
     plt.close(fig)
 
 
+def stoker_depth(theory, h0, h1, dx, t):
+    """Stoker's depth (m) at x - x0 = dx (m), time t (s), from the theory swell-validate reports
+    (its bore's speed S, the state (h2, u2) behind it, c0 and c2): the same piecewise solution
+    as StokerDamBreak::depth (bake/include/swell/bake/wet_dam_break.h)."""
+    if t <= 0.0:
+        return h0 if dx < 0.0 else h1
+    xi = dx / t
+    if xi <= -theory["c0"]:
+        return h0
+    if xi <= theory["u2"] - theory["c2"]:
+        return (2.0 * theory["c0"] - xi) ** 2 / (9.0 * theory["gravity"])
+    return theory["h2"] if xi <= theory["bore_speed"] else h1
+
+
+def plot_wet_dam_break(runs, path):
+    gauge_colours = [f"C{k}" for k in range(10)]
+    fig, axes = plt.subplots(len(runs), 1, figsize=(12, 3.4 * len(runs) + 0.6), sharex=True,
+                             squeeze=False)
+    for ax, run_ in zip(axes[:, 0], runs):
+        res = run_["result"]
+        h0, h1, gate, theory = res["h0"], res["h1"], res["gate"], res["theory"]
+        t = [float(r["t"]) for r in run_["series"]]
+        t_end = t[-1]
+        t_ref = [k * t_end / 400 for k in range(401)]
+        for k, (g, colour) in enumerate(zip(res["gauge_records"], gauge_colours * 2)):
+            x = g["x"]
+            h = [float(r[f"h_{x:g}"]) / h0 for r in run_["series"]]
+            ax.plot(t, h, color=colour, lw=1.0,
+                    label=f"x - x0 = {x - gate:+.2f} m: {100 * g['mean_abs_error_over_h0']:.1f} %")
+            ax.plot(t_ref, [stoker_depth(theory, h0, h1, x - gate, s) / h0 for s in t_ref], "--",
+                    color=colour, lw=0.8)
+        ax.axvspan(0.0, res["compared_from"], color="0.93", zorder=0)
+        ax.set_ylabel("h / h0")
+        ax.set_ylim(0.0, 1.05)
+        ax.grid(alpha=0.3)
+        plateau = res["plateau_depth_error"]
+        ax.set_title(f"{run_['label']}: bore {100 * res['bore_speed_error']:+.1f} % of Stoker's "
+                     f"{theory['bore_speed']:.3f} m/s, depth behind it "
+                     + (f"{100 * plateau:+.1f} %" if plateau is not None else "not read")
+                     + f", worst gauge {100 * res['mean_abs_error_over_h0_worst']:.1f} % of h0",
+                     fontsize=10)
+        ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0),
+                  title="mean |h - h_Stoker| / h0", title_fontsize=7)
+    axes[-1, 0].set_xlabel("t (s)")
+    axes[-1, 0].set_xlim(0.0, max(float(r["t"]) for r in runs[0]["series"]))
+    res = runs[0]["result"]
+    fig.suptitle(f"Dam break onto a wet bed, h1 / h0 = {res['h1_over_h0']:.2g}: depth at the "
+                 "gauges (solid) against Stoker (dashed); grey: before the compared window")
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--bin", default=str(ROOT / "build" / "bin"))
     ap.add_argument("--out", default=str(ROOT / "out" / "validation"))
     ap.add_argument("--threads", type=int, default=0, help="swell-validate --threads (0: all)")
-    ap.add_argument("--quick", action="store_true", help="CI resolutions only (a/20, H/15, h/10)")
+    ap.add_argument("--quick", action="store_true",
+                    help="CI resolutions only (a/20, H/15, h/10, h0/20 to 1.2 s)")
     args = ap.parse_args()
     if args.threads < 0:
         fail(f"--threads {args.threads}: must be 0 (all) or more")
@@ -222,24 +282,28 @@ def main():
     if not (binary / "swell-validate").is_file():
         fail(f"--bin {binary}: no swell-validate there (run tools/build)")
     out.mkdir(parents=True, exist_ok=True)
-    cases = (DAM_BREAK[:1], LOBOVSKY[:1], SOLITARY[:1]) if args.quick else (DAM_BREAK, LOBOVSKY,
-                                                                           SOLITARY)
+    cases = ((DAM_BREAK[:1], LOBOVSKY[:1], SOLITARY[:1], WET_DAM_BREAK_QUICK) if args.quick
+             else (DAM_BREAK, LOBOVSKY, SOLITARY, WET_DAM_BREAK))
     dam = [run(binary, args.threads, "dam-break", *c, out) for c in cases[0]]
     lob = [run(binary, args.threads, "lobovsky", *c, out) for c in cases[1]]
     sol = [run(binary, args.threads, "solitary-wave", *c, out) for c in cases[2]]
+    wet = [run(binary, args.threads, "wet-dam-break", *c, out) for c in cases[3]]
     plot_dam_break(dam, out / "dam_break_front.png")
     plot_lobovsky(lob, out / "lobovsky_gauges.png")
     plot_solitary(sol, out / "solitary_wave.png")
+    plot_wet_dam_break(wet, out / "wet_dam_break.png")
     commit = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"],
                             capture_output=True, text=True).stdout.strip() or "unknown"
     summary = {"commit": commit, "quick": args.quick,
                "runs": [{"kind": kind, "label": r["label"], "command": r["command"],
                          "result": r["result"]}
                         for kind, rs in (("dam-break", dam), ("lobovsky", lob),
-                                         ("solitary-wave", sol)) for r in rs]}
+                                         ("solitary-wave", sol), ("wet-dam-break", wet))
+                        for r in rs]}
     (out / "validation_plots.json").write_text(json.dumps(summary, indent=1) + "\n")
     print(f"wrote {out / 'dam_break_front.png'}, {out / 'lobovsky_gauges.png'}, "
-          f"{out / 'solitary_wave.png'}, {out / 'validation_plots.json'}")
+          f"{out / 'solitary_wave.png'}, {out / 'wet_dam_break.png'}, "
+          f"{out / 'validation_plots.json'}")
 
 
 if __name__ == "__main__":

@@ -18,8 +18,8 @@ CLI::Option* addEnsemble(CLI::App& run, ValidateCommandLine& cl) {
 std::optional<int> parseValidateCommandLine(int argc, const char* const* argv,
                                             ValidateCommandLine& cl, std::ostream& out,
                                             std::ostream& err) {
-    CLI::App app{"swell-validate: dam-break, lobovsky, still-tank, regular-wave, standing-wave "
-                 "and solitary-wave validation runs of the MPS solver"};
+    CLI::App app{"swell-validate: dam-break, lobovsky, still-tank, regular-wave, standing-wave, "
+                 "solitary-wave and wet-dam-break validation runs of the MPS solver"};
     app.require_subcommand(1);
     app.fallthrough();
     app.add_option("--set", cl.sets, "override a scene key: section.key=value (repeatable)")
@@ -105,6 +105,17 @@ std::optional<int> parseValidateCommandLine(int argc, const char* const* argv,
     solitary->add_option("--csv", cl.csv, "write the elevation series t,eta_<x>... (m)");
     addEnsemble(*solitary, cl)->excludes("--csv");
 
+    auto* wet = app.add_subcommand(
+        "wet-dam-break", "run a dam that breaks onto a wet bed (a reservoir and a lower layer) and "
+                         "compare the depth at output.gauges and the bore's speed with Stoker's "
+                         "shallow-water solution");
+    wet->add_option("scene", cl.scene,
+                    "scene JSON: two water rectangles on the tank's bed, two or more "
+                    "output.gauges")
+        ->required();
+    wet->add_option("--csv", cl.csv, "write the depth series t,h_<x>... (m)");
+    addEnsemble(*wet, cl)->excludes("--csv");
+
     if (const auto rc = cli::parse(app, argc, argv, "swell-validate", 0, out, err))
         return rc;
     cl.run = *dam     ? ValidateCommandLine::Run::DamBreak
@@ -112,6 +123,7 @@ std::optional<int> parseValidateCommandLine(int argc, const char* const* argv,
              : *still ? ValidateCommandLine::Run::StillTank
              : *wave  ? ValidateCommandLine::Run::RegularWave
              : *slosh ? ValidateCommandLine::Run::StandingWave
+             : *wet   ? ValidateCommandLine::Run::WetDamBreak
                       : ValidateCommandLine::Run::SolitaryWave;
     if (cl.scene.empty()) {
         err << "swell-validate: scene: an empty path (see --help)\n";

@@ -1,5 +1,5 @@
 #pragma once
-// swell-validate's command line: its six runs and their options, parsed and checked without
+// swell-validate's command line: its seven runs and their options, parsed and checked without
 // running, so that validate_main.cpp and the options fuzz target (tests/fuzz) share it.
 
 #include <optional>
@@ -12,7 +12,15 @@
 namespace swell::bake {
 
 struct ValidateCommandLine {
-    enum class Run { DamBreak, Lobovsky, StillTank, RegularWave, StandingWave, SolitaryWave };
+    enum class Run {
+        DamBreak,
+        Lobovsky,
+        StillTank,
+        RegularWave,
+        StandingWave,
+        SolitaryWave,
+        WetDamBreak
+    };
     Run run = Run::DamBreak;
     std::string scene;             ///< the run's scene file
     std::vector<std::string> sets; ///< --set overrides, in order
@@ -20,7 +28,7 @@ struct ValidateCommandLine {
     bool asJson = false;
     double damUntil = 3.2;      ///< dam-break --until (T = t sqrt(2g/a))
     double lobovskyUntil = 1.5; ///< lobovsky --until (s)
-    std::string csv;            ///< dam-break / lobovsky / standing-wave / solitary-wave --csv
+    std::string csv;            ///< --csv of every run but still-tank and regular-wave
     std::string records;        ///< dam-break / lobovsky --records
     double settle = 2.0;        ///< still-tank --settle (s)
     long steps = -1;            ///< still-tank --steps; -1: end_time / dt

@@ -1,8 +1,8 @@
 // swell-validate: developer runs behind docs/validation.md (dam break against Martin & Moyce
 // and against the water levels of Lobovsky et al. 2014, regular waves against linear wavemaker
 // theory, still-tank hydrostatics, a standing wave against linear theory, a solitary wave against
-// Boussinesq's and Rayleigh's theory). Thin: scene loading, the
-// solver and the comparisons are library code.
+// Boussinesq's and Rayleigh's theory, a dam breaking onto a wet bed against Stoker's solution).
+// Thin: scene loading, the solver and the comparisons are library code.
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -37,6 +37,7 @@
 #include "swell/bake/standing_wave.h"
 #include "swell/bake/still_tank.h"
 #include "swell/bake/validation.h"
+#include "swell/bake/wet_dam_break.h"
 #include "swell/cache/checked_write.h"
 
 using namespace swell::bake;
@@ -76,6 +77,15 @@ void writeGaugeSeries(const std::filesystem::path& path, const GaugeRecords& r,
         text += '\n';
     }
     writeTextFile(path, text, "--csv");
+}
+
+/// The same with one column per gauge at x (m), named PREFIX_x.
+void writeGaugeSeries(const std::filesystem::path& path, const GaugeRecords& r,
+                      const std::string& prefix, std::span<const double> gauges) {
+    std::vector<std::string> columns;
+    for (double x : gauges)
+        columns.push_back(fmt::format("{}_{}", prefix, x));
+    writeGaugeSeries(path, r, columns);
 }
 
 /// A wave check's cost in its report: steps, PPE iterations, solver time, and that time per
@@ -429,12 +439,8 @@ json solitaryWave(const Scene& scene, const std::string& csv) {
              {"particles", r.particles},
              {"water", r.water},
              {"outcome", r.outcome}};
-    if (!csv.empty()) {
-        std::vector<std::string> columns;
-        for (double x : r.gauges)
-            columns.push_back(fmt::format("eta_{}", x));
-        writeGaugeSeries(csv, r, columns);
-    }
+    if (!csv.empty())
+        writeGaugeSeries(csv, r, "eta", r.gauges);
     if (r.outcome == kStable) {
         const SolitaryWaveCheck& c = r.check;
         json crests = json::array();
@@ -452,6 +458,56 @@ json solitaryWave(const Scene& scene, const std::string& csv) {
         out["decay_total"] = c.decayTotal;
         out["distance_over_depth"] = (c.crests.back().x - c.crests.front().x) / r.depth;
         out["mean_width_error"] = c.meanWidthError;
+    }
+    addRunCost(out, r, r.particles);
+    return out;
+}
+
+/// A dam breaking onto a wet bed (wet_dam_break.h, runWetDamBreak): the depth at each gauge and
+/// the bore's speed against Stoker's shallow-water solution.
+json wetDamBreak(const Scene& scene, const std::string& csv) {
+    const WetDamBreakReport r = runWetDamBreak(scene);
+    const StokerDamBreak& t = r.theory;
+    json out{{"scene", scene.name},
+             {"l0", scene.geometry.particleSpacing},
+             {"h0", t.h0},
+             {"h1", t.h1},
+             {"h1_over_h0", t.h1 / t.h0},
+             {"gate", r.gate},
+             {"theory",
+              {{"bore_speed", t.boreSpeed},
+               {"h2", t.h2},
+               {"u2", t.u2},
+               {"c0", t.c0},
+               {"c2", t.c2},
+               {"gravity", t.gravity}}},
+             {"compared_from", kStokerFromTimes * std::sqrt(t.h0 / t.gravity)},
+             {"gauges", r.gauges},
+             {"particles", r.particles},
+             {"water", r.water},
+             {"outcome", r.outcome}};
+    if (!csv.empty())
+        writeGaugeSeries(csv, r, "h", r.gauges);
+    if (r.outcome == kStable) {
+        const WetDamBreakCheck& c = r.check;
+        // NaN (no bore, or no plateau, at a gauge) as null.
+        const auto value = [](double v) { return std::isfinite(v) ? json(v) : json(nullptr); };
+        json gauges = json::array();
+        for (const WetDamBreakGauge& g : c.gauges)
+            gauges.push_back({{"x", g.x},
+                              {"from", g.from},
+                              {"until", g.until},
+                              {"mean_abs_error_over_h0", g.meanAbsErrorOverH0},
+                              {"mean_signed_error_over_h0", g.meanSignedErrorOverH0},
+                              {"bore_arrival", value(g.boreArrival)},
+                              {"bore_arrival_theory", value(g.boreArrivalTheory)},
+                              {"plateau_depth_over_theory", value(g.plateauDepthOverTheory)}});
+        out["gauge_records"] = gauges;
+        out["bore_speed"] = c.boreSpeed;
+        out["bore_speed_error"] = c.boreSpeedError;
+        out["bore_gauges"] = c.boreGauges;
+        out["plateau_depth_error"] = value(c.plateauDepthError);
+        out["mean_abs_error_over_h0_worst"] = c.meanAbsErrorOverH0Worst;
     }
     addRunCost(out, r, r.particles);
     return out;
@@ -560,6 +616,13 @@ Figures solitaryWaveFigures(const json& r) {
             {"mean_width_error", r["mean_width_error"].get<double>()}};
 }
 
+Figures wetDamBreakFigures(const json& r) {
+    const json& plateau = r["plateau_depth_error"];
+    return {{"bore_speed_error", r["bore_speed_error"].get<double>()},
+            {"plateau_depth_error", plateau.is_null() ? std::nan("") : plateau.get<double>()},
+            {"mean_abs_error_over_h0_worst", r["mean_abs_error_over_h0_worst"].get<double>()}};
+}
+
 Figures damBreakFigures(const json& r) {
     return {{"front_error_mean", r["front_error_mean"].get<double>()},
             {"aligned_front_error_mean", r["aligned_front_error_mean"].get<double>()},
@@ -612,6 +675,9 @@ int main(int argc, char** argv) {
                 return solitaryWave(s, single ? cl.csv : "");
             };
             figures = solitaryWaveFigures;
+        } else if (cl.run == Run::WetDamBreak) {
+            run = [&](const Scene& s, bool single) { return wetDamBreak(s, single ? cl.csv : ""); };
+            figures = wetDamBreakFigures;
         } else {
             const long steps =
                 cl.steps >= 0 ? cl.steps : std::lround(scene.run.endTime / scene.solver.time.dt);

@@ -5,6 +5,7 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -66,6 +67,24 @@ TEST(CommandLine, SwellBakeAcceptsABakeAndRefusesEmptyPathsAndControlCharacters)
     expectRefused(bake({"s.json", "-o", "c.swell", "x\ry"}), "swell-bake", "x\\x0dy");
 }
 
+TEST(CommandLine, SwellValidateRunsTheSubcommandNamed) {
+    using Run = ValidateCommandLine::Run;
+    for (const auto& [name, run] : {std::pair{"dam-break", Run::DamBreak},
+                                    {"lobovsky", Run::Lobovsky},
+                                    {"still-tank", Run::StillTank},
+                                    {"regular-wave", Run::RegularWave},
+                                    {"standing-wave", Run::StandingWave},
+                                    {"solitary-wave", Run::SolitaryWave},
+                                    {"wet-dam-break", Run::WetDamBreak}}) {
+        const char* argv[] = {"swell-validate", name, "s.json"};
+        ValidateCommandLine cl;
+        std::ostringstream out, err;
+        EXPECT_FALSE(parseValidateCommandLine(3, argv, cl, out, err).has_value()) << name;
+        EXPECT_EQ(cl.run, run) << name;
+        EXPECT_EQ(cl.scene, "s.json") << name;
+    }
+}
+
 TEST(CommandLine, SwellValidateRefusesNonsenseValues) {
     EXPECT_FALSE(validate({"dam-break", "s.json", "--until", "2"}).rc.has_value());
     expectRefused(validate({"dam-break", "s.json", "--until", "nan"}), "swell-validate", "--until");
@@ -107,6 +126,13 @@ TEST(CommandLine, SwellValidateRefusesNonsenseValues) {
     expectRefused(validate({"solitary-wave", "s.json", "--ensemble", "2", "--csv", "eta.csv"}),
                   "swell-validate", "--csv");
     expectRefused(validate({"solitary-wave", "s.json", "--keep", "d"}), "swell-validate", "--keep");
+    // The wet-bed dam break: the same options.
+    EXPECT_FALSE(validate({"wet-dam-break", "s.json", "--csv", "h.csv"}).rc.has_value());
+    EXPECT_FALSE(validate({"wet-dam-break", "s.json", "--ensemble", "4"}).rc.has_value());
+    expectRefused(validate({"wet-dam-break", "s.json", "--ensemble", "2", "--csv", "h.csv"}),
+                  "swell-validate", "--csv");
+    expectRefused(validate({"wet-dam-break", "s.json", "--settle", "2"}), "swell-validate",
+                  "--settle");
     // The dam breaks and the still tank run as ensembles too; an ensemble has no single
     // series to write.
     EXPECT_FALSE(validate({"lobovsky", "s.json", "--ensemble", "4"}).rc.has_value());

@@ -11,3 +11,5 @@ set_tests_properties(Validation.StandingWaveKeepsLinearTheorysPeriodAtCiResoluti
     PROPERTIES COST 50)
 set_tests_properties(Validation.SolitaryWaveKeepsItsCelerityAtCiResolution
     PROPERTIES COST 60)
+set_tests_properties(Validation.WetDamBreakFollowsStokerAtCiResolution
+    PROPERTIES COST 60)

@@ -25,6 +25,7 @@
 #include "swell/bake/still_tank.h"
 #include "swell/bake/validation.h"
 #include "swell/bake/wave_theory.h"
+#include "swell/bake/wet_dam_break.h"
 #include "temp_dir.h"
 
 using namespace swell::bake;
@@ -515,6 +516,33 @@ TEST(Validation, SolitaryWaveKeepsItsCelerityAtCiResolution) {
         ADD_FAILURE() << "one gauge was accepted";
     } catch (const SceneError& e) {
         EXPECT_EQ(e.key(), "output.gauges");
+    }
+}
+
+TEST(Validation, WetDamBreakFollowsStokerAtCiResolution) {
+    // h0 = 0.1 m onto h1 = 0.02 m at h0/20, compared from t = 5 sqrt(h0 / g) (docs/validation.md
+    // 7.43). Four jittered members read the bore's speed -2.3 +- 0.6 % (-3.0 to -1.6 %) against
+    // Stoker's 0.939 m/s, the depth behind it -2.4 +- 0.2 % against his 0.0508 m and the worst
+    // gauge's mean |h - h_Stoker| 3.0 +- 0.1 % of h0 (at the gate). The bounds cover them with a
+    // margin; a bore 5 % off its speed, or water 5 % of h0 off the solution, fails.
+    const Scene scene = loadScene(kScenes / "wet_dam_break_small.json");
+    ASSERT_EQ(scene.solver.scheme, Scheme::Swell);
+    const WetDamBreakReport r = runWetDamBreak(scene);
+    ASSERT_EQ(r.outcome, "stable");
+    EXPECT_NEAR(r.theory.boreSpeed, 0.93898, 1e-4);
+    EXPECT_NEAR(r.theory.h2, 0.050787, 1e-5);
+    const WetDamBreakCheck& c = r.check;
+    RecordProperty("bore_speed_error", fmt::format("{:.4f}", c.boreSpeedError));
+    RecordProperty("plateau_depth_error", fmt::format("{:.4f}", c.plateauDepthError));
+    RecordProperty("worst_gauge", fmt::format("{:.4f}", c.meanAbsErrorOverH0Worst));
+    EXPECT_GE(c.boreGauges, 5u);
+    EXPECT_NEAR(c.boreSpeedError, 0.0, 0.05);
+    EXPECT_NEAR(c.plateauDepthError, 0.0, 0.05);
+    EXPECT_LT(c.meanAbsErrorOverH0Worst, 0.045);
+    for (const WetDamBreakGauge& g : c.gauges) {
+        if (!std::isnan(g.boreArrival)) { // the bore arrives when theory's does, to 0.05 s
+            EXPECT_NEAR(g.boreArrival, g.boreArrivalTheory, 0.05) << "x = " << g.x;
+        }
     }
 }
 

@@ -199,6 +199,36 @@ class Validate(unittest.TestCase):
         self.assertIn("solitary_wave", bake.CSVS)  # a part of its own: tools/bench --only solitary_wave
 
 
+    def test_wet_dam_break_rows_per_scheme_with_spread_and_table(self):
+        def member(err, worst):
+            return {"outcome": "stable", "steps": 4000, "particles": 8512, "water": 5600, "l0": 0.005,
+                    "solver_seconds": 38.0, "theory": {"bore_speed": 0.939}, "bore_speed": 0.939 * (1 + err),
+                    "bore_speed_error": err, "plateau_depth_error": -0.024,
+                    "mean_abs_error_over_h0_worst": worst}
+        with tempfile.TemporaryDirectory() as tmp:
+            ctx = common.Context(quick=True, log=None, out=tmp, members=2)
+            commands = []
+
+            def fake_run(cmd, timeout=900):
+                commands.append([str(c) for c in cmd])
+                return Result({"outcome": "stable", "members": [member(-0.02, 0.03), member(-0.03, 0.04)]})
+            ctx.run = fake_run
+            rows = bake.wet_dam_break(ctx)
+        # Quick: the h0/20 scene only, both schemes, each an ensemble.
+        self.assertEqual(len(rows), 2)
+        self.assertTrue(all("wet-dam-break" in c and c[-2:] == ["--ensemble", "2"] for c in commands))
+        self.assertTrue(any("wet_dam_break_small.json" in a for a in commands[0]))
+        self.assertTrue(any("solver.scheme=textbook" in c for c in commands[1]))
+        self.assertEqual(rows[0]["resolution"], "h0/20")
+        self.assertAlmostEqual(rows[0]["bore_speed_error"], -0.025)
+        self.assertAlmostEqual(rows[0]["bore_speed_theory_m_s"], 0.939)
+        self.assertAlmostEqual(rows[0]["mean_abs_error_over_h0_worst"], 0.035)
+        self.assertIn("bore_speed_error_sd", rows[0])
+        self.assertIn("| -0.025 ± 0.0071 |", bake.wet_dam_break_table(rows))
+        self.assertIn("scenes/wet_dam_break_small.json", bake.wet_dam_break_text())
+        self.assertIn("wet_dam_break", bake.CSVS)  # a part of its own: tools/bench --only wet_dam_break
+
+
 class Members(unittest.TestCase):
     def parse(self, argv):
         with contextlib.redirect_stderr(io.StringIO()):

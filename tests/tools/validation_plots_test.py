@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""tools/validation_plots.py --quick: the three plots written from stable runs of the CI scenes,
+"""tools/validation_plots.py --quick: the four plots written from stable runs of the CI scenes,
 every experimental point of the records in its CSV, a clear error for a missing binary; and
 the swell-validate behaviour those plots rely on (clear errors, stopped runs, ensembles).
 
@@ -26,14 +26,15 @@ class ValidationPlots(unittest.TestCase):
                                 "--bin", str(BIN), "--out", str(out)],
                                capture_output=True, text=True)
             self.assertEqual(p.returncode, 0, p.stderr)
-            for name in ("dam_break_front.png", "lobovsky_gauges.png", "solitary_wave.png"):
+            for name in ("dam_break_front.png", "lobovsky_gauges.png", "solitary_wave.png",
+                         "wet_dam_break.png"):
                 data = (out / name).read_bytes()
                 self.assertEqual(data[:8], b"\x89PNG\r\n\x1a\n", name)
                 self.assertGreater(len(data), 20_000, name)  # axes, points and lines drawn
             summary = json.loads((out / "validation_plots.json").read_text())
             kinds = [(r["kind"], r["label"]) for r in summary["runs"]]
             self.assertEqual(kinds, [("dam-break", "a/20"), ("lobovsky", "H/15"),
-                                     ("solitary-wave", "h/10")])
+                                     ("solitary-wave", "h/10"), ("wet-dam-break", "h0/20")])
             for r in summary["runs"]:
                 self.assertEqual(r["result"]["outcome"], "stable", r["command"])
                 self.assertIn("swell-validate", r["command"])
@@ -46,6 +47,14 @@ class ValidationPlots(unittest.TestCase):
             # H2-H4 also carry the experiment's other series, drawn beside the compared one.
             self.assertEqual({r["gauge"] for r in rows if r["series"] == "repeat"},
                              {"H2", "H3", "H4"})
+            # The wet dam break's quick run ends at 1.2 s: every window ends there, and the
+            # gauges from 1.5 m on still see the bore.
+            wet = summary["runs"][3]["result"]
+            self.assertEqual({g["until"] for g in wet["gauge_records"]}, {1.2})
+            self.assertGreaterEqual(wet["bore_gauges"], 3)
+            with open(out / "wet-dam-break_h0_20.csv", newline="") as f:
+                header = next(csv.reader(f))
+            self.assertEqual(header, ["t"] + ["h_%g" % x for x in wet["gauges"]])
             lob = summary["runs"][1]["result"]["gauges"]
             self.assertIsNone(lob[0]["experiment_scatter_over_H"])
             for g in lob[1:]:

@@ -5,19 +5,22 @@ particle shifting and inelastic collisions: docs/validation.md section 7.1), and
 dam break against Martin & Moyce (raw and aligned front error), still-tank bed pressure,
 regular waves against Biesel (full: also progressive waves over three wavelengths) and the
 Lobovsky et al. 2014 dam break (water levels at four gauges), a standing wave against linear
-theory (held out: period and decay per period) and a solitary wave against Rayleigh's celerity
-and Boussinesq's shape (held out); full mode adds PPE tolerances for the default scheme. Every
-row has its wall time and solver time per particle-step.
+theory (held out: period and decay per period), a solitary wave against Rayleigh's celerity
+and Boussinesq's shape (held out) and a dam breaking onto a wet bed against Stoker's
+shallow-water solution (held out: the bore's speed, the depth behind it, the depth at ten
+gauges); full mode adds PPE tolerances for the default scheme. Every row has its wall time and
+solver time per particle-step.
 
 CSV: dam_break, still_tank, regular_wave (+ regular_wave.note), lobovsky, standing_wave,
-solitary_wave; docs section: bake."""
+solitary_wave, wet_dam_break; docs section: bake."""
 
 import math
 import os
 
 from . import common as bl
 
-CSVS = ("dam_break", "still_tank", "regular_wave", "lobovsky", "standing_wave", "solitary_wave")
+CSVS = ("dam_break", "still_tank", "regular_wave", "lobovsky", "standing_wave", "solitary_wave",
+        "wet_dam_break")
 NOTE = "regular_wave.note"
 SECTIONS = ("bake",)
 PLOTS = ("bake_error_vs_cost",)
@@ -28,6 +31,7 @@ LOB_SCENES = {0.02: "lobovsky_small.json", 0.01: "lobovsky.json"}  # l0 -> the s
 LOB_EXTRA = (0.0075, "lobovsky_small.json")  # full mode: H/40, tank height rounded to whole spacings
 SLOSH_SCENES = ((25, "standing_wave_small.json"), (50, "standing_wave.json"))  # h/N -> scene; quick: h/25
 SOLITARY_SCENES = ((10, "solitary_wave_small.json"), (20, "solitary_wave.json"))  # h/N -> scene; quick: h/10
+WET_SCENES = ((20, "wet_dam_break_small.json"), (40, "wet_dam_break.json"))  # h0/N -> scene; quick: h0/20
 LOB_LIMIT_S = 60.0  # LOB_EXTRA runs when the l0 = 0.01 run predicts it under this (s)
 DAM_DT = (0.0005, 0.005)  # dt = 0.5 ms at l0 = 5 mm, proportional to l0
 WAVE_DT = ((0.04, 0.004), (0.02, 0.002), (0.0, 0.001))  # (l0 at least, dt): frames every 20 ms
@@ -39,6 +43,7 @@ DAM_SPREAD = ("front_error_mean_a", "front_error_max_a", "aligned_front_error_me
 TANK_SPREAD = ("bed_pressure_ratio", "pressure_error", "max_speed_over_sqrt_gH")
 SLOSH_SPREAD = ("period_error", "decay_per_period", "first_amplitude_over_theory")
 SOLITARY_SPREAD = ("celerity_error", "first_amplitude_over_height", "decay_total", "mean_width_error")
+WET_SPREAD = ("bore_speed_error", "plateau_depth_error", "mean_abs_error_over_h0_worst")
 WAVE_SPREAD = ("H_m", "height_error", "wavelength_error", "wavelength_fit_error", "decay_per_wavelength",
                "decay_total", "decay_total_fit")
 
@@ -315,9 +320,10 @@ def lobovsky_estimate(rows, scheme, l0):
 
 
 # ---------------------------------------------------------------- held-out waves
-def per_resolution(ctx, note, kind, scenes, spread, figures):
-    """Rows of a held-out wave check: both schemes on each (h/N, scene) of `scenes` (quick: the
-    first), each row the run's common columns with `figures(json)` between its outcome and times."""
+def per_resolution(ctx, note, kind, scenes, spread, figures, depth="h"):
+    """Rows of a held-out check: both schemes on each (h/N, scene) of `scenes` (quick: the first;
+    the resolution named depth/N), each row the run's common columns with `figures(json)` between
+    its outcome and times."""
     ctx.note_load(note)
     rows = []
     for per, scene_name in scenes[:1] if ctx.quick else scenes:
@@ -326,7 +332,7 @@ def per_resolution(ctx, note, kind, scenes, spread, figures):
 
             def row_of(j, per=per, scene_name=scene_name, sname=sname, r=r):
                 n, parts = j.get("steps") or 0, j.get("particles") or 0
-                row = {"resolution": "h/%d" % per, "scene": scene_name[:-len(".json")], "l0_m": j.get("l0"),
+                row = {"resolution": "%s/%d" % (depth, per), "scene": scene_name[:-len(".json")], "l0_m": j.get("l0"),
                        "scheme": sname, "particles": parts, "water": j.get("water"), "steps": n,
                        "outcome": validate_outcome(r, j)}
                 row.update(figures(j))
@@ -352,9 +358,17 @@ def solitary_wave(ctx):
         "decay_total": j.get("decay_total"), "mean_width_error": j.get("mean_width_error")})
 
 
+def wet_dam_break(ctx):
+    return per_resolution(ctx, "wet dam break", "wet-dam-break", WET_SCENES, WET_SPREAD, lambda j: {
+        "bore_speed_theory_m_s": (j.get("theory") or {}).get("bore_speed"),
+        "bore_speed_m_s": j.get("bore_speed"), "bore_speed_error": j.get("bore_speed_error"),
+        "plateau_depth_error": j.get("plateau_depth_error"),
+        "mean_abs_error_over_h0_worst": j.get("mean_abs_error_over_h0_worst")}, depth="h0")
+
+
 # ---------------------------------------------------------------- the section
 PARTS = {"dam_break": dam_break, "still_tank": still_tank, "regular_wave": regular_wave, "lobovsky": lobovsky,
-         "standing_wave": standing_wave, "solitary_wave": solitary_wave}
+         "standing_wave": standing_wave, "solitary_wave": solitary_wave, "wet_dam_break": wet_dam_break}
 
 
 def run(ctx, parts=CSVS):
@@ -388,6 +402,7 @@ def table(rows, m):
          lobovsky_text(rows.get("lobovsky", [])), "", lobovsky_table(rows.get("lobovsky", [])), "",
          standing_wave_text(), "", standing_wave_table(rows.get("standing_wave", [])), "",
          solitary_wave_text(), "", solitary_wave_table(rows.get("solitary_wave", [])), "",
+         wet_dam_break_text(), "", wet_dam_break_table(rows.get("wet_dam_break", [])), "",
          plot_text(), "",
          "![bake error against cost](images/bench/bake_error_vs_cost.png)"]
     return {"bake": "\n".join(t)}
@@ -597,6 +612,27 @@ def solitary_wave_table(rows):
         ("µs / particle-step", "us_per_particle_step")])
 
 
+def wet_dam_break_text():
+    scenes = ", ".join("`scenes/%s` (h0/%d)" % (name, per) for per, name in WET_SCENES)
+    return ("**Dam break onto a wet bed against Stoker** (held out: added after the default's "
+            "settings were chosen; `swell-validate --json --threads 1 [--set solver.scheme=textbook] "
+            "wet-dam-break SCENE`: %s, the quick run the first only). A reservoir h0 = 0.1 m deep "
+            "breaks onto a layer h1 = 0.2 h0; ten gauges compared with Stoker's (1957) shallow-water "
+            "solution from t = 5 sqrt(h0 / g) until a reflection could return. **Bore speed error** "
+            "= the fitted speed of the bore's arrivals over Stoker's 0.939 m/s, - 1; **depth behind "
+            "the bore** over his h2 = 0.0508 m, - 1; **worst gauge** = the largest mean |h - "
+            "h_Stoker| / h0. docs/validation.md 7.43:" % scenes)
+
+
+def wet_dam_break_table(rows):
+    return bl.md_table(rows, [
+        ("resolution", "resolution"), ("scheme", scheme_of), ("particles", "particles"),
+        ("steps", "steps"), ("outcome", lambda r: (r.get("outcome") or "")[:60]),
+        ("bore speed error", "bore_speed_error"), ("depth behind the bore", "plateau_depth_error"),
+        ("worst gauge / h0", "mean_abs_error_over_h0_worst"), ("wall s", "wall_s"),
+        ("µs / particle-step", "us_per_particle_step")])
+
+
 # ---------------------------------------------------------------- the plot
 SWEEP = WAVE_SCENE[:-len(".json")]
 
@@ -620,6 +656,8 @@ PLOT_CASES = [
     ("lobovsky", "Lobovsky: worst gauge mean |dh| / H", "worst_mean_abs_error_over_H", False, None, True),
     ("standing_wave", "standing wave: |T / T_linear - 1|", "period_error", True, None, True),
     ("solitary_wave", "solitary wave: |c / sqrt(g (h + A)) - 1|", "celerity_error", True, None, True),
+    ("wet_dam_break", "wet dam break: worst gauge mean |dh| / h0", "mean_abs_error_over_h0_worst", False,
+     None, True),
 ]
 # Scheme -> line style: the default solid with filled circles, textbook dashed with open squares.
 SCHEME_STYLES = {DEFAULT_SCHEME: {"linestyle": "-", "marker": "o"},
