@@ -7,7 +7,7 @@ tools/sgn_solitary.py) and a dam breaking onto a wet bed against Stoker's shallo
 (7.43), each at several resolutions, from swell-validate runs of the shipped scenes.
 
     /usr/bin/python3 tools/validation_plots.py [--bin build/bin] [--out out/validation]
-        [--threads N] [--quick]
+        [--threads N] [--quick] [--only dam-break|lobovsky|solitary-wave|wet-dam-break]...
 
 Writes OUT/dam_break_front.png, OUT/lobovsky_gauges.png, OUT/solitary_wave.png,
 OUT/wet_dam_break.png and OUT/validation_plots.json (each run's command, its swell-validate JSON,
@@ -59,6 +59,7 @@ WET_DAM_BREAK = [
 ]
 # --quick: the CI scene to 1.2 s (the windows end there; three gauges still see the bore).
 WET_DAM_BREAK_QUICK = [("h0/20", "wet_dam_break_small.json", ["solver.end_time=1.2"])]
+KINDS = ("dam-break", "lobovsky", "solitary-wave", "wet-dam-break")  # in the order run and plotted
 COLOURS = ["tab:blue", "tab:orange", "tab:green"]
 GAUGE_COLOURS = ["tab:blue", "tab:orange", "tab:green", "tab:red", "tab:purple", "tab:brown"]
 
@@ -237,15 +238,17 @@ def plot_wet_dam_break(runs, path):
         res = run_["result"]
         h0, h1, gate, theory = res["h0"], res["h1"], res["gate"], res["theory"]
         t = [float(r["t"]) for r in run_["series"]]
-        t_end = t[-1]
-        t_ref = [k * t_end / 400 for k in range(401)]
-        for k, (g, colour) in enumerate(zip(res["gauge_records"], gauge_colours * 2)):
+        for g, colour in zip(res["gauge_records"], gauge_colours * 2):
             x = g["x"]
             h = [float(r[f"h_{x:g}"]) / h0 for r in run_["series"]]
             ax.plot(t, h, color=colour, lw=1.0,
                     label=f"x - x0 = {x - gate:+.2f} m: {100 * g['mean_abs_error_over_h0']:.1f} %")
-            ax.plot(t_ref, [stoker_depth(theory, h0, h1, x - gate, s) / h0 for s in t_ref], "--",
-                    color=colour, lw=0.8)
+            # Theory up to the end of the gauge's window, where a reflection may arrive; a bar
+            # marks that end.
+            t_ref = [k * g["until"] / 400 for k in range(401)]
+            h_ref = [stoker_depth(theory, h0, h1, x - gate, s) / h0 for s in t_ref]
+            ax.plot(t_ref, h_ref, "--", color=colour, lw=0.8)
+            ax.plot([g["until"]], [h_ref[-1]], "|", color=colour, ms=10, mew=1.5)
         ax.axvspan(0.0, res["compared_from"], color="0.93", zorder=0)
         ax.set_ylabel("h / h0")
         ax.set_ylim(0.0, 1.05)
@@ -262,7 +265,8 @@ def plot_wet_dam_break(runs, path):
     axes[-1, 0].set_xlim(0.0, max(float(r["t"]) for r in runs[0]["series"]))
     res = runs[0]["result"]
     fig.suptitle(f"Dam break onto a wet bed, h1 / h0 = {res['h1_over_h0']:.2g}: depth at the "
-                 "gauges (solid) against Stoker (dashed); grey: before the compared window")
+                 "gauges (solid) against Stoker's solution\n(dashed, to the end of each gauge's "
+                 "window, marked |; grey: before the windows open)", fontsize=11)
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     plt.close(fig)
@@ -275,6 +279,8 @@ def main():
     ap.add_argument("--threads", type=int, default=0, help="swell-validate --threads (0: all)")
     ap.add_argument("--quick", action="store_true",
                     help="CI resolutions only (a/20, H/15, h/10, h0/20 to 1.2 s)")
+    ap.add_argument("--only", choices=KINDS, action="append",
+                    help="this check's plot only (repeatable; default: all four)")
     args = ap.parse_args()
     if args.threads < 0:
         fail(f"--threads {args.threads}: must be 0 (all) or more")
@@ -282,28 +288,27 @@ def main():
     if not (binary / "swell-validate").is_file():
         fail(f"--bin {binary}: no swell-validate there (run tools/build)")
     out.mkdir(parents=True, exist_ok=True)
-    cases = ((DAM_BREAK[:1], LOBOVSKY[:1], SOLITARY[:1], WET_DAM_BREAK_QUICK) if args.quick
-             else (DAM_BREAK, LOBOVSKY, SOLITARY, WET_DAM_BREAK))
-    dam = [run(binary, args.threads, "dam-break", *c, out) for c in cases[0]]
-    lob = [run(binary, args.threads, "lobovsky", *c, out) for c in cases[1]]
-    sol = [run(binary, args.threads, "solitary-wave", *c, out) for c in cases[2]]
-    wet = [run(binary, args.threads, "wet-dam-break", *c, out) for c in cases[3]]
-    plot_dam_break(dam, out / "dam_break_front.png")
-    plot_lobovsky(lob, out / "lobovsky_gauges.png")
-    plot_solitary(sol, out / "solitary_wave.png")
-    plot_wet_dam_break(wet, out / "wet_dam_break.png")
+    # kind -> (its cases, the quick run's, its plot, the plot's file)
+    checks = {"dam-break": (DAM_BREAK, DAM_BREAK[:1], plot_dam_break, "dam_break_front.png"),
+              "lobovsky": (LOBOVSKY, LOBOVSKY[:1], plot_lobovsky, "lobovsky_gauges.png"),
+              "solitary-wave": (SOLITARY, SOLITARY[:1], plot_solitary, "solitary_wave.png"),
+              "wet-dam-break": (WET_DAM_BREAK, WET_DAM_BREAK_QUICK, plot_wet_dam_break,
+                                "wet_dam_break.png")}
+    runs, written = [], []
+    for kind in KINDS:
+        if args.only and kind not in args.only:
+            continue
+        full, quick, plot, name = checks[kind]
+        rs = [run(binary, args.threads, kind, *c, out) for c in (quick if args.quick else full)]
+        plot(rs, out / name)
+        written.append(str(out / name))
+        runs += [{"kind": kind, "label": r["label"], "command": r["command"],
+                  "result": r["result"]} for r in rs]
     commit = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"],
                             capture_output=True, text=True).stdout.strip() or "unknown"
-    summary = {"commit": commit, "quick": args.quick,
-               "runs": [{"kind": kind, "label": r["label"], "command": r["command"],
-                         "result": r["result"]}
-                        for kind, rs in (("dam-break", dam), ("lobovsky", lob),
-                                         ("solitary-wave", sol), ("wet-dam-break", wet))
-                        for r in rs]}
+    summary = {"commit": commit, "quick": args.quick, "runs": runs}
     (out / "validation_plots.json").write_text(json.dumps(summary, indent=1) + "\n")
-    print(f"wrote {out / 'dam_break_front.png'}, {out / 'lobovsky_gauges.png'}, "
-          f"{out / 'solitary_wave.png'}, {out / 'wet_dam_break.png'}, "
-          f"{out / 'validation_plots.json'}")
+    print(f"wrote {', '.join(written)}, {out / 'validation_plots.json'}")
 
 
 if __name__ == "__main__":

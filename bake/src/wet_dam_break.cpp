@@ -113,6 +113,11 @@ std::vector<std::pair<double, double>> stokerWindows(const StokerDamBreak& theor
                 "stokerWindows: gauge x = {} m is not inside the tank ({}, {}) m", x, xb, x1));
         const double until =
             std::min({tEnd, back + (x - xb) / forward, far + (x1 - x) / returning});
+        if (!(until > from))
+            throw std::invalid_argument(
+                fmt::format("stokerWindows: gauge x = {} m has nothing to compare: its window "
+                            "would close at {:.3g} s, before it opens at {:.3g} s",
+                            x, until, from));
         out.emplace_back(from, until);
     }
     return out;

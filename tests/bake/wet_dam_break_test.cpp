@@ -123,11 +123,16 @@ TEST(WetDamBreak, WindowsEndBeforeAReflectionCanReturn) {
     EXPECT_NEAR(t.h2 * t.u2 * t.u2 + 0.5 * kG * t.h2 * t.h2 + w3 * t.h2 * t.u2, 0.5 * kG * h3 * h3,
                 1e-9);
     // The run's end caps every window.
-    for (const auto& [from_, until] : stokerWindows(t, 0.0, 1.0, 3.0, 0.9, gauges))
+    for (const auto& [open, until] : stokerWindows(t, 0.0, 1.0, 3.0, 0.9, gauges))
         EXPECT_DOUBLE_EQ(until, 0.9);
     EXPECT_THROW(stokerWindows(t, 0.0, 1.0, 3.0, 2.0, std::vector<double>{3.5}),
                  std::invalid_argument);
     EXPECT_THROW(stokerWindows(t, 0.0, 1.0, 3.0, 2.0, std::vector<double>{0.0}),
+                 std::invalid_argument);
+    // A run that ends before 5 sqrt(h0 / g), or a reservoir so short that its reflection
+    // returns before then: nothing to compare.
+    EXPECT_THROW(stokerWindows(t, 0.0, 1.0, 3.0, 0.4, gauges), std::invalid_argument);
+    EXPECT_THROW(stokerWindows(t, 0.9, 1.0, 3.0, 2.0, std::vector<double>{0.95}),
                  std::invalid_argument);
 }
 
@@ -212,6 +217,9 @@ TEST(WetDamBreak, RunRejectsScenesThatAreNotAWetDamBreak) {
     Scene outside = scene;
     outside.output.gauges = {1.5, 3.5};
     EXPECT_EQ(key(outside), "output.gauges");
+    Scene brief = scene; // ends before the windows open
+    brief.run.endTime = 0.3;
+    EXPECT_EQ(key(brief), "output.gauges");
     Scene weightless = scene;
     weightless.physics.gravity = 0.0;
     EXPECT_EQ(key(weightless), "physics.gravity");

@@ -60,6 +60,21 @@ class ValidationPlots(unittest.TestCase):
             for g in lob[1:]:
                 self.assertGreater(g["experiment_scatter_over_H"], 0.0, g["name"])
 
+    def test_only_runs_and_plots_the_checks_named(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            out = pathlib.Path(tmp)
+            p = subprocess.run([sys.executable, str(TOOL), "--quick", "--threads", "1",
+                                "--only", "dam-break", "--bin", str(BIN), "--out", str(out)],
+                               capture_output=True, text=True)
+            self.assertEqual(p.returncode, 0, p.stderr)
+            self.assertEqual(sorted(f.name for f in out.glob("*.png")), ["dam_break_front.png"])
+            summary = json.loads((out / "validation_plots.json").read_text())
+            self.assertEqual([r["kind"] for r in summary["runs"]], ["dam-break"])
+            p = subprocess.run([sys.executable, str(TOOL), "--only", "tsunami", "--bin", str(BIN),
+                                "--out", str(out)], capture_output=True, text=True)
+            self.assertEqual(p.returncode, 2)
+            self.assertIn("--only", p.stderr)
+
     def test_unwritable_csv_and_records_are_one_clear_line_each(self):
         scene = str(ROOT / "scenes" / "lobovsky_small.json")
         for option in ("--csv", "--records"):

@@ -84,7 +84,8 @@ struct WetDamBreakCheck {
 /// the first time theory allows a wave reflected at the back wall xb (the fan's head reaching
 /// it at (x0 - xb) / c0, then coming back no faster than max(c0, u2 + c2)) or at the far wall
 /// x1 (the bore reaching it at (x1 - x0) / S and coming back as the bore that brings (h2, u2) to
-/// rest) to reach it. Throws std::invalid_argument for a gauge outside (xb, x1).
+/// rest) to reach it. Throws std::invalid_argument for a gauge outside (xb, x1), or one whose
+/// window would close before it opens.
 std::vector<std::pair<double, double>> stokerWindows(const StokerDamBreak& theory, double xb,
                                                      double x0, double x1, double tEnd,
                                                      std::span<const double> gauges);
