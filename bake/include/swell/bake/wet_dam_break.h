@@ -13,7 +13,7 @@
 
 #include <cstddef>
 #include <span>
-#include <string>
+#include <utility>
 #include <vector>
 
 #include "swell/bake/scene.h"
