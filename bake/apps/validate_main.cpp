@@ -481,7 +481,7 @@ json wetDamBreak(const Scene& scene, const std::string& csv) {
                {"c0", t.c0},
                {"c2", t.c2},
                {"gravity", t.gravity}}},
-             {"compared_from", kStokerFromTimes * std::sqrt(t.h0 / t.gravity)},
+             {"compared_from", t.comparedFrom()},
              {"gauges", r.gauges},
              {"particles", r.particles},
              {"water", r.water},

@@ -98,10 +98,14 @@ bool StokerDamBreak::behindBore(double dx, double t) const {
     return xi > u2 - c2 && xi <= boreSpeed;
 }
 
+double StokerDamBreak::comparedFrom() const {
+    return kStokerFromTimes * std::sqrt(h0 / gravity);
+}
+
 std::vector<std::pair<double, double>> stokerWindows(const StokerDamBreak& theory, double xb,
                                                      double x0, double x1, double tEnd,
                                                      std::span<const double> gauges) {
-    const double from = kStokerFromTimes * std::sqrt(theory.h0 / theory.gravity);
+    const double from = theory.comparedFrom();
     const double back = (x0 - xb) / theory.c0; // the fan's head at the back wall
     const double forward = std::max(theory.c0, theory.u2 + theory.c2);
     const double far = (x1 - x0) / theory.boreSpeed; // the bore at the far wall
@@ -131,7 +135,7 @@ WetDamBreakCheck analyseWetDamBreak(const StokerDamBreak& theory, double x0,
         throw std::invalid_argument(
             fmt::format("analyseWetDamBreak: {} gauges, {} records and {} windows", gauges.size(),
                         depths.size(), windows.size()));
-    const double settle = kStokerFromTimes * std::sqrt(theory.h0 / theory.gravity);
+    const double settle = theory.comparedFrom();
     const double boreLevel = 0.5 * (theory.h1 + theory.h2);
     WetDamBreakCheck out;
     std::vector<double> arrivals, xs;
