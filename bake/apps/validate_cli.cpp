@@ -19,7 +19,7 @@ std::optional<int> parseValidateCommandLine(int argc, const char* const* argv,
                                             ValidateCommandLine& cl, std::ostream& out,
                                             std::ostream& err) {
     CLI::App app{"swell-validate: dam-break, lobovsky, still-tank, regular-wave, standing-wave, "
-                 "solitary-wave and wet-dam-break validation runs of the MPS solver"};
+                 "solitary-wave, wet-dam-break and shoaling validation runs of the MPS solver"};
     app.require_subcommand(1);
     app.fallthrough();
     app.add_option("--set", cl.sets, "override a scene key: section.key=value (repeatable)")
@@ -116,6 +116,20 @@ std::optional<int> parseValidateCommandLine(int argc, const char* const* argv,
     wet->add_option("--csv", cl.csv, "write the depth series t,h_<x>... (m)");
     addEnsemble(*wet, cl)->excludes("--csv");
 
+    auto* shoal = app.add_subcommand(
+        "shoaling", "run a solitary wave up a 1:34.7 beach until it breaks and compare the "
+                    "elevation at the six gauges with Grilli et al. (1994)'s experiment");
+    shoal
+        ->add_option("scene", cl.scene,
+                     "scene JSON: a solitary piston (H / h0 = 0.2), geometry.bed rising "
+                     "1:34.7 from its first point, output.gauges at the experiment's gauges")
+        ->required();
+    shoal->add_option("--csv", cl.csv, "write the elevation series t,eta_<x>... (m)");
+    shoal->add_option("--records", cl.records,
+                      "write the experiment's gauge records (gauge,x_over_h0,t,eta; "
+                      "t sqrt(g/h0), eta/h0) to this file");
+    addEnsemble(*shoal, cl)->excludes("--csv");
+
     if (const auto rc = cli::parse(app, argc, argv, "swell-validate", 0, out, err))
         return rc;
     cl.run = *dam     ? ValidateCommandLine::Run::DamBreak
@@ -124,6 +138,7 @@ std::optional<int> parseValidateCommandLine(int argc, const char* const* argv,
              : *wave  ? ValidateCommandLine::Run::RegularWave
              : *slosh ? ValidateCommandLine::Run::StandingWave
              : *wet   ? ValidateCommandLine::Run::WetDamBreak
+             : *shoal ? ValidateCommandLine::Run::Shoaling
                       : ValidateCommandLine::Run::SolitaryWave;
     if (cl.scene.empty()) {
         err << "swell-validate: scene: an empty path (see --help)\n";

@@ -1,5 +1,5 @@
 #pragma once
-// swell-validate's command line: its seven runs and their options, parsed and checked without
+// swell-validate's command line: its eight runs and their options, parsed and checked without
 // running, so that validate_main.cpp and the options fuzz target (tests/fuzz) share it.
 
 #include <optional>
@@ -19,7 +19,8 @@ struct ValidateCommandLine {
         RegularWave,
         StandingWave,
         SolitaryWave,
-        WetDamBreak
+        WetDamBreak,
+        Shoaling
     };
     Run run = Run::DamBreak;
     std::string scene;             ///< the run's scene file
@@ -29,7 +30,7 @@ struct ValidateCommandLine {
     double damUntil = 3.2;      ///< dam-break --until (T = t sqrt(2g/a))
     double lobovskyUntil = 1.5; ///< lobovsky --until (s)
     std::string csv;            ///< --csv of every run but still-tank and regular-wave
-    std::string records;        ///< dam-break / lobovsky --records
+    std::string records;        ///< dam-break / lobovsky / shoaling --records
     double settle = 2.0;        ///< still-tank --settle (s)
     long steps = -1;            ///< still-tank --steps; -1: end_time / dt
     long trace = 0;             ///< still-tank --trace

@@ -1,7 +1,8 @@
 // swell-validate: developer runs behind docs/validation.md (dam break against Martin & Moyce
 // and against the water levels of Lobovsky et al. 2014, regular waves against linear wavemaker
 // theory, still-tank hydrostatics, a standing wave against linear theory, a solitary wave against
-// Boussinesq's and Rayleigh's theory, a dam breaking onto a wet bed against Stoker's solution).
+// Boussinesq's and Rayleigh's theory, a dam breaking onto a wet bed against Stoker's solution,
+// a solitary wave shoaling up a beach against Grilli et al. 1994).
 // Thin: scene loading, the solver and the comparisons are library code.
 #include <chrono>
 #include <cmath>
@@ -32,6 +33,7 @@
 #include "swell/bake/probes.h"
 #include "swell/bake/regular_wave.h"
 #include "swell/bake/scene.h"
+#include "swell/bake/shoaling.h"
 #include "swell/bake/solitary_wave.h"
 #include "swell/bake/solver_run.h"
 #include "swell/bake/standing_wave.h"
@@ -513,6 +515,52 @@ json wetDamBreak(const Scene& scene, const std::string& csv) {
     return out;
 }
 
+/// A solitary wave shoaling up a beach (shoaling.h, runShoaling): the elevation at the six
+/// gauges against Grilli et al. (1994)'s records, on the clock of g0's crest.
+json shoaling(const Scene& scene, const std::string& csv) {
+    const ShoalingReport r = runShoaling(scene);
+    json out{{"scene", scene.name},
+             {"l0", scene.geometry.particleSpacing},
+             {"depth", r.depth},
+             {"height", r.height},
+             {"height_over_depth", r.height / r.depth},
+             {"toe", r.toe},
+             {"slope", r.slope},
+             {"still_window", {r.stillFrom, r.stillTo}},
+             {"gauges", r.gauges},
+             {"particles", r.particles},
+             {"water", r.water},
+             {"outcome", r.outcome}};
+    if (!csv.empty())
+        writeGaugeSeries(csv, r, "eta", r.gauges);
+    if (r.outcome == kStable) {
+        const ShoalingCheck& c = r.check;
+        json gauges = json::array();
+        for (const ShoalingGaugeError& g : c.gauges)
+            gauges.push_back({{"name", g.name},
+                              {"x", g.x},
+                              {"crest_over_h0", g.crest},
+                              {"crest_record_over_h0", g.crestRecord},
+                              {"crest_time", g.crestTime},
+                              {"crest_time_record", g.crestTimeRecord},
+                              {"amplification", g.amplification},
+                              {"amplification_record", g.amplificationRecord},
+                              {"mean_abs_error_over_h0", g.meanAbsError},
+                              {"mean_signed_error_over_h0", g.meanSignedError},
+                              {"from", g.from},
+                              {"until", g.until}});
+        out["gauge_records"] = gauges;
+        out["clock_offset"] = c.clockOffset;
+        out["incident_crest_error"] = c.incidentCrestError;
+        out["crest_error_worst"] = c.crestErrorWorst;
+        out["amplification_error_worst"] = c.amplificationErrorWorst;
+        out["mean_abs_error_over_h0_worst"] = c.meanAbsErrorWorst;
+        out["travel_time_error"] = c.travelTimeError;
+    }
+    addRunCost(out, r, r.particles);
+    return out;
+}
+
 json toJson(const Spread& s) {
     return {{"mean", s.mean}, {"sd", s.sd}, {"min", s.min}, {"max", s.max}, {"members", s.count}};
 }
@@ -623,6 +671,20 @@ Figures wetDamBreakFigures(const json& r) {
             {"mean_abs_error_over_h0_worst", r["mean_abs_error_over_h0_worst"].get<double>()}};
 }
 
+Figures shoalingFigures(const json& r) {
+    Figures f{{"incident_crest_error", r["incident_crest_error"].get<double>()},
+              {"crest_error_worst", r["crest_error_worst"].get<double>()},
+              {"amplification_error_worst", r["amplification_error_worst"].get<double>()},
+              {"mean_abs_error_over_h0_worst", r["mean_abs_error_over_h0_worst"].get<double>()},
+              {"travel_time_error", r["travel_time_error"].get<double>()}};
+    for (const json& g : r["gauge_records"]) {
+        const std::string name = g["name"].get<std::string>();
+        f.push_back({"crest_over_h0_" + name, g["crest_over_h0"].get<double>()});
+        f.push_back({"mean_abs_error_over_h0_" + name, g["mean_abs_error_over_h0"].get<double>()});
+    }
+    return f;
+}
+
 Figures damBreakFigures(const json& r) {
     return {{"front_error_mean", r["front_error_mean"].get<double>()},
             {"aligned_front_error_mean", r["aligned_front_error_mean"].get<double>()},
@@ -644,7 +706,9 @@ int main(int argc, char** argv) {
         const Scene scene = loadValidateScene(cl);
         if (!cl.records.empty()) // before the run: a bad path fails now, not after it
             writeTextFile(cl.records,
-                          cl.run == Run::DamBreak ? martinMoyceRecordsCsv() : lobovskyRecordsCsv(),
+                          cl.run == Run::DamBreak   ? martinMoyceRecordsCsv()
+                          : cl.run == Run::Shoaling ? grilli1994RecordsCsv()
+                                                    : lobovskyRecordsCsv(),
                           "--records");
         // One check: run(scene, single) runs it once; a single run also writes the files its
         // options name (--csv, --keep), an ensemble member does not.
@@ -678,6 +742,9 @@ int main(int argc, char** argv) {
         } else if (cl.run == Run::WetDamBreak) {
             run = [&](const Scene& s, bool single) { return wetDamBreak(s, single ? cl.csv : ""); };
             figures = wetDamBreakFigures;
+        } else if (cl.run == Run::Shoaling) {
+            run = [&](const Scene& s, bool single) { return shoaling(s, single ? cl.csv : ""); };
+            figures = shoalingFigures;
         } else {
             const long steps =
                 cl.steps >= 0 ? cl.steps : std::lround(scene.run.endTime / scene.solver.time.dt);

@@ -36,6 +36,8 @@ void checkParticleCount(const GeometryParams& g, int layers) {
         const double nUp = std::round(g.tank->height() / l0);
         const double back = std::ceil(std::max(0.0, g.bedExtensionBack) / l0 - 1e-6);
         count += layers * (nIn + 2.0 * layers + back) + nUp * 2.0 * layers;
+        if (!g.bed.empty())
+            count += layers * nIn; // the profile's layers above the flat bed, at most
     }
     for (const Box& s : g.solids) {
         const double nx = cells(s.width()), ny = cells(s.height());
@@ -71,7 +73,74 @@ void checkBox(const Box& b, const std::string& key) {
     }
 }
 
+/// Refuses a bed profile that the generator cannot lay out: no tank, fewer than two points,
+/// x not increasing, a point outside the tank, or a slope steeper than kMaxBedSlope.
+void checkBed(const GeometryParams& g) {
+    if (g.bed.empty())
+        return;
+    if (!g.tank)
+        throw SceneError("geometry.bed", "needs geometry.tank: the profile is the tank's bed");
+    if (g.bed.size() < 2)
+        throw SceneError("geometry.bed", "needs at least two points [x, y] (m)");
+    const Box& t = *g.tank;
+    for (std::size_t k = 0; k < g.bed.size(); ++k) {
+        const BedPoint& p = g.bed[k];
+        const std::string key = fmt::format("geometry.bed[{}]", k);
+        if (!std::isfinite(p.x) || !std::isfinite(p.y))
+            throw SceneError(key, "coordinates must be finite numbers");
+        if (p.x < t.x0 || p.x > t.x1)
+            throw SceneError(
+                key, fmt::format("x = {} m lies outside the tank [{}, {}] m", p.x, t.x0, t.x1));
+        if (p.y < t.y0 || p.y >= t.y1)
+            throw SceneError(key, fmt::format("y = {} m must be in [{}, {}) m, from the tank's "
+                                              "bed to below the top of its walls",
+                                              p.y, t.y0, t.y1));
+        if (k == 0)
+            continue;
+        const BedPoint& q = g.bed[k - 1];
+        if (!(p.x > q.x))
+            throw SceneError(
+                key, fmt::format("x = {} m must exceed the previous point's {} m", p.x, q.x));
+        const double slope = std::abs(p.y - q.y) / (p.x - q.x);
+        if (slope > kMaxBedSlope * (1.0 + 1e-9))
+            throw SceneError(key, fmt::format("the slope from the previous point is {:.4g}, "
+                                              "steeper than {:g} (the layers under the bed "
+                                              "are counted vertically)",
+                                              slope, kMaxBedSlope));
+    }
+}
+
+/// Depth of a site at height y under the bed at height b, in spacings, snapped to a whole
+/// number within 1e-6 so that a site on the profile is not under it (water) whatever the
+/// rounding of b and y: a site is under the bed where this is > 0, and its layer is the number
+/// of lattice sites between it and the bed, ceil(depth) - 1 (bedLayer).
+double depthUnderBed(double b, double y, double l0) {
+    const double d = (b - y) / l0;
+    const double whole = std::round(d);
+    return std::abs(d - whole) < 1e-6 ? whole : d;
+}
+
+/// The layer of a site `depth` spacings under the bed (depth > 0): on a flat bed the row
+/// at depth k + 1/2 is layer k, and a row one spacing under a site on the profile is layer 0.
+long bedLayer(double depth) {
+    return static_cast<long>(std::ceil(depth)) - 1;
+}
+
 } // namespace
+
+double bedHeight(const GeometryParams& g, double x) {
+    if (g.bed.empty())
+        return g.tank ? g.tank->y0 : 0.0;
+    if (x <= g.bed.front().x)
+        return g.bed.front().y;
+    if (x >= g.bed.back().x)
+        return g.bed.back().y;
+    const auto next = std::upper_bound(g.bed.begin(), g.bed.end(), x,
+                                       [](double v, const BedPoint& p) { return v < p.x; });
+    const BedPoint& b = *next;
+    const BedPoint& a = *(next - 1);
+    return a.y + (b.y - a.y) * (x - a.x) / (b.x - a.x);
+}
 
 GeneratedGeometry generateGeometry(const GeometryParams& g) {
     const double l0 = g.particleSpacing;
@@ -103,6 +172,7 @@ GeneratedGeometry generateGeometry(const GeometryParams& g) {
         solidRegions.push_back({Box{t.x0 - L, t.y0, t.x0, t.y1}, "geometry.tank (back wall)"});
         solidRegions.push_back({Box{t.x1, t.y0, t.x1 + L, t.y1}, "geometry.tank (front wall)"});
     }
+    checkBed(g);
     for (std::size_t s = 0; s < g.solids.size(); ++s) {
         const std::string key = fmt::format("geometry.solids[{}]", s);
         checkBox(g.solids[s], key);
@@ -162,6 +232,7 @@ GeneratedGeometry generateGeometry(const GeometryParams& g) {
             if (r.x1 > b.x0 && r.x0 < b.x1 && r.y1 > b.y0 && r.y0 < b.y1)
                 near.push_back(region);
         }
+        std::size_t held = 0;
         for (long j = 0; j < ny; ++j) {
             for (long i = 0; i < nx; ++i) {
                 const double x = b.x0 + (static_cast<double>(i) + 0.5) * l0;
@@ -178,9 +249,14 @@ GeneratedGeometry generateGeometry(const GeometryParams& g) {
                             fmt::format("water at ({:.6g}, {:.6g}) m lies inside {}", x, y, name));
                     }
                 }
+                if (!g.bed.empty() && depthUnderBed(bedHeight(g, x), y, l0) > 0.0)
+                    continue; // under the bed profile: the bed's layers hold this site
                 P.add(x, y, ParticleKind::Water);
+                ++held;
             }
         }
+        if (held == 0)
+            throw SceneError(key, "holds no particle: it lies wholly under geometry.bed");
     }
 
     // Tank: bed (with corners) and two side walls; layer 0 is the one touching the water.
@@ -190,21 +266,47 @@ GeneratedGeometry generateGeometry(const GeometryParams& g) {
         const long nUp = std::lround(t.height() / l0);
         // Bed extension behind the back wall (piston travel), in whole spacings.
         const long back = bedExtensionCells(g);
+        // A site's layer: its distance in spacings from the side walls' inner faces (0
+        // between them) and at least the whole spacings between it and the bed above it (the
+        // profile's height at its x, clamped to the tank). On the flat bed these are the bed
+        // rows' k and the corners' max(k, side).
+        const auto layerAt = [&](double x, double y, long side) {
+            const double d = depthUnderBed(bedHeight(g, std::clamp(x, t.x0, t.x1)), y, l0);
+            return d > 0.0 ? std::max(side, bedLayer(d)) : side;
+        };
         for (long k = 0; k < layers; ++k) { // bed rows, corners included
             const double y = t.y0 - (static_cast<double>(k) + 0.5) * l0;
             for (long i = -layers - back; i < nIn + layers; ++i) {
                 const double x = t.x0 + (static_cast<double>(i) + 0.5) * l0;
                 const long side = i < -back ? -i - 1 - back : (i >= nIn ? i - nIn : 0);
-                P.add(x, y, layerKind(std::max(k, side), g.wallLayers));
+                const long layer = layerAt(x, y, side);
+                if (layer < layers) // deeper under a raised bed: nothing reaches it
+                    P.add(x, y, layerKind(layer, g.wallLayers));
+            }
+        }
+        if (!g.bed.empty()) { // the profile above the flat bed
+            for (long j = 0; j < nUp; ++j) {
+                const double y = t.y0 + (static_cast<double>(j) + 0.5) * l0;
+                for (long i = 0; i < nIn; ++i) {
+                    const double x = t.x0 + (static_cast<double>(i) + 0.5) * l0;
+                    const double d = depthUnderBed(bedHeight(g, x), y, l0);
+                    if (d > 0.0 && bedLayer(d) < layers)
+                        P.add(x, y, layerKind(bedLayer(d), g.wallLayers));
+                }
             }
         }
         for (long j = 0; j < nUp; ++j) { // side walls
             const double y = t.y0 + (static_cast<double>(j) + 0.5) * l0;
             for (long k = 0; k < layers; ++k) {
-                backWall.resize(P.size(), 0);
-                backWall.push_back(1);
-                P.add(t.x0 - (static_cast<double>(k) + 0.5) * l0, y, layerKind(k, g.wallLayers));
-                P.add(t.x1 + (static_cast<double>(k) + 0.5) * l0, y, layerKind(k, g.wallLayers));
+                const double xBack = t.x0 - (static_cast<double>(k) + 0.5) * l0;
+                const double xFront = t.x1 + (static_cast<double>(k) + 0.5) * l0;
+                if (const long layer = layerAt(xBack, y, k); layer < layers) {
+                    backWall.resize(P.size(), 0);
+                    backWall.push_back(1);
+                    P.add(xBack, y, layerKind(layer, g.wallLayers));
+                }
+                if (const long layer = layerAt(xFront, y, k); layer < layers)
+                    P.add(xFront, y, layerKind(layer, g.wallLayers));
             }
         }
     }

@@ -189,6 +189,25 @@ std::vector<Box> readBoxes(Section& parent, const std::string& k) {
     return out;
 }
 
+/// geometry.bed: an array of points [x, y] (m); the order and ranges are the geometry's to
+/// check (generateGeometry), which names the point.
+std::vector<BedPoint> readBed(Section& parent) {
+    std::vector<BedPoint> out;
+    const json* v = parent.get("bed");
+    if (!v)
+        return out;
+    if (!v->is_array())
+        throw SceneError("geometry.bed", "must be an array of points [x, y] (m)");
+    for (std::size_t i = 0; i < v->size(); ++i) {
+        const json& p = (*v)[i];
+        const std::string key = fmt::format("geometry.bed[{}]", i);
+        if (!p.is_array() || p.size() != 2 || !p[0].is_number() || !p[1].is_number())
+            throw SceneError(key, fmt::format("must be a point [x, y] (m), got {}", shown(p)));
+        out.push_back(BedPoint{p[0].get<double>(), p[1].get<double>()});
+    }
+    return out;
+}
+
 json boxJson(const Box& b) {
     return json{{"x0", b.x0}, {"y0", b.y0}, {"x1", b.x1}, {"y1", b.y1}};
 }
@@ -263,6 +282,7 @@ Scene parseScene(const json& j) {
             throw SceneError("geometry.water",
                              "is empty: a scene needs at least one water rectangle");
         g.solids = readBoxes(s, "solids");
+        g.bed = readBed(s);
         g.wallLayers = s.integer("wall_layers", g.wallLayers, 1, 10);
         g.dummyLayers = s.integer("dummy_layers", g.dummyLayers, 0, 10);
         g.jitter = s.number("jitter", g.jitter, 0.0, 0.1, false, " (l0)");
@@ -420,6 +440,10 @@ Scene parseScene(const json& j) {
         p.seed = scene.seed;
         if (!scene.geometry.tank)
             throw SceneError("piston", "needs geometry.tank: the piston is the tank's back wall");
+        if (bedHeight(scene.geometry, scene.geometry.tank->x0) != scene.geometry.tank->y0)
+            throw SceneError("geometry.bed",
+                             "must start at the tank's y0 at its back wall when the scene has a "
+                             "piston (the piston is the back wall above the bed)");
         const bool solitary = p.kind == PistonKind::Solitary;
         if (solitary) {
             // Goring's stroke is made for the water it pushes: the still water over the bed.
@@ -549,6 +573,12 @@ json toJson(const Scene& sc) {
              {"jitter", g.jitter}};
     if (g.tank)
         geo["tank"] = boxJson(*g.tank);
+    if (!g.bed.empty()) {
+        json bed = json::array();
+        for (const BedPoint& p : g.bed)
+            bed.push_back(json::array({p.x, p.y}));
+        geo["bed"] = std::move(bed);
+    }
     if (g.domain)
         geo["domain"] = boxJson(*g.domain);
     const SolverParams& s = sc.solver;

@@ -25,40 +25,6 @@ double halfHeightDuration(double amplitude, double depth, double gravity) {
     return 2.0 * std::acosh(std::sqrt(2.0)) / (w.wavenumber * w.celerity);
 }
 
-/// The top of the least-squares parabola y = a + b s + c s^2 (s = t - t0) through the samples
-/// [lo, hi]: (t of the vertex, y there). Falls back to the highest sample when the fit is not
-/// a maximum.
-std::pair<double, double> parabolaTop(std::span<const double> t, std::span<const double> y,
-                                      std::size_t lo, std::size_t hi, std::size_t peak) {
-    const double t0 = t[peak];
-    double s[5] = {0, 0, 0, 0, 0}, r[3] = {0, 0, 0};
-    for (std::size_t k = lo; k <= hi; ++k) {
-        const double d = t[k] - t0;
-        double p = 1.0;
-        for (int e = 0; e < 5; ++e) {
-            s[e] += p;
-            if (e < 3)
-                r[e] += p * y[k];
-            p *= d;
-        }
-    }
-    // Normal equations [s0 s1 s2; s1 s2 s3; s2 s3 s4] (a b c) = r, by Cramer's rule.
-    const auto det3 = [](double a, double b, double c, double d, double e, double f, double g,
-                         double h, double i) {
-        return a * (e * i - f * h) - b * (d * i - f * g) + c * (d * h - e * g);
-    };
-    const double D = det3(s[0], s[1], s[2], s[1], s[2], s[3], s[2], s[3], s[4]);
-    if (hi - lo < 2 || !(std::abs(D) > 0.0))
-        return {t0, y[peak]};
-    const double a = det3(r[0], s[1], s[2], r[1], s[2], s[3], r[2], s[3], s[4]) / D;
-    const double b = det3(s[0], r[0], s[2], s[1], r[1], s[3], s[2], r[2], s[4]) / D;
-    const double c = det3(s[0], s[1], r[0], s[1], s[2], r[1], s[2], s[3], r[2]) / D;
-    const double vertex = -b / (2.0 * c);
-    if (!(c < 0.0) || std::abs(vertex) > t[hi] - t[lo])
-        return {t0, y[peak]};
-    return {t0 + vertex, a + b * vertex + c * vertex * vertex};
-}
-
 } // namespace
 
 std::vector<CrestWindow> solitaryCrestWindows(const PistonParams& piston, double x0, double x1,
@@ -195,11 +161,7 @@ SolitaryWaveReport runSolitaryWave(const Scene& scene) {
     } catch (const std::invalid_argument& e) {
         throw SceneError("output.gauges", e.what());
     }
-    MpsSolver solver = makeSolver(scene);
-    r.particles = solver.particles().size();
-    r.water = solver.particles().count(ParticleKind::Water);
-    static_cast<GaugeRecords&>(r) = recordGauges(
-        solver, probeParamsFor(solver, scene, stillWaterLevel(scene), r.gauges), scene.run.endTime);
+    static_cast<GaugeRecords&>(r) = recordGauges(scene, stillWaterLevel(scene), r.gauges);
     if (r.outcome != kStable)
         return r;
     try {

@@ -44,6 +44,17 @@ GaugeRecords recordGauges(MpsSolver& solver, const ProbeParams& probe, double tE
     return r;
 }
 
+GaugeRecords recordGauges(const Scene& scene, double stillWaterLevel, std::vector<double> gauges) {
+    MpsSolver solver = makeSolver(scene);
+    const std::size_t particles = solver.particles().size();
+    const std::size_t water = solver.particles().count(ParticleKind::Water);
+    const ProbeParams probe = probeParamsFor(solver, scene, stillWaterLevel, std::move(gauges));
+    GaugeRecords r = recordGauges(solver, probe, scene.run.endTime);
+    r.particles = particles;
+    r.water = water;
+    return r;
+}
+
 ProbeParams probeParamsFor(const MpsSolver& solver, const Scene& scene, double stillWaterLevel,
                            std::vector<double> gauges) {
     ProbeParams p;

@@ -80,12 +80,8 @@ StandingWaveReport runStandingWave(const Scene& scene) {
     const double l0 = scene.geometry.particleSpacing;
     StandingWaveReport r;
     r.theory = standingWaveTheory(top.wavelength, water.height(), scene.physics.gravity);
-    MpsSolver solver = makeSolver(scene);
-    r.particles = solver.particles().size();
-    r.water = solver.particles().count(ParticleKind::Water);
     r.gauges = {tank.x0 + l0, tank.x1 - l0};
-    static_cast<GaugeRecords&>(r) =
-        recordGauges(solver, probeParamsFor(solver, scene, water.y1, r.gauges), scene.run.endTime);
+    static_cast<GaugeRecords&>(r) = recordGauges(scene, water.y1, r.gauges);
     if (r.outcome != kStable)
         return r;
     const double share = 1.0 / static_cast<double>(r.gauges.size());

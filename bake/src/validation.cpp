@@ -187,6 +187,37 @@ std::optional<LevelError> lobovskyScatter(const LevelGauge& gauge, double tLo, d
     return compareLevel(gauge.repeat, gauge.series, tLo, tHi);
 }
 
+std::pair<double, double> parabolaTop(std::span<const double> t, std::span<const double> y,
+                                      std::size_t lo, std::size_t hi, std::size_t peak) {
+    const double t0 = t[peak];
+    double s[5] = {0, 0, 0, 0, 0}, r[3] = {0, 0, 0};
+    for (std::size_t k = lo; k <= hi; ++k) {
+        const double d = t[k] - t0;
+        double p = 1.0;
+        for (int e = 0; e < 5; ++e) {
+            s[e] += p;
+            if (e < 3)
+                r[e] += p * y[k];
+            p *= d;
+        }
+    }
+    // Normal equations [s0 s1 s2; s1 s2 s3; s2 s3 s4] (a b c) = r, by Cramer's rule.
+    const auto det3 = [](double a, double b, double c, double d, double e, double f, double g,
+                         double h, double i) {
+        return a * (e * i - f * h) - b * (d * i - f * g) + c * (d * h - e * g);
+    };
+    const double D = det3(s[0], s[1], s[2], s[1], s[2], s[3], s[2], s[3], s[4]);
+    if (hi - lo < 2 || !(std::abs(D) > 0.0))
+        return {t0, y[peak]};
+    const double a = det3(r[0], s[1], s[2], r[1], s[2], s[3], r[2], s[3], s[4]) / D;
+    const double b = det3(s[0], r[0], s[2], s[1], r[1], s[3], s[2], r[2], s[4]) / D;
+    const double c = det3(s[0], s[1], r[0], s[1], s[2], r[1], s[2], s[3], r[2]) / D;
+    const double vertex = -b / (2.0 * c);
+    if (!(c < 0.0) || std::abs(vertex) > t[hi] - t[lo])
+        return {t0, y[peak]};
+    return {t0 + vertex, a + b * vertex + c * vertex * vertex};
+}
+
 double lineSlope(std::span<const double> x, std::span<const double> y, const char* what) {
     const double n = static_cast<double>(x.size());
     double mx = 0.0, my = 0.0;

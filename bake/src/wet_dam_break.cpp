@@ -242,12 +242,8 @@ WetDamBreakReport runWetDamBreak(const Scene& scene) {
         throw SceneError("output.gauges", e.what());
     }
     r.gauges = scene.output.gauges;
-    MpsSolver solver = makeSolver(scene);
-    r.particles = solver.particles().size();
-    r.water = solver.particles().count(ParticleKind::Water);
     // Elevations from the bed are depths.
-    static_cast<GaugeRecords&>(r) =
-        recordGauges(solver, probeParamsFor(solver, scene, tank.y0, r.gauges), scene.run.endTime);
+    static_cast<GaugeRecords&>(r) = recordGauges(scene, tank.y0, r.gauges);
     if (r.outcome != kStable)
         return r;
     try {

@@ -75,7 +75,8 @@ TEST(CommandLine, SwellValidateRunsTheSubcommandNamed) {
                                     {"regular-wave", Run::RegularWave},
                                     {"standing-wave", Run::StandingWave},
                                     {"solitary-wave", Run::SolitaryWave},
-                                    {"wet-dam-break", Run::WetDamBreak}}) {
+                                    {"wet-dam-break", Run::WetDamBreak},
+                                    {"shoaling", Run::Shoaling}}) {
         const char* argv[] = {"swell-validate", name, "s.json"};
         ValidateCommandLine cl;
         std::ostringstream out, err;
@@ -133,6 +134,13 @@ TEST(CommandLine, SwellValidateRefusesNonsenseValues) {
                   "swell-validate", "--csv");
     expectRefused(validate({"wet-dam-break", "s.json", "--settle", "2"}), "swell-validate",
                   "--settle");
+    // The shoaling wave: a series, the experiment's records or an ensemble.
+    EXPECT_FALSE(validate({"shoaling", "s.json", "--csv", "eta.csv"}).rc.has_value());
+    EXPECT_FALSE(validate({"shoaling", "s.json", "--records", "g.csv"}).rc.has_value());
+    EXPECT_FALSE(validate({"shoaling", "s.json", "--ensemble", "4"}).rc.has_value());
+    expectRefused(validate({"shoaling", "s.json", "--ensemble", "2", "--csv", "eta.csv"}),
+                  "swell-validate", "--csv");
+    expectRefused(validate({"shoaling", "s.json", "--until", "2"}), "swell-validate", "--until");
     // The dam breaks and the still tank run as ensembles too; an ensemble has no single
     // series to write.
     EXPECT_FALSE(validate({"lobovsky", "s.json", "--ensemble", "4"}).rc.has_value());

@@ -215,3 +215,118 @@ TEST(Geometry, JitterMovesOnlyWaterWithinItsAmplitudeAndFollowsTheSeed) {
     EXPECT_EQ(moved, P.count(ParticleKind::Water));
     EXPECT_GT(largest, 0.9 * a); // 400 draws: the largest is within 10 % of the bound
 }
+
+namespace {
+
+/// A 0.5 m tank with a beach: flat to x = 0.2 m, then rising 1:5 to 0.06 m at the front wall.
+GeometryParams tankWithBeach() {
+    GeometryParams g = tankWithColumn();
+    g.water = {Box{0.0, 0.0, 0.5, 0.1}};
+    g.bed = {BedPoint{0.2, 0.0}, BedPoint{0.5, 0.06}};
+    return g;
+}
+
+} // namespace
+
+TEST(Geometry, BedHeightFollowsTheProfileAndIsFlatBeyondItsEnds) {
+    const GeometryParams g = tankWithBeach();
+    EXPECT_DOUBLE_EQ(bedHeight(g, 0.1), 0.0);
+    EXPECT_DOUBLE_EQ(bedHeight(g, 0.2), 0.0);
+    EXPECT_NEAR(bedHeight(g, 0.35), 0.03, 1e-15);
+    EXPECT_DOUBLE_EQ(bedHeight(g, 0.5), 0.06);
+    EXPECT_DOUBLE_EQ(bedHeight(g, 0.7), 0.06);
+    EXPECT_DOUBLE_EQ(bedHeight(tankWithColumn(), 0.3), 0.0); // no profile: the tank's y0
+}
+
+TEST(Geometry, WithoutABedProfileTheTankIsLaidOutAsBefore) {
+    // The profile's code path with a flat profile at y0 gives the same sites, kinds and order.
+    GeometryParams flat = tankWithColumn();
+    flat.bed = {BedPoint{0.0, 0.0}, BedPoint{0.5, 0.0}};
+    const GeneratedGeometry a = generateGeometry(tankWithColumn());
+    const GeneratedGeometry b = generateGeometry(flat);
+    ASSERT_EQ(a.particles.size(), b.particles.size());
+    for (std::size_t i = 0; i < a.particles.size(); ++i) {
+        EXPECT_EQ(a.particles.x[i], b.particles.x[i]);
+        EXPECT_EQ(a.particles.y[i], b.particles.y[i]);
+        EXPECT_EQ(a.particles.kind[i], b.particles.kind[i]);
+    }
+    EXPECT_EQ(a.backWall, b.backWall);
+}
+
+TEST(Geometry, BedProfileCutsTheWaterAndLaysItsLayersUnderTheSlope) {
+    const GeometryParams g = tankWithBeach();
+    const GeneratedGeometry out = generateGeometry(g);
+    const Particles& P = out.particles;
+    const double l0 = g.particleSpacing;
+    const int layers = g.wallLayers + g.dummyLayers;
+    std::size_t water = 0;
+    for (std::size_t i = 0; i < P.size(); ++i) {
+        const double b = bedHeight(g, std::clamp(P.x[i], 0.0, 0.5));
+        if (P.kind[i] == ParticleKind::Water) {
+            ++water;
+            EXPECT_GE(P.y[i], b - 1e-9) << "water under the bed at x = " << P.x[i];
+            continue;
+        }
+        if (P.x[i] < 0.0 || P.x[i] > 0.5 || P.y[i] > b - 1e-9)
+            continue; // the side walls above the bed
+        // Under the bed: the first two sites of a column wall, the next two dummy, none deeper.
+        const double under = std::ceil((b - P.y[i]) / l0 - 1e-9); // 1 for the top site
+        EXPECT_LE(under, layers) << P.x[i] << ", " << P.y[i];
+        EXPECT_EQ(P.kind[i], under <= g.wallLayers ? ParticleKind::Wall : ParticleKind::Dummy)
+            << P.x[i] << ", " << P.y[i];
+    }
+    // Each column between the walls: its water sites are the lattice rows from the bed to 0.1 m.
+    std::size_t expected = 0;
+    for (int i = 0; i < 50; ++i) {
+        const double x = (i + 0.5) * l0;
+        for (int j = 0; j < 10; ++j)
+            expected += (j + 0.5) * l0 >= bedHeight(g, x) - 1e-9 ? 1 : 0;
+    }
+    EXPECT_EQ(water, expected);
+    EXPECT_LT(water, 500u); // the beach took some
+    // Every column has exactly `layers` fixed sites under the bed: no hole, no orphan.
+    for (int i = 0; i < 50; ++i) {
+        const double x = (i + 0.5) * l0;
+        int under = 0;
+        for (std::size_t p = 0; p < P.size(); ++p)
+            under += P.kind[p] != ParticleKind::Water && std::abs(P.x[p] - x) < 1e-9 &&
+                     P.y[p] < bedHeight(g, x) - 1e-9;
+        EXPECT_EQ(under, layers) << "column at x = " << x;
+    }
+    // The front wall is buried to 0.06 m: its sites there are deeper layers or left out.
+    for (std::size_t p = 0; p < P.size(); ++p) {
+        if (P.x[p] > 0.5 && P.y[p] > 0.0 && P.y[p] < 0.06 - 2.0 * l0) {
+            EXPECT_EQ(P.kind[p], ParticleKind::Dummy) << P.x[p] << ", " << P.y[p];
+        }
+    }
+}
+
+TEST(Geometry, BadBedProfilesNameTheirPoint) {
+    GeometryParams g = tankWithBeach();
+    g.bed = {BedPoint{0.2, 0.0}};
+    EXPECT_EQ(sceneErrorKey([&] { generateGeometry(g); }), "geometry.bed");
+    g.bed = {BedPoint{0.2, 0.0}, BedPoint{0.2, 0.01}};
+    EXPECT_EQ(sceneErrorKey([&] { generateGeometry(g); }), "geometry.bed[1]");
+    g.bed = {BedPoint{0.2, 0.0}, BedPoint{0.6, 0.01}};
+    EXPECT_EQ(sceneErrorKey([&] { generateGeometry(g); }), "geometry.bed[1]");
+    g.bed = {BedPoint{0.2, -0.01}, BedPoint{0.4, 0.01}};
+    EXPECT_EQ(sceneErrorKey([&] { generateGeometry(g); }), "geometry.bed[0]");
+    g.bed = {BedPoint{0.2, 0.0}, BedPoint{0.3, 0.3}}; // to the top of the walls
+    EXPECT_EQ(sceneErrorKey([&] { generateGeometry(g); }), "geometry.bed[1]");
+    g.bed = {BedPoint{0.2, 0.0}, BedPoint{0.25, 0.06}}; // slope 1.2
+    EXPECT_EQ(sceneErrorKey([&] { generateGeometry(g); }), "geometry.bed[1]");
+    g.bed = {BedPoint{0.2, 0.0}, BedPoint{0.25, 0.05}}; // slope 1: allowed
+    EXPECT_NO_THROW(generateGeometry(g));
+    g.bed = {BedPoint{0.2, 0.0}, BedPoint{0.3, std::nan("")}};
+    EXPECT_EQ(sceneErrorKey([&] { generateGeometry(g); }), "geometry.bed[1]");
+    // Water wholly under the bed holds nothing.
+    g.bed = {BedPoint{0.0, 0.05}, BedPoint{0.5, 0.05}};
+    g.water = {Box{0.0, 0.0, 0.5, 0.1}, Box{0.0, 0.0, 0.5, 0.04}};
+    g.water[0].y0 = 0.05;
+    EXPECT_EQ(sceneErrorKey([&] { generateGeometry(g); }), "geometry.water[1]");
+    // A profile needs a tank.
+    GeometryParams open;
+    open.water = {Box{0.0, 0.0, 0.1, 0.1}};
+    open.bed = {BedPoint{0.0, 0.0}, BedPoint{0.1, 0.0}};
+    EXPECT_EQ(sceneErrorKey([&] { generateGeometry(open); }), "geometry.bed");
+}

@@ -648,3 +648,29 @@ TEST(Scene, ErrorsStayOnOneLine) {
     EXPECT_EQ(message([] { (void)loadScene("no\nsuch.json"); }),
               "scene key '': cannot open scene file no\\x0asuch.json");
 }
+
+TEST(Scene, BedProfileIsReadRoundTripsAndNamesItsPoints) {
+    json j = minimal();
+    j["geometry"]["bed"] = json::array({{0.2, 0.0}, {0.5, 0.06}});
+    const Scene a = parseScene(j);
+    ASSERT_EQ(a.geometry.bed.size(), 2u);
+    EXPECT_EQ(a.geometry.bed[1].x, 0.5);
+    EXPECT_EQ(a.geometry.bed[1].y, 0.06);
+    EXPECT_EQ(toJson(parseScene(toJson(a))), toJson(a));
+    // No profile writes no bed: scenes without one keep their recorded form.
+    EXPECT_FALSE(toJson(parseScene(minimal()))["geometry"].contains("bed"));
+
+    j["geometry"]["bed"] = json::array({{0.2, 0.0}, {0.5}});
+    EXPECT_EQ(errorKey(j), "geometry.bed[1]");
+    j["geometry"]["bed"] = json::array({{0.2, 0.0}, {0.5, "high"}});
+    EXPECT_EQ(errorKey(j), "geometry.bed[1]");
+    j["geometry"]["bed"] = {{"x", 0.2}};
+    EXPECT_EQ(errorKey(j), "geometry.bed");
+    // A piston is the back wall above the bed: the profile must start at the tank's y0 there.
+    j = minimal();
+    j["piston"] = {{"kind", "sinusoidal"}, {"period", 1.0}, {"stroke", 0.02}};
+    j["geometry"]["bed"] = json::array({{0.0, 0.02}, {0.5, 0.02}});
+    EXPECT_EQ(errorKey(j), "geometry.bed");
+    j["geometry"]["bed"] = json::array({{0.2, 0.0}, {0.5, 0.02}});
+    EXPECT_EQ(errorKey(j), "<accepted>");
+}

@@ -18,6 +18,16 @@ struct CosineTop {
     double wavelength = 0.0; ///< (m), > 0 where amplitude is not 0
 };
 
+/// A point of the tank's bed profile (geometry.bed), in m.
+struct BedPoint {
+    double x = 0.0;
+    double y = 0.0;
+};
+
+/// Steepest bed slope |dy / dx| a profile may have: its wall and dummy layers are counted
+/// vertically, so a slope of 1 keeps cos 45° = 0.71 of their thickness normal to the bed.
+inline constexpr double kMaxBedSlope = 1.0;
+
 /// Scene geometry: rectangles of water and solid, turned into particles on a
 /// square lattice of spacing `particle_spacing`.
 struct GeometryParams {
@@ -30,8 +40,14 @@ struct GeometryParams {
     /// shorter than `water`, for flat tops.
     std::vector<CosineTop> waterTops;
     std::vector<Box> solids; ///< extra solid blocks (m), filled with wall + dummy particles
-    int wallLayers = 2;      ///< layers of pressure-solved wall particles (textbook code: 2)
-    int dummyLayers = 2;     ///< dummy layers behind them, completing wall density (textbook: 2)
+    /// The tank's bed as a profile (m): its height is linear between the points (x increasing,
+    /// inside the tank, y from the tank's y0 to below its y1, slopes at most kMaxBedSlope), the
+    /// first point's y before them and the last's after. Empty: the flat bed at tank.y0. The
+    /// lattice sites under the profile, counted vertically, are its wall and dummy layers
+    /// (a beach, a step, a shoal); water sites under it are left out.
+    std::vector<BedPoint> bed;
+    int wallLayers = 2;  ///< layers of pressure-solved wall particles (textbook code: 2)
+    int dummyLayers = 2; ///< dummy layers behind them, completing wall density (textbook: 2)
     /// Simulation domain (m); a particle leaving it stops the run. Default: the bounding box B
     /// of all particles (plus one spacing) grown by B's width/2 left and right, B's height/4
     /// down and B's height up.
@@ -50,6 +66,10 @@ struct GeometryParams {
 inline CosineTop waterTop(const GeometryParams& g, std::size_t w) {
     return w < g.waterTops.size() ? g.waterTops[w] : CosineTop{};
 }
+
+/// The bed's height (m) at x: g.bed's profile, or the tank's y0 where it has none (0 without
+/// a tank).
+double bedHeight(const GeometryParams& g, double x);
 
 /// Most particles a geometry may generate (water, wall and dummy together): 4 million, some
 /// 40 times the largest shipped scene. A scene past it is refused before any particle is made,
@@ -72,9 +92,12 @@ struct GeneratedGeometry {
 /// Generates water, wall and dummy particles (water first, then walls, then dummies).
 /// Water rectangles hold the lattice sites (x0 + (i + 1/2) l0, y0 + (j + 1/2) l0) inside
 /// them; tank walls and solid blocks put their innermost `wallLayers` as Wall particles
-/// and the next `dummyLayers` as Dummy. Throws SceneError naming the key for an empty
-/// water rectangle, water overlapping a solid, particles outside the domain, more than
-/// kMaxParticles particles or a domain larger than kMaxDomainCells.
+/// and the next `dummyLayers` as Dummy; under a bed profile a site's layer is the number of
+/// lattice sites between it and the profile above it, in its column (and at least its distance
+/// in layers from the side walls' inner faces). Throws SceneError naming the key for an empty
+/// water rectangle (or one wholly under the bed), water overlapping a solid, a bed profile
+/// without a tank, out of order, outside the tank or too steep, particles outside the domain, more
+/// than kMaxParticles particles or a domain larger than kMaxDomainCells.
 GeneratedGeometry generateGeometry(const GeometryParams& geometry);
 
 /// Spacings of bed behind the tank's back wall: bedExtensionBack rounded up to whole l0.

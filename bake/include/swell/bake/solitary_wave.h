@@ -79,11 +79,10 @@ SolitaryWaveCheck analyseSolitaryWave(const PistonParams& piston, std::span<cons
 /// One run of a solitary-wave scene: the records (outcome, times, elevations at the gauges,
 /// steps, PPE iterations, solver time) and their analysis.
 struct SolitaryWaveReport : GaugeRecords {
-    SolitaryWaveShape theory; ///< of the stroke's height H
-    double height = 0.0;      ///< H (m)
-    double depth = 0.0;       ///< h (m)
-    double stroke = 0.0;      ///< the piston's full travel (m)
-    std::size_t particles = 0, water = 0;
+    SolitaryWaveShape theory;         ///< of the stroke's height H
+    double height = 0.0;              ///< H (m)
+    double depth = 0.0;               ///< h (m)
+    double stroke = 0.0;              ///< the piston's full travel (m)
     std::vector<double> gauges;       ///< output.gauges (m)
     std::vector<CrestWindow> windows; ///< per gauge (solitaryCrestWindows)
     SolitaryWaveCheck check;          ///< when stable

@@ -43,10 +43,15 @@ struct GaugeRecords {
     long steps = 0;
     double ppeIterationsMean = 0.0;
     double solverSeconds = 0.0;
+    std::size_t particles = 0, water = 0; ///< the run's particles, and of them water
 };
 
 /// Samples `probe` (sampleProbes) before the first step and after every step while runSteps
 /// takes `solver` to tEnd (s).
 GaugeRecords recordGauges(MpsSolver& solver, const ProbeParams& probe, double tEnd);
+
+/// A run of `scene` to its run.end_time (makeSolver) that records its surface at `gauges` (m),
+/// elevations from stillWaterLevel (m): the wave checks' run.
+GaugeRecords recordGauges(const Scene& scene, double stillWaterLevel, std::vector<double> gauges);
 
 } // namespace swell::bake

@@ -48,7 +48,6 @@ SloshRecord analyseSlosh(std::span<const double> t, std::span<const double> eta)
 /// elevations at the gauges, steps, PPE iterations, solver time) and their analysis.
 struct StandingWaveReport : GaugeRecords {
     StandingWaveTheory theory;
-    std::size_t particles = 0, water = 0;
     /// Gauge x (m): one spacing in from each side wall, where the first mode's elevation is
     /// largest; the elevation is the top of the highest non-splash water particle within l0,
     /// from the water's mean level y1 (sampleProbes), after every step.

@@ -3,6 +3,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "swell/bake/lobovsky2014.h"
@@ -119,6 +120,13 @@ HarmonicFit fitHarmonic(std::span<const double> t, std::span<const double> v, do
 /// a standing wave's ln amplitude over its periods). Throws std::invalid_argument(what) when
 /// the x are all equal.
 double lineSlope(std::span<const double> x, std::span<const double> y, const char* what);
+
+/// The top of a record's crest: the least-squares parabola y = a + b s + c s^2 (s = t - t[peak])
+/// through the samples [lo, hi], as (t of its vertex, y there). Falls back to (t[peak],
+/// y[peak]) where fewer than three samples, a singular fit, a fit that is not a maximum, or a
+/// vertex farther from t[peak] than the samples span.
+std::pair<double, double> parabolaTop(std::span<const double> t, std::span<const double> y,
+                                      std::size_t lo, std::size_t hi, std::size_t peak);
 
 /// One figure over an ensemble of runs (swell-validate --ensemble): members that differ only
 /// by a jitter of the water far below the resolution, so their spread is how far one record

@@ -106,8 +106,7 @@ WetDamBreakCheck analyseWetDamBreak(const StokerDamBreak& theory, double x0,
 /// their analysis.
 struct WetDamBreakReport : GaugeRecords {
     StokerDamBreak theory;
-    double gate = 0.0; ///< x0 (m)
-    std::size_t particles = 0, water = 0;
+    double gate = 0.0;          ///< x0 (m)
     std::vector<double> gauges; ///< output.gauges (m)
     std::vector<std::pair<double, double>> windows;
     WetDamBreakCheck check; ///< when stable

@@ -1,0 +1,42 @@
+#pragma once
+// The experiment of Grilli, Subramanya, Svendsen & Veeramony (1994): a solitary wave of height
+// H / h0 = 0.2 shoaling on a plane 1:34.7 beach and breaking near its last gauge, recorded by
+// wave gauges on the flat bed (g0) and on the slope (g1-g9). Data only; shoaling.h compares a
+// run with it.
+
+#include <span>
+
+namespace swell::bake {
+
+/// One sample of a record, in the experiment's dimensionless units.
+struct ShoalingSample {
+    double t = 0.0;   ///< t sqrt(g / h0), on the experiment's clock
+    double eta = 0.0; ///< free-surface elevation above still water / h0
+};
+
+/// A wave gauge of the experiment and its digitised record.
+struct ShoalingGauge {
+    const char* name = "";
+    /// Distance from the toe of the slope / h0, positive up the beach (g0: on the flat bed).
+    double xOverDepth = 0.0;
+    std::span<const ShoalingSample> record;
+};
+
+/// The beach: tan(beta) = 1 / 34.7.
+inline constexpr double kGrilliSlope = 1.0 / 34.7;
+/// The incident wave's nominal height H / h0.
+inline constexpr double kGrilliHeightOverDepth = 0.2;
+/// The laboratory's still-water depth h0 (m); the records are dimensionless (Froude scaling).
+inline constexpr double kGrilliDepth = 0.44;
+
+/// S. T. Grilli, R. Subramanya, I. A. Svendsen, J. Veeramony, "Shoaling of solitary waves on
+/// plane beaches", J. Waterway, Port, Coastal, Ocean Eng. 120(6) (1994) 609-628, the
+/// H / h0 = 0.2 case: gauges g0, g1, g3, g5, g7 and g9, in that order. The records are the
+/// digitisation of the paper's figures stored with GeoscienceAustralia/ptha (SWALS example
+/// dispersive/solitary_shoaling_grilli; see grilli1994.cpp for the files, commit, positions and
+/// the cuts applied). g0's record is the experiment's incident wave, on which a run's clock is
+/// aligned (shoaling.h); the slope gauges' records span about 7-10 t sqrt(g / h0) around their
+/// crests.
+std::span<const ShoalingGauge> grilli1994Gauges();
+
+} // namespace swell::bake
