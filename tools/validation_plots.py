@@ -3,17 +3,20 @@
 the dam-break surge front against Martin & Moyce (1952), raw and on the experiment's time
 origin, the Lobovsky et al. (2014) water levels at gauges H1..H4, a solitary wave's records
 at five gauges against the stroke's wave under the Serre-Green-Naghdi equations (7.31, 7.41;
-tools/sgn_solitary.py) and a dam breaking onto a wet bed against Stoker's shallow-water solution
-(7.43), each at several resolutions, from swell-validate runs of the shipped scenes.
+tools/sgn_solitary.py), a dam breaking onto a wet bed against Stoker's shallow-water solution
+(7.43) and a solitary wave shoaling up a beach against Grilli et al. (1994)'s gauges (7.44), each
+at several resolutions, from swell-validate runs of the shipped scenes.
 
     /usr/bin/python3 tools/validation_plots.py [--bin build/bin] [--out out/validation]
-        [--threads N] [--quick] [--only dam-break|lobovsky|solitary-wave|wet-dam-break]...
+        [--threads N] [--quick]
+        [--only dam-break|lobovsky|solitary-wave|wet-dam-break|shoaling]...
 
 Writes OUT/dam_break_front.png, OUT/lobovsky_gauges.png, OUT/solitary_wave.png,
-OUT/wet_dam_break.png and OUT/validation_plots.json (each run's command, its swell-validate JSON,
-the commit). --quick runs the CI resolutions only (a/20, H/15, h/10, h0/20 to 1.2 s; about a
-minute) instead of a/20, a/50, a/80, H/15, H/30, H/60, h/10, h/20, h/40 and h0/20, h0/40 (about
-25 minutes with one thread, most of it the solitary wave at h/40).
+OUT/wet_dam_break.png, OUT/shoaling.png and OUT/validation_plots.json (each run's command, its
+swell-validate JSON, the commit). --quick runs the CI resolutions only (a/20, H/15, h/10, h0/20
+to 1.2 s, h0/10; about a minute and a half) instead of a/20, a/50, a/80, H/15, H/30, H/60, h/10,
+h/20, h/40, h0/20, h0/40 and the shoaling wave at h0/10, h0/20, h0/40 (about 50 minutes with one
+thread, most of it the two h/40 runs).
 The experimental points come from `swell-validate ... --records`, i.e. the very records the
 checks compare with. Exit status 1 with one line on stderr when a run fails.
 """
@@ -59,7 +62,13 @@ WET_DAM_BREAK = [
 ]
 # --quick: the CI scene to 1.2 s (the windows end there; three gauges still see the bore).
 WET_DAM_BREAK_QUICK = [("h0/20", "wet_dam_break_small.json", ["solver.end_time=1.2"])]
-KINDS = ("dam-break", "lobovsky", "solitary-wave", "wet-dam-break")  # in the order run and plotted
+SHOALING = [
+    ("h0/10", "shoaling_small.json", ["geometry.particle_spacing=0.044", "solver.dt=0.003"]),
+    ("h0/20", "shoaling_small.json", []),
+    ("h0/40", "shoaling.json", []),
+]
+# in the order run and plotted
+KINDS = ("dam-break", "lobovsky", "solitary-wave", "wet-dam-break", "shoaling")
 COLOURS = ["tab:blue", "tab:orange", "tab:green"]
 GAUGE_COLOURS = ["tab:blue", "tab:orange", "tab:green", "tab:red", "tab:purple", "tab:brown"]
 
@@ -83,7 +92,7 @@ def run(binary, threads, kind, label, scene, sets, out):
         cmd += ["--threads", str(threads)]
     for s in sets:
         cmd += ["--set", s]
-    with_records = kind in ("dam-break", "lobovsky")  # the others: compared with theory
+    with_records = kind in ("dam-break", "lobovsky", "shoaling")  # the others: with theory
     cmd += [kind, str(ROOT / "scenes" / scene), "--csv", str(series)]
     if with_records:
         cmd += ["--records", str(records)]
@@ -272,15 +281,57 @@ def plot_wet_dam_break(runs, path):
     plt.close(fig)
 
 
+def plot_shoaling(runs, path):
+    """Each gauge's record (points) and the runs (lines) on the experiment's clock: the run's
+    t / sqrt(h0 / g) plus its clock offset (g0's crests aligned), eta over the run's still
+    level, / h0."""
+    gauges = {}
+    for r in runs[0]["records"]:
+        g = gauges.setdefault(r["gauge"], ([], []))
+        g[0].append(float(r["t"]))
+        g[1].append(float(r["eta"]))
+    fig, axes = plt.subplots(2, 3, figsize=(13, 7))
+    for ax, (name, (t_rec, eta_rec)) in zip(axes.flat, gauges.items()):
+        ax.plot(t_rec, eta_rec, ".", color="black", ms=3, label="Grilli et al. 1994")
+        for run_, colour in zip(runs, COLOURS):
+            res = run_["result"]
+            h0 = res["depth"]
+            tau = (h0 / 9.81) ** 0.5
+            err = next(e for e in res["gauge_records"] if e["name"] == name)
+            column = f"eta_{err['x']:g}"
+            t = [float(r["t"]) for r in run_["series"]]
+            eta = [float(r[column]) for r in run_["series"]]
+            lo, hi = res["still_window"]
+            still = [e for s, e in zip(t, eta) if lo <= s <= hi]
+            level = sum(still) / len(still)
+            ax.plot([s / tau + res["clock_offset"] for s in t], [(e - level) / h0 for e in eta],
+                    color=colour, lw=1.1,
+                    label=f"{run_['label']}: crest {err['crest_over_h0']:.3f}, "
+                          f"mean |d eta| {err['mean_abs_error_over_h0']:.3f}")
+        ax.set_xlim(5.0, 25.0) if name == "g0" else ax.set_xlim(36.5, 47.5)
+        ax.set_ylim(-0.06, 0.4)
+        ax.set_title(f"{name}: {next(float(r['x_over_h0']) for r in runs[0]['records'] if r['gauge'] == name):g} h0 from the toe",
+                     fontsize=10)
+        ax.set_xlabel("t sqrt(g / h0)")
+        ax.set_ylabel("eta / h0")
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=7, loc="upper left")
+    fig.suptitle("Solitary wave H / h0 = 0.2 up a 1:34.7 beach: gauges against Grilli et al. "
+                 "(1994) (points), clocks aligned on g0's crest", fontsize=11)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--bin", default=str(ROOT / "build" / "bin"))
     ap.add_argument("--out", default=str(ROOT / "out" / "validation"))
     ap.add_argument("--threads", type=int, default=0, help="swell-validate --threads (0: all)")
     ap.add_argument("--quick", action="store_true",
-                    help="CI resolutions only (a/20, H/15, h/10, h0/20 to 1.2 s)")
+                    help="CI resolutions only (a/20, H/15, h/10, h0/20 to 1.2 s, h0/10)")
     ap.add_argument("--only", choices=KINDS, action="append",
-                    help="this check's plot only (repeatable; default: all four)")
+                    help="this check's plot only (repeatable; default: all five)")
     args = ap.parse_args()
     if args.threads < 0:
         fail(f"--threads {args.threads}: must be 0 (all) or more")
@@ -293,7 +344,8 @@ def main():
               "lobovsky": (LOBOVSKY, LOBOVSKY[:1], plot_lobovsky, "lobovsky_gauges.png"),
               "solitary-wave": (SOLITARY, SOLITARY[:1], plot_solitary, "solitary_wave.png"),
               "wet-dam-break": (WET_DAM_BREAK, WET_DAM_BREAK_QUICK, plot_wet_dam_break,
-                                "wet_dam_break.png")}
+                                "wet_dam_break.png"),
+              "shoaling": (SHOALING, SHOALING[:1], plot_shoaling, "shoaling.png")}
     runs, written = [], []
     for kind in KINDS:
         if args.only and kind not in args.only:

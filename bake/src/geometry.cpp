@@ -36,8 +36,6 @@ void checkParticleCount(const GeometryParams& g, int layers) {
         const double nUp = std::round(g.tank->height() / l0);
         const double back = std::ceil(std::max(0.0, g.bedExtensionBack) / l0 - 1e-6);
         count += layers * (nIn + 2.0 * layers + back) + nUp * 2.0 * layers;
-        if (!g.bed.empty())
-            count += layers * nIn; // the profile's layers above the flat bed, at most
     }
     for (const Box& s : g.solids) {
         const double nx = cells(s.width()), ny = cells(s.height());
@@ -110,20 +108,13 @@ void checkBed(const GeometryParams& g) {
     }
 }
 
-/// Depth of a site at height y under the bed at height b, in spacings, snapped to a whole
-/// number within 1e-6 so that a site on the profile is not under it (water) whatever the
-/// rounding of b and y: a site is under the bed where this is > 0, and its layer is the number
-/// of lattice sites between it and the bed, ceil(depth) - 1 (bedLayer).
-double depthUnderBed(double b, double y, double l0) {
+/// Depth of a water site at height y under the level b, in spacings, snapped to a whole number
+/// within 1e-6 so that a site on the level is not under it, whatever the rounding of b and y:
+/// the site is under it where this is > 0.
+double depthUnder(double b, double y, double l0) {
     const double d = (b - y) / l0;
     const double whole = std::round(d);
     return std::abs(d - whole) < 1e-6 ? whole : d;
-}
-
-/// The layer of a site `depth` spacings under the bed (depth > 0): on a flat bed the row
-/// at depth k + 1/2 is layer k, and a row one spacing under a site on the profile is layer 0.
-long bedLayer(double depth) {
-    return static_cast<long>(std::ceil(depth)) - 1;
 }
 
 } // namespace
@@ -249,8 +240,11 @@ GeneratedGeometry generateGeometry(const GeometryParams& g) {
                             fmt::format("water at ({:.6g}, {:.6g}) m lies inside {}", x, y, name));
                     }
                 }
-                if (!g.bed.empty() && depthUnderBed(bedHeight(g, x), y, l0) > 0.0)
-                    continue; // under the bed profile: the bed's layers hold this site
+                // Water starts l0 / 2 above the profile, one spacing above the bed's first layer
+                // at b - l0 / 2: as on the flat bed, no closer (a closer start is a pressure
+                // spike the textbook scheme cannot take), at most two spacings.
+                if (!g.bed.empty() && depthUnder(bedHeight(g, x) + 0.5 * l0, y, l0) > 0.0)
+                    continue;
                 P.add(x, y, ParticleKind::Water);
                 ++held;
             }
@@ -263,50 +257,38 @@ GeneratedGeometry generateGeometry(const GeometryParams& g) {
     if (g.tank) {
         const Box& t = *g.tank;
         const long nIn = std::lround(t.width() / l0);
-        const long nUp = std::lround(t.height() / l0);
         // Bed extension behind the back wall (piston travel), in whole spacings.
         const long back = bedExtensionCells(g);
-        // A site's layer: its distance in spacings from the side walls' inner faces (0
-        // between them) and at least the whole spacings between it and the bed above it (the
-        // profile's height at its x, clamped to the tank). On the flat bed these are the bed
-        // rows' k and the corners' max(k, side).
-        const auto layerAt = [&](double x, double y, long side) {
-            const double d = depthUnderBed(bedHeight(g, std::clamp(x, t.x0, t.x1)), y, l0);
-            return d > 0.0 ? std::max(side, bedLayer(d)) : side;
-        };
+        // Each column stands on the bed's height at its x (the profile's, clamped to the tank;
+        // y0 on a flat bed): its bed layers k below it, its side-wall sites above it. So the
+        // bed follows the profile smoothly, one column at a time, instead of in lattice steps.
+        const auto base = [&](double x) { return bedHeight(g, std::clamp(x, t.x0, t.x1)); };
         for (long k = 0; k < layers; ++k) { // bed rows, corners included
-            const double y = t.y0 - (static_cast<double>(k) + 0.5) * l0;
             for (long i = -layers - back; i < nIn + layers; ++i) {
                 const double x = t.x0 + (static_cast<double>(i) + 0.5) * l0;
                 const long side = i < -back ? -i - 1 - back : (i >= nIn ? i - nIn : 0);
-                const long layer = layerAt(x, y, side);
-                if (layer < layers) // deeper under a raised bed: nothing reaches it
-                    P.add(x, y, layerKind(layer, g.wallLayers));
+                P.add(x, base(x) - (static_cast<double>(k) + 0.5) * l0,
+                      layerKind(std::max(k, side), g.wallLayers));
             }
         }
-        if (!g.bed.empty()) { // the profile above the flat bed
-            for (long j = 0; j < nUp; ++j) {
-                const double y = t.y0 + (static_cast<double>(j) + 0.5) * l0;
-                for (long i = 0; i < nIn; ++i) {
-                    const double x = t.x0 + (static_cast<double>(i) + 0.5) * l0;
-                    const double d = depthUnderBed(bedHeight(g, x), y, l0);
-                    if (d > 0.0 && bedLayer(d) < layers)
-                        P.add(x, y, layerKind(bedLayer(d), g.wallLayers));
-                }
-            }
+        // Side walls from each column's base to the top y1: nUp sites on a flat bed.
+        const auto sites = [&](double b) { return cellsIn(t.y1 - b, l0); };
+        std::vector<double> xBack(layers), xFront(layers);
+        for (long k = 0; k < layers; ++k) {
+            xBack[k] = t.x0 - (static_cast<double>(k) + 0.5) * l0;
+            xFront[k] = t.x1 + (static_cast<double>(k) + 0.5) * l0;
         }
-        for (long j = 0; j < nUp; ++j) { // side walls
-            const double y = t.y0 + (static_cast<double>(j) + 0.5) * l0;
+        const long nUp = std::max(sites(base(t.x0)), sites(base(t.x1)));
+        for (long j = 0; j < nUp; ++j) {
+            const double up = (static_cast<double>(j) + 0.5) * l0;
             for (long k = 0; k < layers; ++k) {
-                const double xBack = t.x0 - (static_cast<double>(k) + 0.5) * l0;
-                const double xFront = t.x1 + (static_cast<double>(k) + 0.5) * l0;
-                if (const long layer = layerAt(xBack, y, k); layer < layers) {
+                if (j < sites(base(xBack[k]))) {
                     backWall.resize(P.size(), 0);
                     backWall.push_back(1);
-                    P.add(xBack, y, layerKind(layer, g.wallLayers));
+                    P.add(xBack[k], base(xBack[k]) + up, layerKind(k, g.wallLayers));
                 }
-                if (const long layer = layerAt(xFront, y, k); layer < layers)
-                    P.add(xFront, y, layerKind(layer, g.wallLayers));
+                if (j < sites(base(xFront[k])))
+                    P.add(xFront[k], base(xFront[k]) + up, layerKind(k, g.wallLayers));
             }
         }
     }

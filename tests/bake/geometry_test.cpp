@@ -264,23 +264,27 @@ TEST(Geometry, BedProfileCutsTheWaterAndLaysItsLayersUnderTheSlope) {
         const double b = bedHeight(g, std::clamp(P.x[i], 0.0, 0.5));
         if (P.kind[i] == ParticleKind::Water) {
             ++water;
-            EXPECT_GE(P.y[i], b - 1e-9) << "water under the bed at x = " << P.x[i];
+            // At least l0 / 2 above the profile: one spacing above the bed's first layer.
+            EXPECT_GE(P.y[i], b + 0.5 * l0 - 1e-9) << "water too near the bed at x = " << P.x[i];
             continue;
         }
         if (P.x[i] < 0.0 || P.x[i] > 0.5 || P.y[i] > b - 1e-9)
             continue; // the side walls above the bed
-        // Under the bed: the first two sites of a column wall, the next two dummy, none deeper.
-        const double under = std::ceil((b - P.y[i]) / l0 - 1e-9); // 1 for the top site
-        EXPECT_LE(under, layers) << P.x[i] << ", " << P.y[i];
-        EXPECT_EQ(P.kind[i], under <= g.wallLayers ? ParticleKind::Wall : ParticleKind::Dummy)
+        // Under the bed the column's layers follow the profile: at b - (k + 1/2) l0, the first
+        // two wall, the next two dummy, none deeper (not a staircase of lattice rows).
+        const double k = (b - P.y[i]) / l0 - 0.5;
+        EXPECT_NEAR(k, std::round(k), 1e-9) << P.x[i] << ", " << P.y[i];
+        EXPECT_LT(k, layers) << P.x[i] << ", " << P.y[i];
+        EXPECT_EQ(P.kind[i], k < g.wallLayers ? ParticleKind::Wall : ParticleKind::Dummy)
             << P.x[i] << ", " << P.y[i];
     }
-    // Each column between the walls: its water sites are the lattice rows from the bed to 0.1 m.
+    // Each column between the walls: its water sites are the lattice rows from l0 / 2 above the
+    // bed to 0.1 m.
     std::size_t expected = 0;
     for (int i = 0; i < 50; ++i) {
         const double x = (i + 0.5) * l0;
         for (int j = 0; j < 10; ++j)
-            expected += (j + 0.5) * l0 >= bedHeight(g, x) - 1e-9 ? 1 : 0;
+            expected += (j + 0.5) * l0 >= bedHeight(g, x) + 0.5 * l0 - 1e-9 ? 1 : 0;
     }
     EXPECT_EQ(water, expected);
     EXPECT_LT(water, 500u); // the beach took some
@@ -293,10 +297,15 @@ TEST(Geometry, BedProfileCutsTheWaterAndLaysItsLayersUnderTheSlope) {
                      P.y[p] < bedHeight(g, x) - 1e-9;
         EXPECT_EQ(under, layers) << "column at x = " << x;
     }
-    // The front wall is buried to 0.06 m: its sites there are deeper layers or left out.
+    // The front wall stands on the beach's top, 0.06 m: its sites start l0 / 2 above it, and
+    // under it are that column's bed layers, the deeper two dummy.
     for (std::size_t p = 0; p < P.size(); ++p) {
         if (P.x[p] > 0.5 && P.y[p] > 0.0 && P.y[p] < 0.06 - 2.0 * l0) {
             EXPECT_EQ(P.kind[p], ParticleKind::Dummy) << P.x[p] << ", " << P.y[p];
+        }
+        if (P.x[p] > 0.5 && P.y[p] > 0.06) {
+            const double j = (P.y[p] - 0.06) / l0 - 0.5;
+            EXPECT_NEAR(j, std::round(j), 1e-9) << P.x[p] << ", " << P.y[p];
         }
     }
 }

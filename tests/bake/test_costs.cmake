@@ -13,3 +13,5 @@ set_tests_properties(Validation.SolitaryWaveKeepsItsCelerityAtCiResolution
     PROPERTIES COST 60)
 set_tests_properties(Validation.WetDamBreakFollowsStokerAtCiResolution
     PROPERTIES COST 60)
+set_tests_properties(Validation.ShoalingFollowsGrilliAtCiResolution
+    PROPERTIES COST 150)

@@ -228,6 +228,33 @@ class Validate(unittest.TestCase):
         self.assertIn("scenes/wet_dam_break_small.json", bake.wet_dam_break_text())
         self.assertIn("wet_dam_break", bake.CSVS)  # a part of its own: tools/bench --only wet_dam_break
 
+    def test_shoaling_rows_per_scheme_with_spread_and_table(self):
+        def member(crest, worst):
+            return {"outcome": "stable", "steps": 8000, "particles": 17988, "water": 12940, "l0": 0.022,
+                    "solver_seconds": 150.0, "incident_crest_error": -0.08, "crest_error_worst": crest,
+                    "mean_abs_error_over_h0_worst": worst, "travel_time_error": 0.02}
+        with tempfile.TemporaryDirectory() as tmp:
+            ctx = common.Context(quick=True, log=None, out=tmp, members=2)
+            commands = []
+
+            def fake_run(cmd, timeout=900):
+                commands.append([str(c) for c in cmd])
+                return Result({"outcome": "stable", "members": [member(-0.2, 0.02), member(-0.3, 0.03)]})
+            ctx.run = fake_run
+            rows = bake.shoaling(ctx)
+        # Quick: the h0/20 scene only, both schemes, each an ensemble.
+        self.assertEqual(len(rows), 2)
+        self.assertTrue(all("shoaling" in c and c[-2:] == ["--ensemble", "2"] for c in commands))
+        self.assertTrue(any("shoaling_small.json" in a for a in commands[0]))
+        self.assertTrue(any("solver.scheme=textbook" in c for c in commands[1]))
+        self.assertEqual(rows[0]["resolution"], "h0/20")
+        self.assertAlmostEqual(rows[0]["crest_error_worst"], -0.25)
+        self.assertAlmostEqual(rows[0]["mean_abs_error_over_h0_worst"], 0.025)
+        self.assertIn("crest_error_worst_sd", rows[0])
+        self.assertIn("| -0.25 ± 0.071 |", bake.shoaling_table(rows))
+        self.assertIn("scenes/shoaling_small.json", bake.shoaling_text())
+        self.assertIn("shoaling", bake.CSVS)  # a part of its own: tools/bench --only shoaling
+
 
 class Members(unittest.TestCase):
     def parse(self, argv):

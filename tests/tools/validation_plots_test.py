@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""tools/validation_plots.py --quick: the four plots written from stable runs of the CI scenes,
+"""tools/validation_plots.py --quick: the five plots written from stable runs of the CI scenes,
 every experimental point of the records in its CSV, a clear error for a missing binary; and
 the swell-validate behaviour those plots rely on (clear errors, stopped runs, ensembles).
 
@@ -27,14 +27,15 @@ class ValidationPlots(unittest.TestCase):
                                capture_output=True, text=True)
             self.assertEqual(p.returncode, 0, p.stderr)
             for name in ("dam_break_front.png", "lobovsky_gauges.png", "solitary_wave.png",
-                         "wet_dam_break.png"):
+                         "wet_dam_break.png", "shoaling.png"):
                 data = (out / name).read_bytes()
                 self.assertEqual(data[:8], b"\x89PNG\r\n\x1a\n", name)
                 self.assertGreater(len(data), 20_000, name)  # axes, points and lines drawn
             summary = json.loads((out / "validation_plots.json").read_text())
             kinds = [(r["kind"], r["label"]) for r in summary["runs"]]
             self.assertEqual(kinds, [("dam-break", "a/20"), ("lobovsky", "H/15"),
-                                     ("solitary-wave", "h/10"), ("wet-dam-break", "h0/20")])
+                                     ("solitary-wave", "h/10"), ("wet-dam-break", "h0/20"),
+                                     ("shoaling", "h0/10")])
             for r in summary["runs"]:
                 self.assertEqual(r["result"]["outcome"], "stable", r["command"])
                 self.assertIn("swell-validate", r["command"])
@@ -55,6 +56,17 @@ class ValidationPlots(unittest.TestCase):
             with open(out / "wet-dam-break_h0_20.csv", newline="") as f:
                 header = next(csv.reader(f))
             self.assertEqual(header, ["t"] + ["h_%g" % x for x in wet["gauges"]])
+            # The shoaling wave's records: the six gauges, g0 first; the run's series has each.
+            with open(out / "shoaling_records.csv", newline="") as f:
+                rows = list(csv.DictReader(f))
+            self.assertEqual([r["gauge"] for r in rows][0], "g0")
+            self.assertEqual({r["gauge"] for r in rows}, {"g0", "g1", "g3", "g5", "g7", "g9"})
+            shoal = summary["runs"][4]["result"]
+            self.assertEqual([g["name"] for g in shoal["gauge_records"]],
+                             ["g0", "g1", "g3", "g5", "g7", "g9"])
+            with open(out / "shoaling_h0_10.csv", newline="") as f:
+                header = next(csv.reader(f))
+            self.assertEqual(header, ["t"] + ["eta_%g" % x for x in shoal["gauges"]])
             lob = summary["runs"][1]["result"]["gauges"]
             self.assertIsNone(lob[0]["experiment_scatter_over_H"])
             for g in lob[1:]:

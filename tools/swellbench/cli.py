@@ -19,7 +19,7 @@ from . import bake, common as bl, compression, fidelity, render, replay, skips
 # In the order they run; each module: CSVS, SECTIONS, PLOTS, run(ctx), table(rows, m), plot(rows, dir).
 MODULES = {"bake": bake, "replay": replay, "fidelity": fidelity, "compression": compression,
            "skips": skips, "render": render}
-BAKE_PARTS = bake.CSVS  # --only dam_break, ..., solitary_wave, wet_dam_break: one part
+BAKE_PARTS = bake.CSVS  # --only dam_break, ..., wet_dam_break, shoaling: one part
 
 
 def parse_args(argv=None):
@@ -27,7 +27,7 @@ def parse_args(argv=None):
     ap.add_argument("--quick", action="store_true", help="fewer, shorter runs (< 10 min)")
     ap.add_argument("--only", default="",
                     help="comma list of sections: bake (or dam_break, still_tank, regular_wave, lobovsky, "
-                         "standing_wave, solitary_wave, wet_dam_break), replay, fidelity, compression, skips, render")
+                         "standing_wave, solitary_wave, wet_dam_break, shoaling), replay, fidelity, compression, skips, render")
     ap.add_argument("--members", type=int, default=None,
                     help="bake checks as ensembles of N jittered members (swell-validate --ensemble N): "
                          "tables and the plot show mean and sd; 1: one unjittered record each "

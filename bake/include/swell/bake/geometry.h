@@ -24,8 +24,8 @@ struct BedPoint {
     double y = 0.0;
 };
 
-/// Steepest bed slope |dy / dx| a profile may have: its wall and dummy layers are counted
-/// vertically, so a slope of 1 keeps cos 45° = 0.71 of their thickness normal to the bed.
+/// Steepest bed slope |dy / dx| a profile may have: its wall and dummy layers stand in
+/// vertical columns, so a slope of 1 keeps cos 45° = 0.71 of their thickness normal to the bed.
 inline constexpr double kMaxBedSlope = 1.0;
 
 /// Scene geometry: rectangles of water and solid, turned into particles on a
@@ -42,9 +42,12 @@ struct GeometryParams {
     std::vector<Box> solids; ///< extra solid blocks (m), filled with wall + dummy particles
     /// The tank's bed as a profile (m): its height is linear between the points (x increasing,
     /// inside the tank, y from the tank's y0 to below its y1, slopes at most kMaxBedSlope), the
-    /// first point's y before them and the last's after. Empty: the flat bed at tank.y0. The
-    /// lattice sites under the profile, counted vertically, are its wall and dummy layers
-    /// (a beach, a step, a shoal); water sites under it are left out.
+    /// first point's y before them and the last's after. Empty: the flat bed at tank.y0. Each
+    /// column of the tank's walls stands on the profile's height b at its x: its wall and dummy
+    /// layers at b - (k + 1/2) l0, its side-wall sites above b; so a beach, a step or a shoal
+    /// is smooth, not a staircase of lattice steps. Water lattice sites less than l0 / 2 above
+    /// the profile are left out, so that water starts at least one spacing above the bed's
+    /// first layer (as on a flat bed) and at most two.
     std::vector<BedPoint> bed;
     int wallLayers = 2;  ///< layers of pressure-solved wall particles (textbook code: 2)
     int dummyLayers = 2; ///< dummy layers behind them, completing wall density (textbook: 2)
@@ -92,9 +95,8 @@ struct GeneratedGeometry {
 /// Generates water, wall and dummy particles (water first, then walls, then dummies).
 /// Water rectangles hold the lattice sites (x0 + (i + 1/2) l0, y0 + (j + 1/2) l0) inside
 /// them; tank walls and solid blocks put their innermost `wallLayers` as Wall particles
-/// and the next `dummyLayers` as Dummy; under a bed profile a site's layer is the number of
-/// lattice sites between it and the profile above it, in its column (and at least its distance
-/// in layers from the side walls' inner faces). Throws SceneError naming the key for an empty
+/// and the next `dummyLayers` as Dummy; with a bed profile the tank's columns stand on it
+/// (GeometryParams::bed). Throws SceneError naming the key for an empty
 /// water rectangle (or one wholly under the bed), water overlapping a solid, a bed profile
 /// without a tank, out of order, outside the tank or too steep, particles outside the domain, more
 /// than kMaxParticles particles or a domain larger than kMaxDomainCells.
