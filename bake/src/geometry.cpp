@@ -103,7 +103,7 @@ void checkBed(const GeometryParams& g) {
         if (slope > kMaxBedSlope * (1.0 + 1e-9))
             throw SceneError(key, fmt::format("the slope from the previous point is {:.4g}, "
                                               "steeper than {:g} (the layers under the bed "
-                                              "are counted vertically)",
+                                              "stand in vertical columns)",
                                               slope, kMaxBedSlope));
     }
 }
