@@ -711,7 +711,7 @@ def plot_text():
 def plot(rows, out_dir):
     series, annotate, extra = [], {}, []
     for k, (csv_name, label, field, absolute, keep, line) in enumerate(PLOT_CASES):
-        colour = "C%d" % k
+        colour = "C%d" % k if k < 10 else "black"  # ten cycle colours, then black
 
         def error(r):
             v = r.get(field)
