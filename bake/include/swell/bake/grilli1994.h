@@ -30,8 +30,9 @@ inline constexpr double kGrilliHeightOverDepth = 0.2;
 inline constexpr double kGrilliDepth = 0.44;
 
 /// S. T. Grilli, R. Subramanya, I. A. Svendsen, J. Veeramony, "Shoaling of solitary waves on
-/// plane beaches", J. Waterway, Port, Coastal, Ocean Eng. 120(6) (1994) 609-628, the
-/// H / h0 = 0.2 case: gauges g0, g1, g3, g5, g7 and g9, in that order. The records are the
+/// plane beaches", J. Waterway, Port, Coastal, Ocean Eng. 120(6) (1994) 609,
+/// doi:10.1061/(ASCE)0733-950X(1994)120:6(609); the H / h0 = 0.2 case: gauges g0, g1, g3, g5,
+/// g7 and g9, in that order. The records are the
 /// digitisation of the paper's figures stored with GeoscienceAustralia/ptha (SWALS example
 /// dispersive/solitary_shoaling_grilli; see grilli1994.cpp for the files, commit, positions and
 /// the cuts applied). g0's record is the experiment's incident wave, on which a run's clock is
