@@ -283,35 +283,32 @@ def plot_wet_dam_break(runs, path):
 
 def plot_shoaling(runs, path):
     """Each gauge's record (points) and the runs (lines) on the experiment's clock: the run's
-    t / sqrt(h0 / g) plus its clock offset (g0's crests aligned), eta over the run's still
-    level, / h0."""
+    t / sqrt(h0 / g) plus its clock offset (g0's crests aligned), eta over the still level the
+    check measured (each gauge's still_level), / h0."""
     gauges = {}
     for r in runs[0]["records"]:
-        g = gauges.setdefault(r["gauge"], ([], []))
-        g[0].append(float(r["t"]))
-        g[1].append(float(r["eta"]))
+        g = gauges.setdefault(r["gauge"], (float(r["x_over_h0"]), [], []))
+        g[1].append(float(r["t"]))
+        g[2].append(float(r["eta"]))
     fig, axes = plt.subplots(2, 3, figsize=(13, 7))
-    for ax, (name, (t_rec, eta_rec)) in zip(axes.flat, gauges.items()):
+    for ax, (name, (x_over_h0, t_rec, eta_rec)) in zip(axes.flat, gauges.items()):
         ax.plot(t_rec, eta_rec, ".", color="black", ms=3, label="Grilli et al. 1994")
         for run_, colour in zip(runs, COLOURS):
             res = run_["result"]
             h0 = res["depth"]
-            tau = (h0 / 9.81) ** 0.5
+            tau = (h0 / res["gravity"]) ** 0.5
             err = next(e for e in res["gauge_records"] if e["name"] == name)
             column = f"eta_{err['x']:g}"
             t = [float(r["t"]) for r in run_["series"]]
             eta = [float(r[column]) for r in run_["series"]]
-            lo, hi = res["still_window"]
-            still = [e for s, e in zip(t, eta) if lo <= s <= hi]
-            level = sum(still) / len(still)
+            level = err["still_level"]
             ax.plot([s / tau + res["clock_offset"] for s in t], [(e - level) / h0 for e in eta],
                     color=colour, lw=1.1,
                     label=f"{run_['label']}: crest {err['crest_over_h0']:.3f}, "
                           f"mean |d eta| {err['mean_abs_error_over_h0']:.3f}")
         ax.set_xlim(5.0, 25.0) if name == "g0" else ax.set_xlim(36.5, 47.5)
         ax.set_ylim(-0.06, 0.4)
-        ax.set_title(f"{name}: {next(float(r['x_over_h0']) for r in runs[0]['records'] if r['gauge'] == name):g} h0 from the toe",
-                     fontsize=10)
+        ax.set_title(f"{name}: {x_over_h0:g} h0 from the toe", fontsize=10)
         ax.set_xlabel("t sqrt(g / h0)")
         ax.set_ylabel("eta / h0")
         ax.grid(alpha=0.3)

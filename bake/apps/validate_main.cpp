@@ -524,6 +524,7 @@ json shoaling(const Scene& scene, const std::string& csv) {
              {"depth", r.depth},
              {"height", r.height},
              {"height_over_depth", r.height / r.depth},
+             {"gravity", scene.physics.gravity},
              {"toe", r.toe},
              {"slope", r.slope},
              {"still_window", {r.stillFrom, r.stillTo}},
@@ -548,7 +549,8 @@ json shoaling(const Scene& scene, const std::string& csv) {
                               {"mean_abs_error_over_h0", g.meanAbsError},
                               {"mean_signed_error_over_h0", g.meanSignedError},
                               {"from", g.from},
-                              {"until", g.until}});
+                              {"until", g.until},
+                              {"still_level", g.stillLevel}});
         out["gauge_records"] = gauges;
         out["clock_offset"] = c.clockOffset;
         out["incident_crest_error"] = c.incidentCrestError;

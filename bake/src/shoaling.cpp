@@ -68,6 +68,7 @@ ShoalingCheck analyseShoaling(std::span<const ShoalingGauge> records, double dep
     for (std::size_t k = 0; k < times.size(); ++k)
         T[k] = times[k] / tau;
     std::vector<std::vector<double>> eta(records.size());
+    std::vector<double> stillLevels(records.size());
     for (std::size_t g = 0; g < records.size(); ++g) {
         if (elevations[g].size() != times.size())
             throw std::invalid_argument(
@@ -86,6 +87,7 @@ ShoalingCheck analyseShoaling(std::span<const ShoalingGauge> records, double dep
                 "analyseShoaling: gauge {} has no sample in its still window [{}, {}] s",
                 records[g].name, stillFrom, stillTo));
         still /= static_cast<double>(n);
+        stillLevels[g] = still;
         eta[g].resize(times.size());
         for (std::size_t k = 0; k < times.size(); ++k)
             eta[g][k] = (elevations[g][k] - still) / depth;
@@ -108,6 +110,7 @@ ShoalingCheck analyseShoaling(std::span<const ShoalingGauge> records, double dep
         e.name = rec.name;
         e.from = rt.front();
         e.until = rt.back();
+        e.stillLevel = stillLevels[g];
         const double lo = e.from - out.clockOffset, hi = e.until - out.clockOffset;
         if (T.empty() || T.front() > lo || T.back() < hi)
             throw std::invalid_argument(fmt::format(
@@ -173,7 +176,7 @@ std::string grilli1994RecordsCsv() {
     std::string out = "gauge,x_over_h0,t,eta\n";
     for (const ShoalingGauge& g : grilli1994Gauges()) {
         for (const ShoalingSample& s : g.record)
-            out += fmt::format("{},{:g},{:g},{:g}\n", g.name, g.xOverDepth, s.t, s.eta);
+            out += fmt::format("{},{},{},{}\n", g.name, g.xOverDepth, s.t, s.eta);
     }
     return out;
 }

@@ -118,6 +118,7 @@ TEST(Shoaling, TheExperimentAgainstItselfReadsNoError) {
         EXPECT_NEAR(g.crestTime, g.crestTimeRecord, 0.03) << g.name;
         EXPECT_NEAR(g.amplification, g.amplificationRecord, 0.01) << g.name;
         EXPECT_LT(g.meanAbsError, 0.002) << g.name;
+        EXPECT_NEAR(g.stillLevel, 0.002, 1e-12) << g.name; // the run's level before the wave
         EXPECT_EQ(g.from, grilli1994Gauges()[&g - c.gauges.data()].record.front().t);
     }
     EXPECT_NEAR(c.incidentCrestError, 0.0, 0.005);

@@ -44,6 +44,7 @@ struct ShoalingGaugeError {
     double meanAbsError = 0.0;
     double meanSignedError = 0.0;
     double from = 0.0, until = 0.0; ///< the record's span, on the experiment's clock
+    double stillLevel = 0.0;        ///< the run's level before the wave (m): its still-window mean
 };
 
 /// What the gauges say.
