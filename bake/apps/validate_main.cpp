@@ -12,6 +12,7 @@
 #include <fstream>
 #include <functional>
 #include <iostream>
+#include <limits>
 #include <optional>
 #include <span>
 #include <string>
@@ -548,6 +549,11 @@ json shoaling(const Scene& scene, const std::string& csv) {
                               {"amplification_record", g.amplificationRecord},
                               {"mean_abs_error_over_h0", g.meanAbsError},
                               {"mean_signed_error_over_h0", g.meanSignedError},
+                              {"rise", g.rise},
+                              {"rise_record", g.riseRecord},
+                              {"fall", g.fall},
+                              {"fall_record", g.fallRecord},
+                              {"energy_ratio", g.energyRatio},
                               {"from", g.from},
                               {"until", g.until},
                               {"still_level", g.stillLevel}});
@@ -683,6 +689,12 @@ Figures shoalingFigures(const json& r) {
         const std::string name = g["name"].get<std::string>();
         f.push_back({"crest_over_h0_" + name, g["crest_over_h0"].get<double>()});
         f.push_back({"mean_abs_error_over_h0_" + name, g["mean_abs_error_over_h0"].get<double>()});
+        f.push_back({"energy_ratio_" + name, g["energy_ratio"].get<double>()});
+        // A side whose half-height crossing the record's span does not hold reads null (NaN).
+        for (const char* side : {"rise", "fall"})
+            f.push_back({std::string(side) + "_" + name,
+                         g[side].is_number() ? g[side].get<double>()
+                                             : std::numeric_limits<double>::quiet_NaN()});
     }
     return f;
 }

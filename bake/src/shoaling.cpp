@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
+#include <tuple>
 
 #include <fmt/format.h>
 
@@ -50,7 +52,42 @@ void split(std::span<const ShoalingSample> r, std::vector<double>& t, std::vecto
     }
 }
 
+/// The run's eta at time `at` (linear between its samples T, clamped to its ends).
+double valueAt(std::span<const double> T, std::span<const double> eta, double at) {
+    const auto next = std::lower_bound(T.begin(), T.end(), at);
+    const std::size_t j = static_cast<std::size_t>(next - T.begin());
+    const std::size_t j0 = j == 0 ? 0 : j - 1, j1 = std::min(j, T.size() - 1);
+    const double f = T[j1] > T[j0] ? (at - T[j0]) / (T[j1] - T[j0]) : 0.0;
+    return eta[j0] + f * (eta[j1] - eta[j0]);
+}
+
 } // namespace
+
+std::pair<double, double> halfHeightTimes(std::span<const double> t, std::span<const double> y,
+                                          double lo, double hi, double crestTime, double crest) {
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    const double half = 0.5 * crest;
+    // Where y crosses `half` between samples a and b (a below it, b at or above, or the reverse).
+    const auto crossing = [&](std::size_t a, std::size_t b) {
+        return y[b] != y[a] ? t[a] + (half - y[a]) * (t[b] - t[a]) / (y[b] - y[a]) : t[a];
+    };
+    const std::size_t after = static_cast<std::size_t>(
+        std::lower_bound(t.begin(), t.end(), crestTime) - t.begin()); // first t >= crestTime
+    double rise = nan, fall = nan;
+    for (std::size_t k = after; k-- > 0 && t[k] >= lo;) {
+        if (y[k] < half && k + 1 < t.size()) {
+            rise = crestTime - crossing(k, k + 1);
+            break;
+        }
+    }
+    for (std::size_t k = after; k < t.size() && t[k] <= hi; ++k) {
+        if (y[k] < half && k > 0) {
+            fall = crossing(k - 1, k) - crestTime;
+            break;
+        }
+    }
+    return {rise, fall};
+}
 
 ShoalingCheck analyseShoaling(std::span<const ShoalingGauge> records, double depth, double gravity,
                               std::span<const double> times,
@@ -134,22 +171,24 @@ ShoalingCheck analyseShoaling(std::span<const ShoalingGauge> records, double dep
         }
         e.amplification = e.crest / runCrest0;
         e.amplificationRecord = e.crestRecord / recordCrest0;
+        std::tie(e.riseRecord, e.fallRecord) =
+            halfHeightTimes(rt, reta, e.from, e.until, e.crestTimeRecord, e.crestRecord);
+        std::tie(e.rise, e.fall) =
+            halfHeightTimes(T, eta[g], lo, hi, e.crestTime - out.clockOffset, e.crest);
         // The run at each record sample, weighted by half the time to its neighbours.
-        double sumAbs = 0.0, sumSigned = 0.0, sumW = 0.0;
+        double sumAbs = 0.0, sumSigned = 0.0, sumW = 0.0, sumRun2 = 0.0, sumRecord2 = 0.0;
         for (std::size_t k = 0; k < rt.size(); ++k) {
             const double w = 0.5 * (rt[std::min(k + 1, rt.size() - 1)] - rt[k > 0 ? k - 1 : 0]);
-            const double at = rt[k] - out.clockOffset;
-            const auto next = std::lower_bound(T.begin(), T.end(), at);
-            const std::size_t j = static_cast<std::size_t>(next - T.begin());
-            const std::size_t j0 = j == 0 ? 0 : j - 1, j1 = std::min(j, T.size() - 1);
-            const double f = T[j1] > T[j0] ? (at - T[j0]) / (T[j1] - T[j0]) : 0.0;
-            const double run = eta[g][j0] + f * (eta[g][j1] - eta[g][j0]);
+            const double run = valueAt(T, eta[g], rt[k] - out.clockOffset);
             sumAbs += w * std::abs(run - reta[k]);
             sumSigned += w * (run - reta[k]);
             sumW += w;
+            sumRun2 += w * run * run;
+            sumRecord2 += w * reta[k] * reta[k];
         }
         e.meanAbsError = sumAbs / sumW;
         e.meanSignedError = sumSigned / sumW;
+        e.energyRatio = sumRun2 / sumRecord2;
         if (g > 0) {
             const double crestError = e.crest / e.crestRecord - 1.0;
             const double ampError = e.amplification / e.amplificationRecord - 1.0;

@@ -120,7 +120,14 @@ TEST(Shoaling, TheExperimentAgainstItselfReadsNoError) {
         EXPECT_LT(g.meanAbsError, 0.002) << g.name;
         EXPECT_NEAR(g.stillLevel, 0.002, 1e-12) << g.name; // the run's level before the wave
         EXPECT_EQ(g.from, grilli1994Gauges()[&g - c.gauges.data()].record.front().t);
+        EXPECT_NEAR(g.rise, g.riseRecord, 0.02) << g.name;
+        EXPECT_NEAR(g.fall, g.fallRecord, 0.02) << g.name;
+        EXPECT_NEAR(g.energyRatio, 1.0, 0.01) << g.name;
     }
+    // The record's own shape, as the figures show it: g0 rises over about 2.1 sqrt(h0/g)
+    // (Boussinesq's wave of H / h0 = 0.2 takes 2.08), g9 over a third of a unit.
+    EXPECT_NEAR(c.gauges[0].riseRecord, 2.1, 0.1);
+    EXPECT_NEAR(c.gauges[5].riseRecord, 0.36, 0.05);
     EXPECT_NEAR(c.incidentCrestError, 0.0, 0.005);
     EXPECT_NEAR(c.crestErrorWorst, 0.0, 0.005);
     EXPECT_NEAR(c.travelTimeError, 0.0, 0.01);
@@ -216,4 +223,67 @@ TEST(Shoaling, ScenesThatAreNotTheExperimentNameTheirKey) {
     s = ok;
     s.piston->kind = PistonKind::Sinusoidal;
     EXPECT_EQ(sceneErrorKey(s), "piston.kind");
+}
+
+TEST(Shoaling, HalfHeightTimesReadAPeaksSidesAndNothingBeyondTheSpan) {
+    // A tent from 0 at t = 2 to 1 at t = 5 and back to 0 at t = 11, sampled every 0.5: half
+    // height at t = 3.5 and t = 8.
+    std::vector<double> t, y;
+    for (int k = 0; k <= 26; ++k) {
+        const double T = 0.5 * k;
+        t.push_back(T);
+        y.push_back(T <= 2.0    ? 0.0
+                    : T <= 5.0  ? (T - 2.0) / 3.0
+                    : T <= 11.0 ? (11.0 - T) / 6.0
+                                : 0.0);
+    }
+    const auto [rise, fall] = halfHeightTimes(t, y, 0.0, 13.0, 5.0, 1.0);
+    EXPECT_NEAR(rise, 1.5, 1e-12);
+    EXPECT_NEAR(fall, 3.0, 1e-12);
+    // A span that ends before the back falls to half, or starts after the front rose to it.
+    EXPECT_TRUE(std::isnan(halfHeightTimes(t, y, 0.0, 7.5, 5.0, 1.0).second));
+    EXPECT_NEAR(halfHeightTimes(t, y, 0.0, 7.5, 5.0, 1.0).first, 1.5, 1e-12);
+    EXPECT_TRUE(std::isnan(halfHeightTimes(t, y, 4.0, 13.0, 5.0, 1.0).first));
+}
+
+TEST(Shoaling, ABroaderWaveReadsItsShapeAndItsEnergy) {
+    // Every slope gauge's wave 1.3 times as long about its crest: each side reads 1.3 times the
+    // record's and the energy through the gauge about 1.3 times it (the span cuts the stretched
+    // wave's ends).
+    const auto gauges = grilli1994Gauges();
+    const double stretch = 1.3;
+    std::vector<double> crestT;
+    for (const ShoalingGauge& g : gauges) {
+        ShoalingSample best = g.record.front();
+        for (const ShoalingSample& s : g.record)
+            best = s.eta > best.eta ? s : best;
+        crestT.push_back(best.t);
+    }
+    const auto broad = [&](double scale) {
+        return syntheticRun(3.0, 0.0, [&](std::size_t g, double T, double v) {
+            if (g == 0)
+                return v;
+            const double c = crestT[g] + 3.0;
+            return scale * recordAt(gauges[g].record, c + (T - c) / stretch - 3.0);
+        });
+    };
+    const ShoalingCheck c = analyse(broad(1.0));
+    for (std::size_t g = 1; g < gauges.size(); ++g) {
+        const ShoalingGaugeError& e = c.gauges[g];
+        EXPECT_NEAR(e.crest / e.crestRecord, 1.0, 0.01) << e.name;
+        // Within 0.05 sqrt(h0/g): the crest's time moves by a few hundredths as the parabola
+        // fits a broader top, which counts on g7's and g9's short fronts (0.4 sqrt(h0/g)).
+        EXPECT_NEAR(e.rise, stretch * e.riseRecord, 0.05) << e.name;
+        EXPECT_NEAR(e.fall, stretch * e.fallRecord, 0.05) << e.name;
+        EXPECT_NEAR(e.energyRatio, stretch, 0.12) << e.name;
+        EXPECT_GT(e.energyRatio, 1.1) << e.name;
+    }
+    // Lower by 1 / sqrt(1.3) as well: the same energy in a lower, broader wave reads about 1,
+    // while the crest reads 12 % low.
+    const ShoalingCheck same = analyse(broad(1.0 / std::sqrt(stretch)));
+    for (std::size_t g = 1; g < gauges.size(); ++g) {
+        const ShoalingGaugeError& e = same.gauges[g];
+        EXPECT_NEAR(e.crest / e.crestRecord, 1.0 / std::sqrt(stretch), 0.01) << e.name;
+        EXPECT_NEAR(e.energyRatio, 1.0, 0.1) << e.name;
+    }
 }

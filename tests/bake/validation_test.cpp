@@ -572,6 +572,17 @@ TEST(Validation, ShoalingFollowsGrilliAtCiResolution) {
     EXPECT_NEAR(c.travelTimeError, 0.0, 0.06);
     // The wave grows up the beach: g9's crest stands 1.25 times g0's or more (the record: 1.71).
     EXPECT_GT(c.gauges.back().amplification, 1.25);
+    // It keeps its energy up to the break: at g1-g7 the integral of eta^2 dt over each
+    // record's span reads the record's within 15 % (this record 0.97-1.04, the jittered
+    // members in docs/validation.md 7.45; without particle shifting 0.93, 0.84, 0.83, 0.78,
+    // the wave then keeping its shape and losing its energy). Its shape is what it lacks: its
+    // front rises over about twice the record's time at g1-g5 (recorded, not bounded).
+    for (std::size_t g = 1; g + 1 < c.gauges.size(); ++g) {
+        const ShoalingGaugeError& e = c.gauges[g];
+        RecordProperty("energy_ratio_" + e.name, fmt::format("{:.3f}", e.energyRatio));
+        RecordProperty("rise_ratio_" + e.name, fmt::format("{:.3f}", e.rise / e.riseRecord));
+        EXPECT_NEAR(e.energyRatio, 1.0, 0.15) << e.name;
+    }
 }
 
 TEST(Validation, StillTankHydrostaticPressureWithTheDefaultScheme) {

@@ -13,6 +13,7 @@
 #include <cstddef>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "swell/bake/grilli1994.h"
@@ -44,8 +45,26 @@ struct ShoalingGaugeError {
     double meanAbsError = 0.0;
     double meanSignedError = 0.0;
     double from = 0.0, until = 0.0; ///< the record's span, on the experiment's clock
-    double stillLevel = 0.0;        ///< the run's level before the wave (m): its still-window mean
+    /// The wave's shape, in sqrt(h0 / g): from where its front first stands at half the crest
+    /// to the crest (rise), and from the crest to where its back falls below half of it
+    /// (fall), the run's and the record's, each within the record's span; NaN where the span
+    /// does not reach that far (halfHeightTimes).
+    double rise = 0.0, riseRecord = 0.0, fall = 0.0, fallRecord = 0.0;
+    /// The integral of eta^2 dt over the record's span, the run's over the record's (each
+    /// sample weighted as in the mean errors). At one depth the linear long-wave energy flux
+    /// through the gauge is rho g sqrt(g h) times that integral, so 1 reads the record's
+    /// energy whatever the wave's shape: a run that is low and broad but near 1 has kept the
+    /// wave's energy and lost its shape, one well below 1 has lost energy.
+    double energyRatio = 0.0;
+    double stillLevel = 0.0; ///< the run's level before the wave (m): its still-window mean
 };
+
+/// The times (same units as t) from the front's first sample at or above half of `crest`
+/// to `crestTime`, and from `crestTime` to the back's first sample below half of it, each
+/// crossing interpolated linearly between samples, searched outward from the crest over the
+/// samples with t in [lo, hi]; NaN for a side whose crossing that span does not hold.
+std::pair<double, double> halfHeightTimes(std::span<const double> t, std::span<const double> y,
+                                          double lo, double hi, double crestTime, double crest);
 
 /// What the gauges say.
 struct ShoalingCheck {
