@@ -830,6 +830,7 @@ void MpsSolver::shiftParticles(double dt) {
     // taken; without it each particle moves at once.
     const bool follow = m_par.model.shiftingVelocity;
     const bool damp = m_par.model.shiftDamping;
+    const double band = m_par.model.shiftDeadBand * m_l0; // solver.shift_dead_band, per step
 #pragma omp parallel for schedule(static, kParticleChunk) if (n >= kParallelMin)
     for (std::size_t i = 0; i < n; ++i) {
         if (isFixed(m_p.kind[i]))
@@ -846,6 +847,12 @@ void MpsSolver::shiftParticles(double dt) {
             } else {
                 sx = sy = 0.0;
             }
+        } else if (band > 0.0) {
+            // The dead band: the shift less band, 0 where it is shorter (docs/validation.md 7.45).
+            const double s = std::hypot(sx, sy);
+            const double keep = s > band ? 1.0 - band / s : 0.0;
+            sx *= keep;
+            sy *= keep;
         }
         const double len = std::hypot(sx, sy);
         if (len > maxShift) {

@@ -341,6 +341,7 @@ Scene parseScene(const json& j) {
         m.shiftDampingWallGain =
             s.number("shift_damping_wall_gain", m.shiftDampingWallGain, 0.0, 10.0, true);
         m.truncatedDensity = s.number("truncated_density", m.truncatedDensity, 0.0, 1.0, false);
+        m.shiftDeadBand = s.number("shift_dead_band", m.shiftDeadBand, 0.0, 0.1, false, " (l0)");
         m.higherOrderLaplacian = s.boolean("higher_order_laplacian", m.higherOrderLaplacian);
         if (m.shifting > 0.0 && m.surfaceTest != SurfaceTest::Distribution) {
             throw SceneError("solver.shifting",
@@ -360,6 +361,11 @@ Scene parseScene(const json& j) {
                                  "or set this to false");
             }
             m.shiftDamping = false;
+        }
+        if (m.shiftDeadBand > 0.0 && !(m.shifting > 0.0)) {
+            throw SceneError("solver.shift_dead_band",
+                             "is a dead band on the particle shifting, and solver.shifting is "
+                             "0: set a shifting coefficient or leave this 0");
         }
         if (m.shiftingVelocity && !(m.shifting > 0.0)) {
             throw SceneError("solver.shifting_velocity",
@@ -644,6 +650,8 @@ json toJson(const Scene& sc) {
         out["solver"]["shift_damping_wall_gain"] = s.model.shiftDampingWallGain;
     if (s.model.truncatedDensity != plain.truncatedDensity)
         out["solver"]["truncated_density"] = s.model.truncatedDensity;
+    if (s.model.shiftDeadBand != plain.shiftDeadBand)
+        out["solver"]["shift_dead_band"] = s.model.shiftDeadBand;
     if (sc.piston) {
         const PistonParams& p = *sc.piston;
         out["piston"] = json{{"kind", std::string(toString(p.kind))},

@@ -337,6 +337,48 @@ TEST(MpsSolver, ShiftDampingGainTakesMoreOfTheSameSurfaceVelocity) {
     EXPECT_GT(onlySurfaceParticlesSlowDown(solver, unitSolver), 0u);
 }
 
+TEST(MpsSolver, ShiftDeadBandTakesItsWidthFromEachInteriorShiftAndLeavesTheSurfaceAlone) {
+    // solver.shift_dead_band b: from the same dam-break state, one step with b = 0.001 l0 and
+    // one without put every free-surface particle in the same place (their shift along the
+    // surface is left alone), and move each interior water particle by its shift less b, or
+    // not at all where the shift is shorter: the two places differ by min(|s|, b), never more
+    // than b, and exactly b for a particle whose shift was longer.
+    Scene scene = smallDamBreak();
+    scene.solver = schemeParams(Scheme::Swell);
+    ASSERT_EQ(scene.solver.model.shiftDeadBand, 0.0);
+    ASSERT_GT(scene.solver.model.shifting, 0.0);
+    Scene banded = scene;
+    const double b = 0.001;
+    banded.solver.model.shiftDeadBand = b;
+    MpsSolver with = makeSolver(banded);
+    MpsSolver without = makeSolver(scene);
+    stepBothFromTheSameState(with, without);
+    ASSERT_EQ(with.surfaceFlags(), without.surfaceFlags());
+    const Particles& a = with.particles();
+    const Particles& c = without.particles();
+    const double l0 = scene.geometry.particleSpacing;
+    std::size_t interior = 0, fullBand = 0, held = 0;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        if (a.kind[i] != ParticleKind::Water)
+            continue;
+        const double d = std::hypot(a.x[i] - c.x[i], a.y[i] - c.y[i]) / l0;
+        if (with.surfaceFlags()[i] == 1) {
+            EXPECT_EQ(a.x[i], c.x[i]) << "surface particle " << i;
+            EXPECT_EQ(a.y[i], c.y[i]) << "surface particle " << i;
+            continue;
+        }
+        ++interior;
+        EXPECT_LE(d, b + 1e-9) << "particle " << i;
+        if (std::abs(d - b) < 1e-9)
+            ++fullBand;
+        else
+            ++held; // a shift shorter than the band: not moved at all
+    }
+    EXPECT_GT(interior, 100u);
+    EXPECT_GT(fullBand, 0u); // some shifts are longer than the band, some shorter
+    EXPECT_GT(held, 0u);
+}
+
 TEST(MpsSolver, ShiftDampingWallGainActsOnlyNextToTheWalls) {
     // solver.shift_damping_wall_gain: from the same dam-break state, one step at wall gain 2
     // and one at the default (1, the open surface's gain) put every particle in the same place with

@@ -197,6 +197,14 @@ struct ModelParams {
     /// for n0 there drives the rows under the surface up against the shifting, a velocity that
     /// moves them nowhere (docs/validation.md 7.3, 7.26). 0 (both schemes) turns it off.
     double truncatedDensity = 0.0;
+    /// A dead band b (l0 per step) on the shift of water particles off the free surface: a
+    /// shift s becomes s (1 - b / |s|) where |s| > b and 0 below (a soft threshold), so the
+    /// large shifts that reorder disordered particles act and the small, steady ones a smooth
+    /// flow makes do not. Those are what lower and broaden a long wave's crest (a shoaling
+    /// solitary wave's, docs/validation.md 7.45). Free-surface particles' shift along the
+    /// surface is left as it is. 0 (both schemes) turns it off; opt-in, measured on single
+    /// records only (7.45), not the default.
+    double shiftDeadBand = 0.0;
     /// Laplacian of the pressure Poisson equation: false, K&O 1996's 2d/(lambda n0) w(r);
     /// true, the higher-order form of Khayyer & Gotoh (2010), pair weight re / r^3 (the
     /// 2D 3 re / r^3 up to its constant), normalized so a lattice gives lap x^2 = 2 exactly.
