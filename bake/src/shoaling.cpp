@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <stdexcept>
 #include <tuple>
 
@@ -65,28 +64,8 @@ double valueAt(std::span<const double> T, std::span<const double> eta, double at
 
 std::pair<double, double> halfHeightTimes(std::span<const double> t, std::span<const double> y,
                                           double lo, double hi, double crestTime, double crest) {
-    const double nan = std::numeric_limits<double>::quiet_NaN();
-    const double half = 0.5 * crest;
-    // Where y crosses `half` between samples a and b (a below it, b at or above, or the reverse).
-    const auto crossing = [&](std::size_t a, std::size_t b) {
-        return y[b] != y[a] ? t[a] + (half - y[a]) * (t[b] - t[a]) / (y[b] - y[a]) : t[a];
-    };
-    const std::size_t after = static_cast<std::size_t>(
-        std::lower_bound(t.begin(), t.end(), crestTime) - t.begin()); // first t >= crestTime
-    double rise = nan, fall = nan;
-    for (std::size_t k = after; k-- > 0 && t[k] >= lo;) {
-        if (y[k] < half && k + 1 < t.size()) {
-            rise = crestTime - crossing(k, k + 1);
-            break;
-        }
-    }
-    for (std::size_t k = after; k < t.size() && t[k] <= hi; ++k) {
-        if (y[k] < half && k > 0) {
-            fall = crossing(k - 1, k) - crestTime;
-            break;
-        }
-    }
-    return {rise, fall};
+    const auto [front, back] = crossingsAround(t, y, lo, hi, crestTime, 0.5 * crest);
+    return {crestTime - front, back - crestTime}; // NaN stays NaN
 }
 
 ShoalingCheck analyseShoaling(std::span<const ShoalingGauge> records, double depth, double gravity,

@@ -111,20 +111,14 @@ SolitaryWaveCheck analyseSolitaryWave(const PistonParams& piston, std::span<cons
         c.amplitude = top - c.stillLevel;
         // The A / 2 crossings on either side, interpolated.
         const double half = c.stillLevel + 0.5 * c.amplitude;
-        std::size_t a = peak, b = peak;
-        while (a > 0 && eta[a] >= half)
-            --a;
-        while (b < last && eta[b] >= half)
-            ++b;
-        if (eta[a] >= half || eta[b] >= half)
+        const auto [front, back] =
+            crossingsAround(times, eta, times.front(), times[last], tc, half);
+        if (std::isnan(front) || std::isnan(back))
             throw std::invalid_argument(fmt::format(
                 "analyseSolitaryWave: gauge x = {} m stays above half its crest on one side "
                 "inside [0, {}] s",
                 c.x, win.until));
-        const auto cross = [&](std::size_t k0, std::size_t k1) {
-            return times[k0] + (times[k1] - times[k0]) * (half - eta[k0]) / (eta[k1] - eta[k0]);
-        };
-        const double width = cross(b - 1, b) - cross(a, a + 1);
+        const double width = back - front;
         c.widthError = width / halfHeightDuration(c.amplitude, piston.depth, piston.gravity) - 1.0;
         crestTimes.push_back(c.time);
         xs.push_back(c.x);

@@ -187,6 +187,30 @@ std::optional<LevelError> lobovskyScatter(const LevelGauge& gauge, double tLo, d
     return compareLevel(gauge.repeat, gauge.series, tLo, tHi);
 }
 
+std::pair<double, double> crossingsAround(std::span<const double> t, std::span<const double> y,
+                                          double lo, double hi, double crestTime, double level) {
+    // y[a] and y[b] lie on either side of `level` wherever this is called.
+    const auto cross = [&](std::size_t a, std::size_t b) {
+        return t[a] + (t[b] - t[a]) * (level - y[a]) / (y[b] - y[a]);
+    };
+    const std::size_t after = static_cast<std::size_t>(
+        std::lower_bound(t.begin(), t.end(), crestTime) - t.begin()); // first t >= crestTime
+    double front = std::numeric_limits<double>::quiet_NaN(), back = front;
+    for (std::size_t k = after; k-- > 0 && t[k] >= lo;) {
+        if (y[k] < level && k + 1 < t.size()) {
+            front = cross(k, k + 1);
+            break;
+        }
+    }
+    for (std::size_t k = after; k < t.size() && t[k] <= hi; ++k) {
+        if (y[k] < level && k > 0) {
+            back = cross(k - 1, k);
+            break;
+        }
+    }
+    return {front, back};
+}
+
 std::pair<double, double> parabolaTop(std::span<const double> t, std::span<const double> y,
                                       std::size_t lo, std::size_t hi, std::size_t peak) {
     const double t0 = t[peak];

@@ -202,8 +202,8 @@ struct ModelParams {
     /// large shifts that reorder disordered particles act and the small, steady ones a smooth
     /// flow makes do not. Those are what lower and broaden a long wave's crest (a shoaling
     /// solitary wave's, docs/validation.md 7.45). Free-surface particles' shift along the
-    /// surface is left as it is. 0 (both schemes) turns it off; opt-in, measured on single
-    /// records only (7.45), not the default.
+    /// surface is left as it is. 0 (both schemes) turns it off; opt-in, not the default: measured
+    /// on single records of five cases and on ensembles of two (7.45).
     double shiftDeadBand = 0.0;
     /// Laplacian of the pressure Poisson equation: false, K&O 1996's 2d/(lambda n0) w(r);
     /// true, the higher-order form of Khayyer & Gotoh (2010), pair weight re / r^3 (the

@@ -121,6 +121,14 @@ HarmonicFit fitHarmonic(std::span<const double> t, std::span<const double> v, do
 /// the x are all equal.
 double lineSlope(std::span<const double> x, std::span<const double> y, const char* what);
 
+/// Where a record y(t) crosses `level` on either side of its crest at `crestTime`: searched
+/// outward from the crest over the samples with t in [lo, hi], the first sample below `level`
+/// on each side, the crossing interpolated linearly between it and its neighbour towards the
+/// crest. Returns (front, back) times; NaN for a side whose crossing that span does not hold.
+/// The solitary wave's width and the shoaling wave's rise and fall are read with it.
+std::pair<double, double> crossingsAround(std::span<const double> t, std::span<const double> y,
+                                          double lo, double hi, double crestTime, double level);
+
 /// The top of a record's crest: the least-squares parabola y = a + b s + c s^2 (s = t - t[peak])
 /// through the samples [lo, hi], as (t of its vertex, y there). Falls back to (t[peak],
 /// y[peak]) where fewer than three samples, a singular fit, a fit that is not a maximum, or a
