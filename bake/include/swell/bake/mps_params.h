@@ -202,8 +202,9 @@ struct ModelParams {
     /// large shifts that reorder disordered particles act and the small, steady ones a smooth
     /// flow makes do not. Those are what lower and broaden a long wave's crest (a shoaling
     /// solitary wave's, docs/validation.md 7.45). Free-surface particles' shift along the
-    /// surface is left as it is. 0 (both schemes) turns it off; opt-in, not the default: measured
-    /// on single records of five cases and on ensembles of two (7.45).
+    /// surface is left as it is. 0 (both schemes) turns it off; opt-in, not the default: on
+    /// ensembles of every case it raises the beach's crests and moves none of issue 14's
+    /// targets closer, and the dam break's front no longer converges (7.45, 7.46).
     double shiftDeadBand = 0.0;
     /// Laplacian of the pressure Poisson equation: false, K&O 1996's 2d/(lambda n0) w(r);
     /// true, the higher-order form of Khayyer & Gotoh (2010), pair weight re / r^3 (the
