@@ -494,6 +494,11 @@ void MpsSolver::numberDensityAndSurface() {
     const double asymmetric = model.distributionThreshold * m_latN.flatSurfaceAsymmetry;
     const double fScale = 1.0 / (m_latN.n0 * m_l0);
     const bool shifting = model.shifting > 0.0;
+    // solver.shift_close_pairs g: the shift's sums from the pairs closer than l0 only, with the
+    // MPS weight on l0, times g (docs/validation.md 7.47).
+    const double closeGain = model.shiftClosePairs;
+    const bool closePairs = closeGain > 0.0;
+    const double l02 = m_l0 * m_l0;
     // With a relaxation kernel of its own (re_relaxation) or a packing kernel (re_packing),
     // their sums take the full list, which reaches them; the short list is its sub-list in the
     // same order, so the re_N sums below see the same neighbours in the same order either way.
@@ -541,8 +546,14 @@ void MpsSolver::numberDensityAndSurface() {
                 fx += dx * w; // neighbour distribution (Khayyer, Gotoh & Shao 2009)
                 fy += dy * w;
                 if (shiftSums && r2 > 0.0) { // concentration gradient sum (shiftParticles)
-                    cx += dx * w / r2;
-                    cy += dy * w / r2;
+                    if (!closePairs) {
+                        cx += dx * w / r2;
+                        cy += dy * w / r2;
+                    } else if (r2 < l02) { // solver.shift_close_pairs: pairs closer than l0
+                        const double f = closeGain * mpsWeight(std::sqrt(r2), m_l0) / r2;
+                        cx += dx * f;
+                        cy += dy * f;
+                    }
                 }
                 if (mixed && m_p.kind[j] != ParticleKind::Dummy) {
                     // Divergence model: d/n0 sum (u_j - u_i).(r_j - r_i) / r^2 w

@@ -342,6 +342,7 @@ Scene parseScene(const json& j) {
             s.number("shift_damping_wall_gain", m.shiftDampingWallGain, 0.0, 10.0, true);
         m.truncatedDensity = s.number("truncated_density", m.truncatedDensity, 0.0, 1.0, false);
         m.shiftDeadBand = s.number("shift_dead_band", m.shiftDeadBand, 0.0, 0.1, false, " (l0)");
+        m.shiftClosePairs = s.number("shift_close_pairs", m.shiftClosePairs, 0.0, 10.0, false);
         m.higherOrderLaplacian = s.boolean("higher_order_laplacian", m.higherOrderLaplacian);
         if (m.shifting > 0.0 && m.surfaceTest != SurfaceTest::Distribution) {
             throw SceneError("solver.shifting",
@@ -366,6 +367,11 @@ Scene parseScene(const json& j) {
             throw SceneError("solver.shift_dead_band",
                              "is a dead band on the particle shifting, and solver.shifting is "
                              "0: set a shifting coefficient or leave this 0");
+        }
+        if (m.shiftClosePairs > 0.0 && !(m.shifting > 0.0)) {
+            throw SceneError("solver.shift_close_pairs",
+                             "takes the particle shifting's pair sums from close pairs, and "
+                             "solver.shifting is 0: set a shifting coefficient or leave this 0");
         }
         if (m.shiftingVelocity && !(m.shifting > 0.0)) {
             throw SceneError("solver.shifting_velocity",
@@ -652,6 +658,8 @@ json toJson(const Scene& sc) {
         out["solver"]["truncated_density"] = s.model.truncatedDensity;
     if (s.model.shiftDeadBand != plain.shiftDeadBand)
         out["solver"]["shift_dead_band"] = s.model.shiftDeadBand;
+    if (s.model.shiftClosePairs != plain.shiftClosePairs)
+        out["solver"]["shift_close_pairs"] = s.model.shiftClosePairs;
     if (sc.piston) {
         const PistonParams& p = *sc.piston;
         out["piston"] = json{{"kind", std::string(toString(p.kind))},

@@ -379,6 +379,68 @@ TEST(MpsSolver, ShiftDeadBandTakesItsWidthFromEachInteriorShiftAndLeavesTheSurfa
     EXPECT_GT(held, 0u);
 }
 
+TEST(MpsSolver, ShiftClosePairsPushesApartOnlyAPairCloserThanTheSpacing) {
+    // solver.shift_close_pairs: water at rest on its start lattice without gravity, one
+    // interior particle moved 0.3 l0 towards its right-hand neighbour. The shift comes last in a
+    // step, so against a step without shifting (the same r*, pressures and velocities) the
+    // close-pairs step moves that pair alone, apart along the line between them by the same
+    // amount: every other pair is l0 or more apart. The default's shift, summed over the density
+    // kernel, moves many particles around it.
+    Scene scene = smallDamBreak();
+    scene.physics.gravity = 0.0;
+    scene.solver = schemeParams(Scheme::Swell);
+    ASSERT_EQ(scene.solver.model.shiftClosePairs, 0.0);
+    Scene none = scene;
+    none.solver.model.shifting = 0.0;
+    none.solver.model.shiftDamping = false;
+    Scene close = scene;
+    close.solver.model.shiftClosePairs = 2.0;
+    const double l0 = scene.geometry.particleSpacing;
+
+    MpsState state = makeSolver(scene).exportState();
+    Particles& start = state.particles;
+    const auto nearestWater = [&](double x, double y) {
+        std::size_t best = start.size();
+        double bestD = 1e9;
+        for (std::size_t i = 0; i < start.size(); ++i) {
+            const double d = std::hypot(start.x[i] - x, start.y[i] - y);
+            if (start.kind[i] == ParticleKind::Water && d < bestD) {
+                bestD = d;
+                best = i;
+            }
+        }
+        return best;
+    };
+    const std::size_t k = nearestWater(0.05, 0.1);
+    const std::size_t right = nearestWater(start.x[k] + l0, start.y[k]);
+    ASSERT_NEAR(start.x[right] - start.x[k], l0, 1e-12);
+    start.x[k] += 0.3 * l0;
+
+    const auto stepFrom = [&](const Scene& s) {
+        MpsSolver solver = makeSolver(s);
+        solver.importState(state);
+        solver.step();
+        EXPECT_EQ(solver.surfaceFlags()[k], 0);
+        return solver.particles();
+    };
+    const Particles a = stepFrom(close);
+    const Particles b = stepFrom(none);
+    const Particles c = stepFrom(scene);
+    ASSERT_EQ(a.p, b.p);
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        if (i == k || i == right)
+            continue;
+        EXPECT_EQ(a.x[i], b.x[i]) << "particle " << i;
+        EXPECT_EQ(a.y[i], b.y[i]) << "particle " << i;
+    }
+    const double pushK = a.x[k] - b.x[k], pushRight = a.x[right] - b.x[right];
+    EXPECT_LT(pushK, -1e-6 * l0); // apart: k to the left, its neighbour to the right
+    EXPECT_NEAR(pushRight, -pushK, 1e-12 * l0);
+    EXPECT_EQ(a.y[k], b.y[k]);
+    EXPECT_EQ(a.y[right], b.y[right]);
+    EXPECT_GT(particlesThatDiffer(c, b), 10u);
+}
+
 TEST(MpsSolver, ShiftDampingWallGainActsOnlyNextToTheWalls) {
     // solver.shift_damping_wall_gain: from the same dam-break state, one step at wall gain 2
     // and one at the default (1, the open surface's gain) put every particle in the same place with

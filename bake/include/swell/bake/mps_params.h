@@ -206,6 +206,16 @@ struct ModelParams {
     /// ensembles of every case it raises the beach's crests and moves none of issue 14's
     /// targets closer, and the dam break's front no longer converges (7.45, 7.46).
     double shiftDeadBand = 0.0;
+    /// The shift's pair sums from close pairs only, times g: where g > 0 each particle's
+    /// concentration gradient sums (r_j - r_i) / r^2 w over the neighbours closer than l0, with
+    /// the MPS weight on l0 (w = l0 / r - 1), instead of over the density kernel. A lattice's
+    /// spacing gives no shift, so a smooth flow's strained lattice is left where the flow put it
+    /// and only pairs pressed closer than l0 push apart. That keeps a long wave's shape (a
+    /// shoaling solitary wave's slope crests come closer to the experiment), but the still
+    /// tank's water moves five times as fast, a standing wave oscillates 12 % too fast and the
+    /// dam break's front no longer converges (docs/validation.md 7.47). 0 (both schemes)
+    /// turns it off; opt-in, not the default.
+    double shiftClosePairs = 0.0;
     /// Laplacian of the pressure Poisson equation: false, K&O 1996's 2d/(lambda n0) w(r);
     /// true, the higher-order form of Khayyer & Gotoh (2010), pair weight re / r^3 (the
     /// 2D 3 re / r^3 up to its constant), normalized so a lattice gives lap x^2 = 2 exactly.
