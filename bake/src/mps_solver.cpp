@@ -541,7 +541,8 @@ void MpsSolver::numberDensityAndSurface() {
                 }
                 if (wallReach && r2 < wall2 && m_p.kind[j] == ParticleKind::Wall)
                     nearWall = true;
-                const double w = mpsWeight(std::sqrt(r2), m_reN);
+                const double r = std::sqrt(r2);
+                const double w = mpsWeight(r, m_reN);
                 s += w;       // K&O 1996 particle number density n* = sum_j w(|r*_j - r*_i|)
                 fx += dx * w; // neighbour distribution (Khayyer, Gotoh & Shao 2009)
                 fy += dy * w;
@@ -550,7 +551,7 @@ void MpsSolver::numberDensityAndSurface() {
                         cx += dx * w / r2;
                         cy += dy * w / r2;
                     } else if (r2 < l02) { // solver.shift_close_pairs: pairs closer than l0
-                        const double f = closeGain * mpsWeight(std::sqrt(r2), m_l0) / r2;
+                        const double f = closeGain * mpsWeight(r, m_l0) / r2;
                         cx += dx * f;
                         cy += dy * f;
                     }

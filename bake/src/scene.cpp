@@ -363,22 +363,23 @@ Scene parseScene(const json& j) {
             }
             m.shiftDamping = false;
         }
-        if (m.shiftDeadBand > 0.0 && !(m.shifting > 0.0)) {
-            throw SceneError("solver.shift_dead_band",
-                             "is a dead band on the particle shifting, and solver.shifting is "
-                             "0: set a shifting coefficient or leave this 0");
-        }
-        if (m.shiftClosePairs > 0.0 && !(m.shifting > 0.0)) {
-            throw SceneError("solver.shift_close_pairs",
-                             "takes the particle shifting's pair sums from close pairs, and "
-                             "solver.shifting is 0: set a shifting coefficient or leave this 0");
-        }
-        if (m.shiftingVelocity && !(m.shifting > 0.0)) {
-            throw SceneError("solver.shifting_velocity",
-                             "moves the velocity with the particle shifting, and "
-                             "solver.shifting is 0: set a shifting coefficient or leave this "
-                             "false");
-        }
+        // A key that only changes the particle shifting is an error without it: `what` it does,
+        // and the value (`off`) that leaves it unset.
+        const auto needsShifting = [&](bool set, const char* key, const char* what,
+                                       const char* off) {
+            if (set && !(m.shifting > 0.0)) {
+                throw SceneError(fmt::format("solver.{}", key),
+                                 fmt::format("{}, and solver.shifting is 0: set a shifting "
+                                             "coefficient or leave this {}",
+                                             what, off));
+            }
+        };
+        needsShifting(m.shiftDeadBand > 0.0, "shift_dead_band",
+                      "is a dead band on the particle shifting", "0");
+        needsShifting(m.shiftClosePairs > 0.0, "shift_close_pairs",
+                      "takes the particle shifting's pair sums from close pairs", "0");
+        needsShifting(m.shiftingVelocity, "shifting_velocity",
+                      "moves the velocity with the particle shifting", "false");
         // gamma and C are per reference_step; a longer step multiplies them, and neither may
         // act as more than 1 per step (their own ranges, so a step no longer than
         // reference_step always passes).

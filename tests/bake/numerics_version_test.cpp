@@ -94,6 +94,18 @@ MpsState run(const json& j) {
     return solver.exportState();
 }
 
+/// An opt-in solver key: at 0 the guard scene's state is today's default, bit for bit; at
+/// `value`, the value its figures were measured with, it is the `pinned` digest, so those
+/// figures can be run again.
+void expectOffAtZeroAndPinnedAt(const char* key, double value, const char* pinned) {
+    json j = guardScene();
+    const std::string base = digest(run(j));
+    j["solver"][key] = 0.0;
+    EXPECT_EQ(digest(run(j)), base) << key;
+    j["solver"][key] = value;
+    EXPECT_EQ(digest(run(j)), pinned) << key;
+}
+
 } // namespace
 
 TEST(NumericsVersion, SolverOutputMatchesTheDigestRecordedForThisVersion) {
@@ -127,25 +139,11 @@ TEST(NumericsVersion, TheWallGainKeyGivesTheBitsItWasMeasuredWith) {
 }
 
 TEST(NumericsVersion, TheDeadBandKeyChangesNoBitAtItsDefaultAndPinsItsOwn) {
-    // solver.shift_dead_band (opt-in, docs/validation.md 7.45): 0 is today's numerics, bit for
-    // bit; 0.0005, the value measured there, has its state on the guard scene pinned so those
-    // figures can be run again.
-    json j = guardScene();
-    const std::string base = digest(run(j));
-    j["solver"]["shift_dead_band"] = 0.0;
-    EXPECT_EQ(digest(run(j)), base);
-    j["solver"]["shift_dead_band"] = 0.0005;
-    EXPECT_EQ(digest(run(j)), "1189c63ab3672ab6");
+    // solver.shift_dead_band (opt-in, docs/validation.md 7.45), measured at 0.0005.
+    expectOffAtZeroAndPinnedAt("shift_dead_band", 0.0005, "1189c63ab3672ab6");
 }
 
 TEST(NumericsVersion, TheClosePairsKeyChangesNoBitAtItsDefaultAndPinsItsOwn) {
-    // solver.shift_close_pairs (opt-in, docs/validation.md 7.47): 0 is today's numerics, bit for
-    // bit; 2, the value measured there, has its state on the guard scene pinned so those figures
-    // can be run again.
-    json j = guardScene();
-    const std::string base = digest(run(j));
-    j["solver"]["shift_close_pairs"] = 0.0;
-    EXPECT_EQ(digest(run(j)), base);
-    j["solver"]["shift_close_pairs"] = 2.0;
-    EXPECT_EQ(digest(run(j)), "443ea5f87b1e3094");
+    // solver.shift_close_pairs (opt-in, docs/validation.md 7.47), measured at 2.
+    expectOffAtZeroAndPinnedAt("shift_close_pairs", 2.0, "443ea5f87b1e3094");
 }

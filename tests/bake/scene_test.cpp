@@ -612,51 +612,45 @@ TEST(Scene, ShiftDampingWallGainIsOptInAndRangeChecked) {
     expectSolverKeyRejects("shift_damping_wall_gain", {0.0, -1.0, 10.5, "high"});
 }
 
-TEST(Scene, ShiftDeadBandIsOptInRangeCheckedAndNeedsShifting) {
-    // Neither scheme sets it (docs/validation.md 7.45 and 7.46 measured it on single records and
-    // on ensembles of every case, and did not adopt it). Range-checked, named in its errors,
-    // reloaded from the record, left out of the record at its default, and refused without
-    // shifting to act on.
+namespace {
+/// An opt-in solver key that acts on the particle shifting (ModelParams::*field): 0 in both
+/// schemes, left out of the record at 0, read, written and reloaded at `value`, each of `bad`
+/// refused naming it, and a nonzero `refused` refused without shifting to act on (the textbook
+/// scheme's shifting is 0).
+void expectOptInShiftingKey(const std::string& key, double ModelParams::*field, double value,
+                            std::initializer_list<json> bad, double refused) {
     for (const char* scheme : {"swell", "textbook"}) {
         json j = minimal();
         j["solver"]["scheme"] = scheme;
-        EXPECT_EQ(parseScene(j).solver.model.shiftDeadBand, 0.0) << scheme;
+        EXPECT_EQ(parseScene(j).solver.model.*field, 0.0) << key << ", " << scheme;
     }
-    EXPECT_FALSE(toJson(parseScene(minimal()))["solver"].contains("shift_dead_band"));
+    EXPECT_FALSE(toJson(parseScene(minimal()))["solver"].contains(key));
     json j = minimal();
-    j["solver"]["shift_dead_band"] = 0.0005;
-    const Scene banded = parseScene(j);
-    EXPECT_EQ(banded.solver.model.shiftDeadBand, 0.0005);
-    EXPECT_EQ(toJson(banded)["solver"]["shift_dead_band"], 0.0005);
-    EXPECT_EQ(toJson(parseScene(toJson(banded))), toJson(banded));
-    expectSolverKeyRejects("shift_dead_band", {-0.001, 0.2, "wide"});
+    j["solver"][key] = value;
+    const Scene set = parseScene(j);
+    EXPECT_EQ(set.solver.model.*field, value) << key;
+    EXPECT_EQ(toJson(set)["solver"][key], value) << key;
+    EXPECT_EQ(toJson(parseScene(toJson(set))), toJson(set)) << key;
+    expectSolverKeyRejects(key, bad);
     json textbook = minimal();
     textbook["solver"]["scheme"] = "textbook"; // shifting 0
-    textbook["solver"]["shift_dead_band"] = 0.001;
-    EXPECT_EQ(errorKey(textbook), "solver.shift_dead_band");
+    textbook["solver"][key] = refused;
+    EXPECT_EQ(errorKey(textbook), "solver." + key);
+}
+} // namespace
+
+TEST(Scene, ShiftDeadBandIsOptInRangeCheckedAndNeedsShifting) {
+    // Neither scheme sets it (docs/validation.md 7.45 and 7.46 measured it on single records and
+    // on ensembles of every case, and did not adopt it).
+    expectOptInShiftingKey("shift_dead_band", &ModelParams::shiftDeadBand, 0.0005,
+                           {-0.001, 0.2, "wide"}, 0.001);
 }
 
 TEST(Scene, ShiftClosePairsIsOptInRangeCheckedAndNeedsShifting) {
     // Neither scheme sets it (docs/validation.md 7.47 measured it on ensembles and did not adopt
-    // it). Range-checked, named in its errors, reloaded from the record, left out of the record
-    // at its default, and refused without shifting to act on.
-    for (const char* scheme : {"swell", "textbook"}) {
-        json j = minimal();
-        j["solver"]["scheme"] = scheme;
-        EXPECT_EQ(parseScene(j).solver.model.shiftClosePairs, 0.0) << scheme;
-    }
-    EXPECT_FALSE(toJson(parseScene(minimal()))["solver"].contains("shift_close_pairs"));
-    json j = minimal();
-    j["solver"]["shift_close_pairs"] = 2.0;
-    const Scene close = parseScene(j);
-    EXPECT_EQ(close.solver.model.shiftClosePairs, 2.0);
-    EXPECT_EQ(toJson(close)["solver"]["shift_close_pairs"], 2.0);
-    EXPECT_EQ(toJson(parseScene(toJson(close))), toJson(close));
-    expectSolverKeyRejects("shift_close_pairs", {-1.0, 10.5, "near"});
-    json textbook = minimal();
-    textbook["solver"]["scheme"] = "textbook"; // shifting 0
-    textbook["solver"]["shift_close_pairs"] = 2.0;
-    EXPECT_EQ(errorKey(textbook), "solver.shift_close_pairs");
+    // it).
+    expectOptInShiftingKey("shift_close_pairs", &ModelParams::shiftClosePairs, 2.0,
+                           {-1.0, 10.5, "near"}, 2.0);
 }
 
 TEST(Scene, NumberBeyondADoubleIsASceneErrorNamingTheFile) {
