@@ -137,6 +137,10 @@ std::string_view toString(SourceTerm s) {
     return s == SourceTerm::Relaxed ? "relaxed" : "mixed";
 }
 
+std::string_view toString(ClosePairsRegion r) {
+    return r == ClosePairsRegion::Everywhere ? "everywhere" : "bulk";
+}
+
 MpsSolver::MpsSolver(const PhysicsParams& physics, const SolverParams& solver, Particles particles,
                      double spacing, const Box& domain)
     : m_phys(physics), m_par(solver), m_p(std::move(particles)), m_l0(spacing), m_domain(domain) {
@@ -498,6 +502,9 @@ void MpsSolver::numberDensityAndSurface() {
     // MPS weight on l0, times g (docs/validation.md 7.47).
     const double closeGain = model.shiftClosePairs;
     const bool closePairs = closeGain > 0.0;
+    // shift_close_pairs_region "bulk": both sums are taken, and the close pairs' kept only
+    // where the neighbourhood is full and all water (docs/validation.md 7.48).
+    const bool bulkOnly = closePairs && model.shiftClosePairsRegion == ClosePairsRegion::Bulk;
     const double l02 = m_l0 * m_l0;
     // With a relaxation kernel of its own (re_relaxation) or a packing kernel (re_packing),
     // their sums take the full list, which reaches them; the short list is its sub-list in the
@@ -524,6 +531,8 @@ void MpsSolver::numberDensityAndSurface() {
         double div = 0.0;
         double fx = 0.0, fy = 0.0;
         double cx = 0.0, cy = 0.0;
+        double bx = 0.0, by = 0.0; // bulkOnly: the default's sums beside the close pairs'
+        bool boundary = false;     // bulkOnly: a wall or dummy particle on the density kernel
         double sR = 0.0;
         double sP = 0.0;
         bool nearWall = false;
@@ -550,10 +559,17 @@ void MpsSolver::numberDensityAndSurface() {
                     if (!closePairs) {
                         cx += dx * w / r2;
                         cy += dy * w / r2;
-                    } else if (r2 < l02) { // solver.shift_close_pairs: pairs closer than l0
-                        const double f = closeGain * mpsWeight(r, m_l0) / r2;
-                        cx += dx * f;
-                        cy += dy * f;
+                    } else {
+                        if (r2 < l02) { // solver.shift_close_pairs: pairs closer than l0
+                            const double f = closeGain * mpsWeight(r, m_l0) / r2;
+                            cx += dx * f;
+                            cy += dy * f;
+                        }
+                        if (bulkOnly) {
+                            bx += dx * w / r2;
+                            by += dy * w / r2;
+                            boundary = boundary || m_p.kind[j] != ParticleKind::Water;
+                        }
                     }
                 }
                 if (mixed && m_p.kind[j] != ParticleKind::Dummy) {
@@ -590,6 +606,10 @@ void MpsSolver::numberDensityAndSurface() {
             // test, every one-sided neighbourhood (a crest compressed above beta n0 too).
             m_layer[i] = distribution && (free || oneSided) ? 1 : 0;
             surface += m_surface[i];
+        }
+        if (bulkOnly && (m_surface[i] != 0 || m_fNorm[i] > kBulkNeighbourhood || boundary)) {
+            m_shiftX[i] = bx; // off the bulk: the default's sums
+            m_shiftY[i] = by;
         }
     }
     m_stats.surfaceParticles = surface;

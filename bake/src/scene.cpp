@@ -343,6 +343,9 @@ Scene parseScene(const json& j) {
         m.truncatedDensity = s.number("truncated_density", m.truncatedDensity, 0.0, 1.0, false);
         m.shiftDeadBand = s.number("shift_dead_band", m.shiftDeadBand, 0.0, 0.1, false, " (l0)");
         m.shiftClosePairs = s.number("shift_close_pairs", m.shiftClosePairs, 0.0, 10.0, false);
+        m.shiftClosePairsRegion =
+            s.enumeration("shift_close_pairs_region", m.shiftClosePairsRegion,
+                          {ClosePairsRegion::Everywhere, ClosePairsRegion::Bulk});
         m.higherOrderLaplacian = s.boolean("higher_order_laplacian", m.higherOrderLaplacian);
         if (m.shifting > 0.0 && m.surfaceTest != SurfaceTest::Distribution) {
             throw SceneError("solver.shifting",
@@ -378,6 +381,11 @@ Scene parseScene(const json& j) {
                       "is a dead band on the particle shifting", "0");
         needsShifting(m.shiftClosePairs > 0.0, "shift_close_pairs",
                       "takes the particle shifting's pair sums from close pairs", "0");
+        if (s.has("shift_close_pairs_region") && !(m.shiftClosePairs > 0.0)) {
+            throw SceneError("solver.shift_close_pairs_region",
+                             "says where solver.shift_close_pairs acts, and that is 0: set a "
+                             "close-pairs gain or leave this out");
+        }
         needsShifting(m.shiftingVelocity, "shifting_velocity",
                       "moves the velocity with the particle shifting", "false");
         // gamma and C are per reference_step; a longer step multiplies them, and neither may
@@ -661,6 +669,9 @@ json toJson(const Scene& sc) {
         out["solver"]["shift_dead_band"] = s.model.shiftDeadBand;
     if (s.model.shiftClosePairs != plain.shiftClosePairs)
         out["solver"]["shift_close_pairs"] = s.model.shiftClosePairs;
+    if (s.model.shiftClosePairsRegion != plain.shiftClosePairsRegion)
+        out["solver"]["shift_close_pairs_region"] =
+            std::string(toString(s.model.shiftClosePairsRegion));
     if (sc.piston) {
         const PistonParams& p = *sc.piston;
         out["piston"] = json{{"kind", std::string(toString(p.kind))},

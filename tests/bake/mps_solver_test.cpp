@@ -441,6 +441,68 @@ TEST(MpsSolver, ShiftClosePairsPushesApartOnlyAPairCloserThanTheSpacing) {
     EXPECT_GT(particlesThatDiffer(c, b), 10u);
 }
 
+TEST(MpsSolver, ShiftClosePairsInTheBulkLeavesTheSurfaceAndTheWallsToTheDefaultsShift) {
+    // solver.shift_close_pairs_region "bulk": from the same dam-break state (40 steps in), one
+    // step each with the default's shift, with close pairs everywhere and with close pairs in
+    // the bulk. The shift comes last and moves each particle by its own sums, so every water
+    // particle of the bulk step lands exactly where one of the other two put it: where close
+    // pairs put it in the bulk, where the default put it on the free surface and next to a wall
+    // (a wall or dummy particle on the density kernel; 2.5 l0 at the step's start leaves room
+    // for the step's motion). Both kinds occur.
+    Scene scene = smallDamBreak();
+    scene.solver = schemeParams(Scheme::Swell);
+    ASSERT_EQ(scene.solver.model.shiftClosePairsRegion, ClosePairsRegion::Everywhere);
+    Scene everywhere = scene;
+    everywhere.solver.model.shiftClosePairs = 2.0;
+    Scene bulk = everywhere;
+    bulk.solver.model.shiftClosePairsRegion = ClosePairsRegion::Bulk;
+    MpsSolver start = makeSolver(scene);
+    for (int k = 0; k < 40; ++k)
+        start.step();
+    const MpsState state = start.exportState();
+    const auto stepFrom = [&](const Scene& s) {
+        MpsSolver solver = makeSolver(s);
+        solver.importState(state);
+        solver.step();
+        return solver;
+    };
+    const MpsSolver b = stepFrom(bulk);
+    const Particles& inBulk = b.particles();
+    const Particles closeEverywhere = stepFrom(everywhere).particles();
+    const Particles byDefault = stepFrom(scene).particles();
+    ASSERT_EQ(inBulk.p, byDefault.p);
+    const Particles& at = state.particles;
+    const double l0 = scene.geometry.particleSpacing;
+    const auto nearBoundary = [&](std::size_t i) {
+        for (std::size_t j = 0; j < at.size(); ++j) {
+            if (at.kind[j] != ParticleKind::Water &&
+                std::hypot(at.x[j] - at.x[i], at.y[j] - at.y[i]) < 2.5 * l0)
+                return true;
+        }
+        return false;
+    };
+    std::size_t asClosePairs = 0, asDefault = 0;
+    for (std::size_t i = 0; i < inBulk.size(); ++i) {
+        if (inBulk.kind[i] != ParticleKind::Water)
+            continue;
+        const bool same =
+            closeEverywhere.x[i] == byDefault.x[i] && closeEverywhere.y[i] == byDefault.y[i];
+        const bool close =
+            inBulk.x[i] == closeEverywhere.x[i] && inBulk.y[i] == closeEverywhere.y[i];
+        const bool plain = inBulk.x[i] == byDefault.x[i] && inBulk.y[i] == byDefault.y[i];
+        EXPECT_TRUE(close || plain) << "particle " << i;
+        if (same)
+            continue;
+        asClosePairs += close;
+        asDefault += plain;
+        if (b.surfaceFlags()[i] == 1 || nearBoundary(i)) {
+            EXPECT_TRUE(plain) << "particle " << i;
+        }
+    }
+    EXPECT_GT(asClosePairs, 20u);
+    EXPECT_GT(asDefault, 20u);
+}
+
 TEST(MpsSolver, ShiftDampingWallGainActsOnlyNextToTheWalls) {
     // solver.shift_damping_wall_gain: from the same dam-break state, one step at wall gain 2
     // and one at the default (1, the open surface's gain) put every particle in the same place with

@@ -147,3 +147,12 @@ TEST(NumericsVersion, TheClosePairsKeyChangesNoBitAtItsDefaultAndPinsItsOwn) {
     // solver.shift_close_pairs (opt-in, docs/validation.md 7.47), measured at 2.
     expectOffAtZeroAndPinnedAt("shift_close_pairs", 2.0, "443ea5f87b1e3094");
 }
+
+TEST(NumericsVersion, TheBulkClosePairsGiveTheBitsTheyWereMeasuredWith) {
+    // solver.shift_close_pairs 2 in the bulk only (opt-in, docs/validation.md 7.48): pinned so
+    // those figures can be run again; it is another state than close pairs everywhere.
+    json j = guardScene();
+    j["solver"]["shift_close_pairs"] = 2.0;
+    j["solver"]["shift_close_pairs_region"] = "bulk";
+    EXPECT_EQ(digest(run(j)), "55a57d41b767b350");
+}

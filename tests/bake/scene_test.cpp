@@ -653,6 +653,36 @@ TEST(Scene, ShiftClosePairsIsOptInRangeCheckedAndNeedsShifting) {
                            {-1.0, 10.5, "near"}, 2.0);
 }
 
+TEST(Scene, ShiftClosePairsRegionIsNamedRecordedWhenSetAndNeedsTheGain) {
+    // "everywhere" in both schemes and left out of the record; "bulk" read, written and
+    // reloaded; an unknown name or a number refused naming the key; and the key without
+    // shift_close_pairs (0 in both schemes) refused, as it would act on nothing.
+    for (const char* scheme : {"swell", "textbook"}) {
+        json j = minimal();
+        j["solver"]["scheme"] = scheme;
+        EXPECT_EQ(parseScene(j).solver.model.shiftClosePairsRegion, ClosePairsRegion::Everywhere)
+            << scheme;
+    }
+    EXPECT_FALSE(toJson(parseScene(minimal()))["solver"].contains("shift_close_pairs_region"));
+    json j = minimal();
+    j["solver"]["shift_close_pairs"] = 2.0;
+    j["solver"]["shift_close_pairs_region"] = "bulk";
+    const Scene set = parseScene(j);
+    EXPECT_EQ(set.solver.model.shiftClosePairsRegion, ClosePairsRegion::Bulk);
+    EXPECT_EQ(toJson(set)["solver"]["shift_close_pairs_region"], "bulk");
+    EXPECT_EQ(toJson(parseScene(toJson(set))), toJson(set));
+    for (const json& bad : {json("deep"), json(1.0)}) {
+        json k = j;
+        k["solver"]["shift_close_pairs_region"] = bad;
+        EXPECT_EQ(errorKey(k), "solver.shift_close_pairs_region") << bad;
+    }
+    for (const char* region : {"bulk", "everywhere"}) {
+        json k = minimal();
+        k["solver"]["shift_close_pairs_region"] = region;
+        EXPECT_EQ(errorKey(k), "solver.shift_close_pairs_region") << region;
+    }
+}
+
 TEST(Scene, NumberBeyondADoubleIsASceneErrorNamingTheFile) {
     const swell::test::TempDir dir("swell_big_number_");
     const auto tmp = dir / "big.json";

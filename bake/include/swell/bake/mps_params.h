@@ -98,6 +98,19 @@ enum class Scheme {
 };
 std::string_view toString(Scheme s);
 
+/// Where solver.shift_close_pairs takes the shift's pair sums from close pairs.
+enum class ClosePairsRegion {
+    /// Every water particle (docs/validation.md 7.47).
+    Everywhere,
+    /// The bulk: water particles off the free surface whose neighbourhood on the density kernel
+    /// is full (|f| <= kBulkNeighbourhood) and holds no wall or dummy particle; the others
+    /// keep the default's sums (docs/validation.md 7.48). In the full neighbourhoods the
+    /// default's gap-filling is what broadens a long wave; under the surface and next to the
+    /// walls it is what keeps a standing wave's period and the bed's pressure.
+    Bulk,
+};
+std::string_view toString(ClosePairsRegion r);
+
 /// Time stepping.
 struct TimeStepParams {
     double dt = 0.001;          ///< time step (s), the largest one when adaptive (paper Table 1)
@@ -214,8 +227,12 @@ struct ModelParams {
     /// shoaling solitary wave's slope crests come closer to the experiment), but the still
     /// tank's water moves five times as fast, a standing wave oscillates 12 % too fast and the
     /// dam break's front no longer converges (docs/validation.md 7.47). 0 (both schemes)
-    /// turns it off; opt-in, not the default.
+    /// turns it off; opt-in, not the default. shiftClosePairsRegion limits it to the bulk.
     double shiftClosePairs = 0.0;
+    /// With shift_close_pairs: where its sums replace the default's. Everywhere; or in the
+    /// bulk only (ClosePairsRegion::Bulk), the default's sums on the free surface, in the rows
+    /// a surface truncates and next to walls (docs/validation.md 7.48).
+    ClosePairsRegion shiftClosePairsRegion = ClosePairsRegion::Everywhere;
     /// Laplacian of the pressure Poisson equation: false, K&O 1996's 2d/(lambda n0) w(r);
     /// true, the higher-order form of Khayyer & Gotoh (2010), pair weight re / r^3 (the
     /// 2D 3 re / r^3 up to its constant), normalized so a lattice gives lap x^2 = 2 exactly.
@@ -226,6 +243,10 @@ struct ModelParams {
 /// full neighbourhood: under half of what a flat lattice's second row has on 2.8 l0 (0.123;
 /// tools/packing_density.py), so rows that a surface truncates are above it.
 inline constexpr double kFullNeighbourhood = 0.05;
+
+/// shift_close_pairs_region "bulk": a neighbour distribution |f| (n0 l0) at most this is a
+/// full neighbourhood (docs/validation.md 7.47, 7.48: the value measured there).
+inline constexpr double kBulkNeighbourhood = 0.02;
 
 /// shift_damping_wall_gain acts on free-surface particles with a wall particle closer than
 /// this many l0: the top row's particles next to a wall and one column out, not the open
