@@ -105,8 +105,8 @@ enum class ClosePairsRegion {
     /// The bulk: water particles off the free surface whose neighbourhood on the density kernel
     /// is full (|f| <= kBulkNeighbourhood) and holds no wall or dummy particle; the others
     /// keep the default's sums (docs/validation.md 7.48). In the full neighbourhoods the
-    /// default's gap-filling is what broadens a long wave; under the surface and next to the
-    /// walls it is what keeps a standing wave's period and the bed's pressure.
+    /// default's gap-filling is what broadens a long wave; under the surface it keeps a
+    /// standing wave's period, and next to the walls the bed's pressure reading rests on it.
     Bulk,
 };
 std::string_view toString(ClosePairsRegion r);
