@@ -505,6 +505,7 @@ void MpsSolver::numberDensityAndSurface() {
     // shift_close_pairs_region "bulk": both sums are taken, and the close pairs' kept only
     // where the neighbourhood is full and all water (docs/validation.md 7.48).
     const bool bulkOnly = closePairs && model.shiftClosePairsRegion == ClosePairsRegion::Bulk;
+    const bool defaultSums = !closePairs || bulkOnly;
     const double l02 = m_l0 * m_l0;
     // With a relaxation kernel of its own (re_relaxation) or a packing kernel (re_packing),
     // their sums take the full list, which reaches them; the short list is its sub-list in the
@@ -530,8 +531,8 @@ void MpsSolver::numberDensityAndSurface() {
         double s = 0.0;
         double div = 0.0;
         double fx = 0.0, fy = 0.0;
-        double cx = 0.0, cy = 0.0;
-        double bx = 0.0, by = 0.0; // bulkOnly: the default's sums beside the close pairs'
+        double cx = 0.0, cy = 0.0; // the default's sums (defaultSums)
+        double kx = 0.0, ky = 0.0; // the close pairs' sums (closePairs)
         bool boundary = false;     // bulkOnly: a wall or dummy particle on the density kernel
         double sR = 0.0;
         double sP = 0.0;
@@ -555,22 +556,18 @@ void MpsSolver::numberDensityAndSurface() {
                 s += w;       // K&O 1996 particle number density n* = sum_j w(|r*_j - r*_i|)
                 fx += dx * w; // neighbour distribution (Khayyer, Gotoh & Shao 2009)
                 fy += dy * w;
-                if (shiftSums && r2 > 0.0) { // concentration gradient sum (shiftParticles)
-                    if (!closePairs) {
+                if (shiftSums && r2 > 0.0) { // concentration gradient sums (shiftParticles)
+                    if (defaultSums) {
                         cx += dx * w / r2;
                         cy += dy * w / r2;
-                    } else {
-                        if (r2 < l02) { // solver.shift_close_pairs: pairs closer than l0
-                            const double f = closeGain * mpsWeight(r, m_l0) / r2;
-                            cx += dx * f;
-                            cy += dy * f;
-                        }
-                        if (bulkOnly) {
-                            bx += dx * w / r2;
-                            by += dy * w / r2;
-                            boundary = boundary || m_p.kind[j] != ParticleKind::Water;
-                        }
                     }
+                    if (closePairs && r2 < l02) { // shift_close_pairs: pairs closer than l0
+                        const double f = closeGain * mpsWeight(r, m_l0) / r2;
+                        kx += dx * f;
+                        ky += dy * f;
+                    }
+                    if (bulkOnly)
+                        boundary = boundary || m_p.kind[j] != ParticleKind::Water;
                 }
                 if (mixed && m_p.kind[j] != ParticleKind::Dummy) {
                     // Divergence model: d/n0 sum (u_j - u_i).(r_j - r_i) / r^2 w
@@ -585,8 +582,6 @@ void MpsSolver::numberDensityAndSurface() {
         m_fx[i] = fx * fScale;
         m_fy[i] = fy * fScale;
         m_fNorm[i] = norm ? std::hypot(m_fx[i], m_fy[i]) : 0.0;
-        m_shiftX[i] = cx;
-        m_shiftY[i] = cy;
         m_nearWall[i] = nearWall ? 1 : 0;
         if (m_p.kind[i] == ParticleKind::Dummy) {
             m_surface[i] = kNotInPpe;
@@ -607,10 +602,12 @@ void MpsSolver::numberDensityAndSurface() {
             m_layer[i] = distribution && (free || oneSided) ? 1 : 0;
             surface += m_surface[i];
         }
-        if (bulkOnly && (m_surface[i] != 0 || m_fNorm[i] > kBulkNeighbourhood || boundary)) {
-            m_shiftX[i] = bx; // off the bulk: the default's sums
-            m_shiftY[i] = by;
-        }
+        // The close pairs' sums where they act: everywhere, or in the bulk only.
+        const bool close =
+            closePairs &&
+            !(bulkOnly && (m_surface[i] != 0 || m_fNorm[i] > kBulkNeighbourhood || boundary));
+        m_shiftX[i] = close ? kx : cx;
+        m_shiftY[i] = close ? ky : cy;
     }
     m_stats.surfaceParticles = surface;
     m_packing = packing ? measurePacking() : 1.0;

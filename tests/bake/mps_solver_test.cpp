@@ -225,6 +225,14 @@ void stepBothFromTheSameState(MpsSolver& with, MpsSolver& without) {
     without.step();
 }
 
+/// A solver for `scene` that takes one step from `state`.
+MpsSolver stepOnceFrom(const Scene& scene, const MpsState& state) {
+    MpsSolver solver = makeSolver(scene);
+    solver.importState(state);
+    solver.step();
+    return solver;
+}
+
 /// stepBothFromTheSameState, and checks that the option under test left positions and
 /// pressures alone.
 void oneStepFromTheSameState(MpsSolver& with, MpsSolver& without) {
@@ -417,9 +425,7 @@ TEST(MpsSolver, ShiftClosePairsPushesApartOnlyAPairCloserThanTheSpacing) {
     start.x[k] += 0.3 * l0;
 
     const auto stepFrom = [&](const Scene& s) {
-        MpsSolver solver = makeSolver(s);
-        solver.importState(state);
-        solver.step();
+        const MpsSolver solver = stepOnceFrom(s, state);
         EXPECT_EQ(solver.surfaceFlags()[k], 0);
         return solver.particles();
     };
@@ -460,16 +466,10 @@ TEST(MpsSolver, ShiftClosePairsInTheBulkLeavesTheSurfaceAndTheWallsToTheDefaults
     for (int k = 0; k < 40; ++k)
         start.step();
     const MpsState state = start.exportState();
-    const auto stepFrom = [&](const Scene& s) {
-        MpsSolver solver = makeSolver(s);
-        solver.importState(state);
-        solver.step();
-        return solver;
-    };
-    const MpsSolver b = stepFrom(bulk);
+    const MpsSolver b = stepOnceFrom(bulk, state);
     const Particles& inBulk = b.particles();
-    const Particles closeEverywhere = stepFrom(everywhere).particles();
-    const Particles byDefault = stepFrom(scene).particles();
+    const Particles closeEverywhere = stepOnceFrom(everywhere, state).particles();
+    const Particles byDefault = stepOnceFrom(scene, state).particles();
     ASSERT_EQ(inBulk.p, byDefault.p);
     const Particles& at = state.particles;
     const double l0 = scene.geometry.particleSpacing;
