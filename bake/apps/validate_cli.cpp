@@ -43,7 +43,8 @@ std::optional<int> parseValidateCommandLine(int argc, const char* const* argv,
 
     auto* lob = app.add_subcommand(
         "lobovsky", "run the Lobovsky et al. (2014) H = 300 mm dam break and compare the water "
-                    "height at gauges H1..H4 with the records over t in [0, 1.5] s");
+                    "height at gauges H1..H4 with the records over t in [0, 1.5] s, and over the "
+                    "first impact and run-up (until the record's water lands on H4)");
     lob->add_option("scene", cl.scene, "scene JSON (the first water rectangle is the column)")
         ->required();
     lob->add_option("--until", cl.lobovskyUntil, "stop at this time (s)")

@@ -187,6 +187,29 @@ std::optional<LevelError> lobovskyScatter(const LevelGauge& gauge, double tLo, d
     return compareLevel(gauge.repeat, gauge.series, tLo, tHi);
 }
 
+std::optional<double> firstTimeAbove(std::span<const LevelPoint> series, double level) {
+    const auto above = std::find_if(series.begin(), series.end(),
+                                    [level](const LevelPoint& p) { return p.h > level; });
+    if (above == series.end())
+        return std::nullopt;
+    return above->t;
+}
+
+double lobovskyRunUpEnd(std::span<const LevelGauge> gauges, double H) {
+    const auto far =
+        std::max_element(gauges.begin(), gauges.end(),
+                         [](const LevelGauge& a, const LevelGauge& b) { return a.x < b.x; });
+    if (far == gauges.end())
+        throw std::invalid_argument("lobovskyRunUpEnd: no gauges");
+    const std::optional<double> t = firstTimeAbove(far->series, 0.5 * H);
+    if (!t) {
+        throw std::invalid_argument(
+            fmt::format("lobovskyRunUpEnd: the record at {} never rises above H / 2 = {} m",
+                        far->name, 0.5 * H));
+    }
+    return *t;
+}
+
 std::pair<double, double> crossingsAround(std::span<const double> t, std::span<const double> y,
                                           double lo, double hi, double crestTime, double level) {
     // y[a] and y[b] lie on either side of `level` wherever this is called.

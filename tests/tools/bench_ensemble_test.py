@@ -107,7 +107,8 @@ class Validate(unittest.TestCase):
                       {"name": "H2", "x": 0.865, "mean_abs_error_over_H": h2, "mean_signed_error_over_H": 0.0,
                        "experiment_scatter_over_H": 0.0515}]
             return {"outcome": "stable", "steps": 10, "particles": 100, "solver_seconds": 1.0,
-                    "gauges": gauges, "mean_abs_error_over_H_worst": max(h1, h2), "window": [0, 1.5]}
+                    "gauges": gauges, "mean_abs_error_over_H_worst": max(h1, h2), "window": [0, 1.5],
+                    "mean_abs_error_over_H_worst_run_up": h2 / 2, "far_gauge_landing_time": 0.9 + h1}
         with tempfile.TemporaryDirectory() as tmp:
             ctx = common.Context(quick=True, log=None, out=tmp, members=2)
             ctx.run = lambda cmd, timeout=900: Result({"outcome": "stable",
@@ -122,7 +123,14 @@ class Validate(unittest.TestCase):
         # The experiment's own scatter rides along where a gauge has a second series, in the table.
         self.assertAlmostEqual(row["H2_experiment_scatter_over_H"], 0.0515)
         self.assertIsNone(row["H1_experiment_scatter_over_H"])
+        # The first impact and run-up (docs/validation.md 7.49): its worst gauge with a spread,
+        # and when the water lands on the far gauge.
+        self.assertAlmostEqual(row["run_up_worst_mean_abs_error_over_H"], 0.02)
+        self.assertIn("run_up_worst_mean_abs_error_over_H_sd", row)
+        self.assertAlmostEqual(row["far_gauge_landing_s"], 0.95)
         table = bake.lobovsky_table([row])
+        self.assertIn("worst over the first impact and run-up", table)
+        self.assertIn("lands on the far gauge (s)", table)
         self.assertIn("H2: experiment's two series", table)
         self.assertNotIn("H1: experiment's two series", table)
 

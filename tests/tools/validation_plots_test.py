@@ -71,6 +71,45 @@ class ValidationPlots(unittest.TestCase):
             self.assertIsNone(lob[0]["experiment_scatter_over_H"])
             for g in lob[1:]:
                 self.assertGreater(g["experiment_scatter_over_H"], 0.0, g["name"])
+            self.check_lobovsky_run_up(summary["runs"][1]["result"],
+                                       out / "lobovsky_H_15.csv", out / "lobovsky_records.csv")
+
+    def check_lobovsky_run_up(self, result, series_csv, records_csv):
+        # The first impact and run-up (docs/validation.md 7.49), recomputed here from the CSVs:
+        # the window ends at the far gauge's (H4's) first record sample above H/2, and each
+        # gauge's error is the mean |h_sim - h_record| / H over the record samples in it, the
+        # run's level interpolated linearly at each record time.
+        H = result["H"]
+        with open(records_csv, newline="") as f:
+            records = [r for r in csv.DictReader(f) if r["series"] == "record"]
+        far = max(records, key=lambda r: float(r["x"]))["gauge"]
+        self.assertEqual(result["far_gauge"], far)
+        end = next(float(r["t"]) for r in records if r["gauge"] == far and float(r["h"]) > H / 2)
+        self.assertAlmostEqual(end, 1.0933, places=4)
+        self.assertEqual(result["run_up_window"], [0.0, end])
+        self.assertEqual(result["far_gauge_landing_time_record"], end)
+        with open(series_csv, newline="") as f:
+            rows = [{k: float(v) for k, v in r.items()} for r in csv.DictReader(f)]
+        t = [r["t"] for r in rows]
+
+        def level(gauge, time):
+            k = next(i for i in range(1, len(t)) if t[i] >= time)
+            a, b = rows[k - 1]["h_" + gauge], rows[k]["h_" + gauge]
+            return a + (b - a) * (time - t[k - 1]) / (t[k] - t[k - 1])
+
+        worst = 0.0
+        for g in result["gauges"]:
+            pts = [(float(r["t"]), float(r["h"])) for r in records
+                   if r["gauge"] == g["name"] and float(r["t"]) <= end]
+            mean = sum(abs(level(g["name"], tr) - hr) for tr, hr in pts) / len(pts) / H
+            # The CSV holds 5 decimals of metres and seconds: 1e-4 H is far below a real change.
+            self.assertAlmostEqual(g["mean_abs_error_over_H_run_up"], mean, delta=1e-4,
+                                   msg=g["name"])
+            worst = max(worst, g["mean_abs_error_over_H_run_up"])
+        self.assertEqual(result["mean_abs_error_over_H_worst_run_up"], worst)
+        lands = next(r["t"] for r in rows if r["h_" + far] > H / 2)
+        self.assertAlmostEqual(result["far_gauge_landing_time"], lands, delta=1e-5)
+        self.assertLess(result["far_gauge_landing_time"], end)  # lands early (7.49)
 
     def test_only_runs_and_plots_the_checks_named(self):
         with tempfile.TemporaryDirectory() as tmp:

@@ -287,7 +287,11 @@ def lobovsky(ctx):
                 out.update({"particles": parts or None, "water": j.get("water"), "steps": steps or None,
                             "outcome": validate_outcome(r, j),
                             "worst_mean_abs_error_over_H": j.get("mean_abs_error_over_H_worst"),
-                            "window_s": "%g-%g" % tuple(j["window"]) if j.get("window") else None})
+                            "window_s": "%g-%g" % tuple(j["window"]) if j.get("window") else None,
+                            # Issue 14's "first impact and run-up": until the record's water lands
+                            # on the far gauge (docs/validation.md 7.49), and when the run's does.
+                            "run_up_worst_mean_abs_error_over_H": j.get("mean_abs_error_over_H_worst_run_up"),
+                            "far_gauge_landing_s": j.get("far_gauge_landing_time")})
                 for g in j.get("gauges") or []:
                     out["%s_x_m" % g["name"]] = g.get("x")
                     out["%s_mean_abs_error_over_H" % g["name"]] = g.get("mean_abs_error_over_H")
@@ -571,7 +575,9 @@ def lobovsky_height(scene_name):
 def lobovsky_table(rows):
     cols = [("resolution", "resolution"), ("scheme", scheme_of), ("scene", "scene"), ("tank (m)", "tank_m"),
             ("particles", "particles"), ("steps", "steps"), ("outcome", lambda r: (r.get("outcome") or "")[:60]),
-            ("worst mean abs dh / H", "worst_mean_abs_error_over_H"), ("worst gauge", "worst_gauge")]
+            ("worst mean abs dh / H", "worst_mean_abs_error_over_H"), ("worst gauge", "worst_gauge"),
+            ("worst over the first impact and run-up", "run_up_worst_mean_abs_error_over_H"),
+            ("lands on the far gauge (s)", "far_gauge_landing_s")]
     cols += [("%s mean abs dh / H" % n, "%s_mean_abs_error_over_H" % n) for n in gauge_names(rows)]
     cols += [("%s: experiment's two series, mean abs dh / H" % n, "%s_experiment_scatter_over_H" % n)
              for n in gauge_names(rows) if any(r.get("%s_experiment_scatter_over_H" % n) is not None for r in rows)]

@@ -98,6 +98,18 @@ LevelError compareLevel(std::span<const LevelPoint> simulated, std::span<const L
 /// a gauge without a second series (H1).
 std::optional<LevelError> lobovskyScatter(const LevelGauge& gauge, double tLo, double tHi);
 
+/// The time a level series (sorted by t) first stands above `level` (m): its first sample
+/// above it; nothing if none is.
+std::optional<double> firstTimeAbove(std::span<const LevelPoint> series, double level);
+
+/// Where "the first impact and run-up" (issue 14's window for the Lobovsky levels) ends: the
+/// water the far wall throws back lands on the gauge nearest that wall, read as the first record
+/// sample there above half the column's height H (H4 at 1.093 s in the H = 300 mm records;
+/// docs/validation.md 7.49). Until then the gauges see the collapse, the surge, the impact and
+/// the run-up only. Throws std::invalid_argument for no gauges or a far record that never
+/// rises above H / 2.
+double lobovskyRunUpEnd(std::span<const LevelGauge> gauges, double H);
+
 /// The Lobovsky et al. (2014) gauge records as CSV text, "gauge,series,x,t,h" (x, t, h in m
 /// and s as in lobovskyH300Gauges) then one row per point, gauges in the order H1..H4, each
 /// gauge's record (series "record": what the lobovsky check compares with) then its other
