@@ -155,6 +155,8 @@ def plot_dam_break(runs, path):
 
 def plot_lobovsky(runs, path):
     H = runs[0]["result"]["H"]
+    # The first impact and run-up ends where the record's water lands on the far gauge.
+    run_up_end = runs[0]["result"]["run_up_window"][1]
     gauges = {}
     for r in runs[0]["records"]:
         g = gauges.setdefault(r["gauge"], {"x": float(r["x"]), "record": ([], []),
@@ -174,8 +176,10 @@ def plot_lobovsky(runs, path):
             h = [float(r[f"h_{name}"]) / H for r in run_["series"]]
             err = next(e for e in run_["result"]["gauges"] if e["name"] == name)
             ax.plot(t, h, color=colour, lw=1.2,
-                    label=f"{run_['label']}: mean |dh| {100 * err['mean_abs_error_over_H']:.1f} % H")
+                    label=f"{run_['label']}: mean |dh| {100 * err['mean_abs_error_over_H']:.1f} % H"
+                          f" (run-up {100 * err['mean_abs_error_over_H_run_up']:.1f} %)")
         ax.axvline(0.9, color="0.5", ls=":", lw=1)
+        ax.axvline(run_up_end, color="0.3", ls="--", lw=1)
         ax.axvspan(0.0, 1.5, color="0.95", zorder=0)
         ax.set_xlim(0.0, 1.6)
         ax.set_title(f"{name}, x = {g['x']:.4g} m")
@@ -184,8 +188,9 @@ def plot_lobovsky(runs, path):
         ax.legend(fontsize=7, loc="upper left")
     for ax in axes[1]:
         ax.set_xlabel("t (s)")
-    fig.suptitle("Lobovsky et al. (2014) dam break, H = 0.3 m: water level at the gauges "
-                 "(grey: compared window [0, 1.5] s; dotted: 0.9 s)")
+    fig.suptitle("Lobovsky et al. (2014) dam break, H = 0.3 m: water level at the gauges\n(grey: compared "
+                 f"window [0, 1.5] s; dotted: 0.9 s; dashed: {run_up_end:.3f} s, the first impact "
+                 "and run-up's end)")
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     plt.close(fig)
