@@ -195,7 +195,8 @@ json lobovsky(const Scene& scene, double tEnd, const std::string& csv) {
         const double tHi = std::min(1.5, tEnd);
         // Issue 14's "first impact and run-up": until the far wall's water lands on the gauge
         // nearest it in the record (docs/validation.md 7.49).
-        const double tRunUp = std::min(lobovskyRunUpEnd(gauges, H), tEnd);
+        const double landsRecord = lobovskyRunUpEnd(gauges, H);
+        const double tRunUp = std::min(landsRecord, tEnd);
         json list = json::array();
         double worst = 0.0, worstRunUp = 0.0;
         for (std::size_t g = 0; g < gauges.size(); ++g) {
@@ -221,14 +222,11 @@ json lobovsky(const Scene& scene, double tEnd, const std::string& csv) {
         out["mean_abs_error_over_H_worst_run_up"] = worstRunUp;
         out["run_up_window"] = {tLo, tRunUp};
         // When the water lands on the far gauge (first above H / 2), simulated and recorded.
-        const std::size_t far = static_cast<std::size_t>(
-            std::max_element(gauges.begin(), gauges.end(),
-                             [](const LevelGauge& a, const LevelGauge& b) { return a.x < b.x; }) -
-            gauges.begin());
+        const std::size_t far = lobovskyFarGauge(gauges);
         const std::optional<double> lands = firstTimeAbove(run.top[far], 0.5 * H);
         out["far_gauge"] = gauges[far].name;
         out["far_gauge_landing_time"] = lands ? json(*lands) : json(nullptr);
-        out["far_gauge_landing_time_record"] = *firstTimeAbove(gauges[far].series, 0.5 * H);
+        out["far_gauge_landing_time_record"] = landsRecord;
     }
     out["steps"] = run.totals.steps;
     out["ppe_iterations_mean"] = run.totals.ppeIterationsMean();

@@ -195,17 +195,22 @@ std::optional<double> firstTimeAbove(std::span<const LevelPoint> series, double 
     return above->t;
 }
 
-double lobovskyRunUpEnd(std::span<const LevelGauge> gauges, double H) {
+std::size_t lobovskyFarGauge(std::span<const LevelGauge> gauges) {
+    if (gauges.empty())
+        throw std::invalid_argument("lobovskyFarGauge: no gauges");
     const auto far =
         std::max_element(gauges.begin(), gauges.end(),
                          [](const LevelGauge& a, const LevelGauge& b) { return a.x < b.x; });
-    if (far == gauges.end())
-        throw std::invalid_argument("lobovskyRunUpEnd: no gauges");
-    const std::optional<double> t = firstTimeAbove(far->series, 0.5 * H);
+    return static_cast<std::size_t>(far - gauges.begin());
+}
+
+double lobovskyRunUpEnd(std::span<const LevelGauge> gauges, double H) {
+    const LevelGauge& far = gauges[lobovskyFarGauge(gauges)];
+    const std::optional<double> t = firstTimeAbove(far.series, 0.5 * H);
     if (!t) {
         throw std::invalid_argument(
             fmt::format("lobovskyRunUpEnd: the record at {} never rises above H / 2 = {} m",
-                        far->name, 0.5 * H));
+                        far.name, 0.5 * H));
     }
     return *t;
 }

@@ -109,7 +109,6 @@ class ValidationPlots(unittest.TestCase):
         self.assertEqual(result["mean_abs_error_over_H_worst_run_up"], worst)
         lands = next(r["t"] for r in rows if r["h_" + far] > H / 2)
         self.assertAlmostEqual(result["far_gauge_landing_time"], lands, delta=1e-5)
-        self.assertLess(result["far_gauge_landing_time"], end)  # lands early (7.49)
 
     def test_only_runs_and_plots_the_checks_named(self):
         with tempfile.TemporaryDirectory() as tmp:

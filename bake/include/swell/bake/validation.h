@@ -102,6 +102,9 @@ std::optional<LevelError> lobovskyScatter(const LevelGauge& gauge, double tLo, d
 /// above it; nothing if none is.
 std::optional<double> firstTimeAbove(std::span<const LevelPoint> series, double level);
 
+/// The gauge nearest the far wall (the largest x). Throws std::invalid_argument for no gauges.
+std::size_t lobovskyFarGauge(std::span<const LevelGauge> gauges);
+
 /// Where "the first impact and run-up" (issue 14's window for the Lobovsky levels) ends: the
 /// water the far wall throws back lands on the gauge nearest that wall, read as the first record
 /// sample there above half the column's height H (H4 at 1.093 s in the H = 300 mm records;
