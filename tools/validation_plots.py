@@ -11,7 +11,8 @@ at several resolutions, from swell-validate runs of the shipped scenes.
         [--threads N] [--quick]
         [--only dam-break|lobovsky|solitary-wave|wet-dam-break|shoaling]...
 
-Writes OUT/dam_break_front.png, OUT/lobovsky_gauges.png, OUT/solitary_wave.png,
+Writes OUT/dam_break_front.png, OUT/lobovsky_gauges.png, OUT/lobovsky_p1.png (the same runs'
+far-wall pressure against Buchner (2002) and Marrone et al. (2011), 7.51), OUT/solitary_wave.png,
 OUT/wet_dam_break.png, OUT/shoaling.png and OUT/validation_plots.json (each run's command, its
 swell-validate JSON, the commit). --quick runs the CI resolutions only (a/20, H/15, h/10, h0/20
 to 1.2 s, h0/10; about a minute and a half) instead of a/20, a/50, a/80, H/15, H/30, H/60, h/10,
@@ -96,6 +97,9 @@ def run(binary, threads, kind, label, scene, sets, out):
     cmd += [kind, str(ROOT / "scenes" / scene), "--csv", str(series)]
     if with_records:
         cmd += ["--records", str(records)]
+    pressure = out / f"{kind}_pressure_records.csv"  # the far wall's sensor P1 (7.51)
+    if kind == "lobovsky":
+        cmd += ["--pressure-records", str(pressure)]
     p = subprocess.run(cmd, capture_output=True, text=True)
     if p.returncode != 0:
         last = (p.stderr.strip().splitlines() or ["(no message on stderr)"])[-1]
@@ -103,7 +107,8 @@ def run(binary, threads, kind, label, scene, sets, out):
     result = json.loads(p.stdout.strip().splitlines()[-1])
     return {"label": label, "command": " ".join(cmd), "result": result,
             "series": read_csv(series),
-            "records": read_csv(records) if with_records else []}
+            "records": read_csv(records) if with_records else [],
+            "pressure_records": read_csv(pressure) if kind == "lobovsky" else []}
 
 
 def plot_dam_break(runs, path):
@@ -191,6 +196,68 @@ def plot_lobovsky(runs, path):
     fig.suptitle("Lobovsky et al. (2014) dam break, H = 0.3 m: water level at the gauges\n(grey: compared "
                  f"window [0, 1.5] s; dotted: 0.9 s; dashed: {run_up_end:.3f} s, the first impact "
                  "and run-up's end)")
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+def moving_average(t, p, half_width):
+    """The mean of the samples within half_width of each sample's t (t sorted), as
+    swell-validate smooths a wall-pressure series (wall_pressure.h)."""
+    out, lo, hi, total = [], 0, 0, 0.0
+    for ti in t:
+        while hi < len(t) and t[hi] <= ti + half_width:
+            total += p[hi]
+            hi += 1
+        while t[lo] < ti - half_width:
+            total -= p[lo]
+            lo += 1
+        out.append(total / (hi - lo))
+    return out
+
+
+P1_SMOOTHING = 0.05  # kPressureSmoothing, t sqrt(g / H)
+
+
+def plot_far_wall_pressure(runs, path):
+    """The far wall's pressure at Buchner's sensor P1 against the experiment and Marrone et
+    al. (2011)'s delta-SPH (docs/validation.md 7.51), every series smoothed the same way."""
+    refs = {}
+    for r in runs[0]["pressure_records"]:
+        s = refs.setdefault(r["series"], ([], []))
+        s[0].append(float(r["t"]))
+        s[1].append(float(r["p"]))
+    p1 = runs[0]["result"]["far_wall_pressure"]
+    fig, ax = plt.subplots(figsize=(11, 4.8))
+    t, p = refs["experiment"]
+    ax.plot(t, moving_average(t, p, P1_SMOOTHING), color="black", lw=1.4,
+            label=f"Buchner 2002 (experiment): collapse at {p1['experiment']['second_peak_time']:.2f}")
+    for name, style in (("delta_sph_40", ":"), ("delta_sph_80", "-."), ("delta_sph_320", "--")):
+        t, p = refs[name]
+        ref = p1[name]
+        ax.plot(t, moving_average(t, p, P1_SMOOTHING), style, color="tab:red", lw=1.1,
+                label=f"Marrone et al. 2011, delta-SPH H/{name.rsplit('_', 1)[1]}: collapse at "
+                      f"{ref['second_peak_time']:.2f}")
+    for run_, colour in zip(runs, COLOURS):
+        res = run_["result"]
+        scale = (res["gravity"] / res["H"]) ** 0.5
+        t = [float(r["t"]) * scale for r in run_["series"]]
+        p = [float(r["p_P1_over_rho_g_H"]) for r in run_["series"]]
+        own = res["far_wall_pressure"]
+        ax.plot(t, p, color=colour, lw=0.4, alpha=0.35)
+        ax.plot(t, moving_average(t, p, P1_SMOOTHING), color=colour, lw=1.4,
+                label=f"{run_['label']}: collapse at {own['second_peak_time']:.2f}, mean |dp| "
+                      f"{own['delta_sph_320']['mean_abs_error']:.3f} against delta-SPH H/320")
+    ax.axvspan(5.0, 7.0, color="0.95", zorder=0)
+    ax.set_xlim(2.0, 7.4)
+    ax.set_ylim(-0.1, 1.6)
+    ax.set_xlabel("t sqrt(g / H)")
+    ax.set_ylabel("p / (rho g H)")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=7, loc="upper left")
+    ax.set_title("Far-wall pressure at sensor P1 (Lobovsky tank, Buchner's tank at half size); "
+                 f"every line a {2 * P1_SMOOTHING:g} moving average\n(faint: the runs unsmoothed; "
+                 "grey: where the run-up's collapse is looked for)", fontsize=10)
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     plt.close(fig)
@@ -356,6 +423,9 @@ def main():
         rs = [run(binary, args.threads, kind, *c, out) for c in (quick if args.quick else full)]
         plot(rs, out / name)
         written.append(str(out / name))
+        if kind == "lobovsky":  # and the far wall's pressure from the same runs
+            plot_far_wall_pressure(rs, out / "lobovsky_p1.png")
+            written.append(str(out / "lobovsky_p1.png"))
         runs += [{"kind": kind, "label": r["label"], "command": r["command"],
                   "result": r["result"]} for r in rs]
     commit = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"],

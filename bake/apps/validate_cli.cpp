@@ -44,14 +44,19 @@ std::optional<int> parseValidateCommandLine(int argc, const char* const* argv,
     auto* lob = app.add_subcommand(
         "lobovsky", "run the Lobovsky et al. (2014) H = 300 mm dam break and compare the water "
                     "height at gauges H1..H4 with the records over t in [0, 1.5] s, and over the "
-                    "first impact and run-up (until the record's water lands on H4)");
+                    "first impact and run-up (until the record's water lands on H4), and the far "
+                    "wall's pressure at sensor P1 with Buchner (2002) and Marrone et al. (2011)");
     lob->add_option("scene", cl.scene, "scene JSON (the first water rectangle is the column)")
         ->required();
     lob->add_option("--until", cl.lobovskyUntil, "stop at this time (s)")
         ->check(cli::finiteRange(0.0, 1e6));
-    lob->add_option("--csv", cl.csv, "write the height series t,h_H1..h_H4 (m) to this file");
+    lob->add_option("--csv", cl.csv,
+                    "write the series t,h_H1..h_H4,p_P1_over_rho_g_H (s, m) to this file");
     lob->add_option("--records", cl.records,
                     "write the experimental gauge records (gauge,x,t,h; m, s) to this file");
+    lob->add_option("--pressure-records", cl.pressureRecords,
+                    "write the far-wall pressure records (series,t,p; t sqrt(g/H), p/(rho g H)) "
+                    "to this file");
     addEnsemble(*lob, cl)->excludes("--csv");
 
     auto* still = app.add_subcommand("still-tank", "run a still-tank scene and check hydrostatics");

@@ -27,18 +27,19 @@ struct ValidateCommandLine {
     std::vector<std::string> sets; ///< --set overrides, in order
     int threads = 0;               ///< 0: all
     bool asJson = false;
-    double damUntil = 3.2;      ///< dam-break --until (T = t sqrt(2g/a))
-    double lobovskyUntil = 1.5; ///< lobovsky --until (s)
-    std::string csv;            ///< --csv of every run but still-tank and regular-wave
-    std::string records;        ///< dam-break / lobovsky / shoaling --records
-    double settle = 2.0;        ///< still-tank --settle (s)
-    long steps = -1;            ///< still-tank --steps; -1: end_time / dt
-    long trace = 0;             ///< still-tank --trace
-    double waveFrom = -1.0;     ///< regular-wave --from (s); -1: the default window
-    double waveTo = -1.0;       ///< regular-wave --to (s); -1: the default window
-    std::string keep;           ///< regular-wave --keep
-    std::string probes;         ///< regular-wave --probes: fit this record, bake nothing
-    int ensemble = 0;           ///< --ensemble: members (0: one run of the scene)
+    double damUntil = 3.2;       ///< dam-break --until (T = t sqrt(2g/a))
+    double lobovskyUntil = 1.5;  ///< lobovsky --until (s)
+    std::string csv;             ///< --csv of every run but still-tank and regular-wave
+    std::string records;         ///< dam-break / lobovsky / shoaling --records
+    std::string pressureRecords; ///< lobovsky --pressure-records
+    double settle = 2.0;         ///< still-tank --settle (s)
+    long steps = -1;             ///< still-tank --steps; -1: end_time / dt
+    long trace = 0;              ///< still-tank --trace
+    double waveFrom = -1.0;      ///< regular-wave --from (s); -1: the default window
+    double waveTo = -1.0;        ///< regular-wave --to (s); -1: the default window
+    std::string keep;            ///< regular-wave --keep
+    std::string probes;          ///< regular-wave --probes: fit this record, bake nothing
+    int ensemble = 0;            ///< --ensemble: members (0: one run of the scene)
 };
 
 /// Parses argv into `cl`. Returns the exit status when swell-validate should stop now: 0 after

@@ -40,6 +40,7 @@
 #include "swell/bake/standing_wave.h"
 #include "swell/bake/still_tank.h"
 #include "swell/bake/validation.h"
+#include "swell/bake/wall_pressure.h"
 #include "swell/bake/wet_dam_break.h"
 #include "swell/cache/checked_write.h"
 
@@ -160,6 +161,37 @@ json damBreak(const Scene& scene, double tEnd, const std::string& csv) {
     return out;
 }
 
+/// What a pressure series says (wall_pressure.h), as JSON; null where it says nothing.
+json pressureFiguresJson(std::span<const PressurePoint> series) {
+    const PressureFigures f = pressureFigures(series);
+    const auto orNull = [](const std::optional<double>& v) { return v ? json(*v) : json(nullptr); };
+    return {{"impact_time", orNull(f.impactTime)},
+            {"second_peak_time", orNull(f.peakTime)},
+            {"second_peak", f.peakTime ? json(f.peak) : json(nullptr)}};
+}
+
+/// The far wall's pressure at Buchner's sensor P1 against the experiment and Marrone et al.'s
+/// delta-SPH (buchner2002.h, docs/validation.md 7.51), in t sqrt(g / H) and p / (rho g H).
+json farWallPressure(std::span<const PressurePoint> p1, double low, double high) {
+    json out = pressureFiguresJson(p1);
+    out["units"] = "t sqrt(g / H), p / (rho g H)";
+    out["sensor"] = "P1";
+    out["band"] = {low, high};
+    const std::pair<const char*, double FarWallPressureSample::*> records[] = {
+        {"experiment", &FarWallPressureSample::experiment},
+        {"delta_sph_40", &FarWallPressureSample::deltaSph40},
+        {"delta_sph_80", &FarWallPressureSample::deltaSph80},
+        {"delta_sph_320", &FarWallPressureSample::deltaSph320}};
+    for (const auto& [name, column] : records) {
+        const std::vector<PressurePoint> record = buchnerP1Series(column);
+        json r = pressureFiguresJson(record);
+        const std::optional<double> e = meanAbsPressureError(p1, record);
+        r["mean_abs_error"] = e ? json(*e) : json(nullptr);
+        out[name] = r;
+    }
+    return out;
+}
+
 /// Lobovsky et al. (2014) dam break: water height at the gauges H1..H4 against the records.
 /// Sampled after every solver step (denser than the records' 300 Hz); the simulated series is
 /// interpolated at the record times (compareLevel). Height: top of the highest non-splash water
@@ -172,21 +204,28 @@ json lobovsky(const Scene& scene, double tEnd, const std::string& csv) {
     const double H = run.H;
     json out{{"scene", scene.name},
              {"H", H},
+             {"gravity", scene.physics.gravity},
              {"l0", scene.geometry.particleSpacing},
              {"dt", scene.solver.time.dt},
              {"particles", run.particles},
              {"water", run.water},
              {"outcome", run.outcome}};
+    // The far wall's pressure at sensor P1 in the records' units (buchner2002.h).
+    const double pressureScale = scene.physics.density * scene.physics.gravity * H;
+    const double timeScale = std::sqrt(scene.physics.gravity / H);
+    std::vector<PressurePoint> p1;
+    for (const PressureSample& q : run.farWallPressure)
+        p1.push_back({q.t * timeScale, q.p / pressureScale});
     if (!csv.empty()) {
         std::string text = "t";
         for (const LevelGauge& g : gauges)
             text += fmt::format(",h_{}", g.name);
-        text += "\n";
+        text += ",p_P1_over_rho_g_H\n";
         for (std::size_t k = 0; k < run.top[0].size(); ++k) {
             text += fmt::format("{:.5f}", run.top[0][k].t);
             for (const auto& s : run.top)
                 text += fmt::format(",{:.5f}", s[k].h);
-            text += "\n";
+            text += fmt::format(",{:.5f}\n", p1[k].p);
         }
         writeTextFile(csv, text, "--csv");
     }
@@ -229,6 +268,7 @@ json lobovsky(const Scene& scene, double tEnd, const std::string& csv) {
         out["far_gauge"] = gauges[far].name;
         out["far_gauge_landing_time"] = lands ? json(*lands) : json(nullptr);
         out["far_gauge_landing_time_record"] = landsRecord;
+        out["far_wall_pressure"] = farWallPressure(p1, run.sensorLow, run.sensorHigh);
     }
     out["steps"] = run.totals.steps;
     out["ppe_iterations_mean"] = run.totals.ppeIterationsMean();
@@ -672,6 +712,14 @@ Figures lobovskyFigures(const json& r) {
                  r["mean_abs_error_over_H_worst_run_up"].get<double>()});
     const json& lands = r["far_gauge_landing_time"];
     f.push_back({"far_gauge_landing_time", lands.is_null() ? std::nan("") : lands.get<double>()});
+    const json& p1 = r["far_wall_pressure"];
+    const auto value = [](const json& v) { return v.is_null() ? std::nan("") : v.get<double>(); };
+    f.push_back({"far_wall_impact_time", value(p1["impact_time"])});
+    f.push_back({"far_wall_second_peak_time", value(p1["second_peak_time"])});
+    f.push_back({"far_wall_second_peak", value(p1["second_peak"])});
+    f.push_back(
+        {"far_wall_mean_abs_error_delta_sph_320", value(p1["delta_sph_320"]["mean_abs_error"])});
+    f.push_back({"far_wall_mean_abs_error_experiment", value(p1["experiment"]["mean_abs_error"])});
     return f;
 }
 
@@ -750,6 +798,8 @@ int main(int argc, char** argv) {
                           : cl.run == Run::Shoaling ? grilli1994RecordsCsv()
                                                     : lobovskyRecordsCsv(),
                           "--records");
+        if (!cl.pressureRecords.empty())
+            writeTextFile(cl.pressureRecords, buchnerP1RecordsCsv(), "--pressure-records");
         // One check: run(scene, single) runs it once; a single run also writes the files its
         // options name (--csv, --keep), an ensemble member does not.
         std::function<json(const Scene&, bool)> run;

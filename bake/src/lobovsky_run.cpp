@@ -4,6 +4,7 @@
 #include <utility>
 #include <vector>
 
+#include "swell/bake/buchner2002.h"
 #include "swell/bake/error.h"
 #include "swell/bake/mps_solver.h"
 #include "swell/bake/probes.h"
@@ -34,9 +35,32 @@ LobovskyRun runLobovsky(const Scene& scene, double tEnd) {
             run.top[g].push_back({s.time, std::isnan(h) ? 0.0 : h}); // NaN: dry gauge
         }
     };
+    // Sensor P1: the first layer of wall particles behind the downstream wall (x1 < x < x1 + l0)
+    // whose centres lie in the sensor's band. Wall particles do not move, so the list holds.
+    run.sensorHigh = tank.y0 + kBuchnerP1TopOverH * run.H;
+    run.sensorLow = run.sensorHigh - kBuchnerP1HeightOverH * run.H;
+    const double l0 = scene.geometry.particleSpacing;
+    std::vector<std::size_t> sensor;
+    {
+        const Particles& p = solver.particles();
+        for (std::size_t i = 0; i < p.size(); ++i)
+            if (p.kind[i] == ParticleKind::Wall && p.x[i] > tank.x1 && p.x[i] < tank.x1 + l0 &&
+                p.y[i] >= run.sensorLow && p.y[i] <= run.sensorHigh)
+                sensor.push_back(i);
+    }
+    const auto sampleSensor = [&] {
+        double sum = 0.0;
+        for (std::size_t i : sensor)
+            sum += solver.particles().p[i];
+        run.farWallPressure.push_back(
+            {solver.time(), sensor.empty() ? 0.0 : sum / static_cast<double>(sensor.size())});
+    };
     sample();
-    run.outcome =
-        runSteps(solver, run.totals, untilTime(tEnd), [&](const StepStats&) { sample(); });
+    sampleSensor();
+    run.outcome = runSteps(solver, run.totals, untilTime(tEnd), [&](const StepStats&) {
+        sample();
+        sampleSensor();
+    });
     return run;
 }
 

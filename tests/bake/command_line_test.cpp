@@ -99,6 +99,9 @@ TEST(CommandLine, SwellValidateRefusesNonsenseValues) {
                   "--threads");
     EXPECT_FALSE(validate({"dam-break", "s.json", "--records", "mm.csv"}).rc.has_value());
     EXPECT_FALSE(validate({"lobovsky", "s.json", "--records", "lob.csv"}).rc.has_value());
+    EXPECT_FALSE(validate({"lobovsky", "s.json", "--pressure-records", "p1.csv"}).rc.has_value());
+    expectRefused(validate({"dam-break", "s.json", "--pressure-records", "p1.csv"}),
+                  "swell-validate", "--pressure-records");
     expectRefused(validate({"still-tank", "s.json", "--records", "r.csv"}), "swell-validate",
                   "--records");
     EXPECT_FALSE(validate({"regular-wave", "s.json", "--ensemble", "4"}).rc.has_value());

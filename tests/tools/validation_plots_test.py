@@ -26,8 +26,8 @@ class ValidationPlots(unittest.TestCase):
                                 "--bin", str(BIN), "--out", str(out)],
                                capture_output=True, text=True)
             self.assertEqual(p.returncode, 0, p.stderr)
-            for name in ("dam_break_front.png", "lobovsky_gauges.png", "solitary_wave.png",
-                         "wet_dam_break.png", "shoaling.png"):
+            for name in ("dam_break_front.png", "lobovsky_gauges.png", "lobovsky_p1.png",
+                         "solitary_wave.png", "wet_dam_break.png", "shoaling.png"):
                 data = (out / name).read_bytes()
                 self.assertEqual(data[:8], b"\x89PNG\r\n\x1a\n", name)
                 self.assertGreater(len(data), 20_000, name)  # axes, points and lines drawn
@@ -73,6 +73,42 @@ class ValidationPlots(unittest.TestCase):
                 self.assertGreater(g["experiment_scatter_over_H"], 0.0, g["name"])
             self.check_lobovsky_run_up(summary["runs"][1]["result"],
                                        out / "lobovsky_H_15.csv", out / "lobovsky_records.csv")
+            self.check_far_wall_pressure(summary["runs"][1]["result"], out / "lobovsky_H_15.csv",
+                                         out / "lobovsky_pressure_records.csv")
+
+    def check_far_wall_pressure(self, result, series_csv, records_csv):
+        # Sensor P1 (docs/validation.md 7.51), recomputed from the CSVs: every series through
+        # the same moving average (half width 0.05 in t sqrt(g/H)); the run-up's collapse is the
+        # largest smoothed value in [5, 7]; the impact the first one above 0.3.
+        sys.path.insert(0, str(ROOT / "tools"))
+        import validation_plots  # noqa: E402
+
+        with open(records_csv, newline="") as f:
+            records = list(csv.DictReader(f))
+        self.assertEqual({r["series"] for r in records},
+                         {"experiment", "delta_sph_40", "delta_sph_80", "delta_sph_320"})
+        scale = (result["gravity"] / result["H"]) ** 0.5
+        with open(series_csv, newline="") as f:
+            rows = list(csv.DictReader(f))
+        series = {"run": ([float(r["t"]) * scale for r in rows],
+                          [float(r["p_P1_over_rho_g_H"]) for r in rows])}
+        for name in ("experiment", "delta_sph_320"):
+            series[name] = ([float(r["t"]) for r in records if r["series"] == name],
+                            [float(r["p"]) for r in records if r["series"] == name])
+        p1 = result["far_wall_pressure"]
+        for name, (t, p) in series.items():
+            s = validation_plots.moving_average(t, p, 0.05)
+            window = [(si, ti) for ti, si in zip(t, s) if 5.0 <= ti <= 7.0]
+            peak = max(window, key=lambda w: w[0])
+            impact = next(ti for ti, si in zip(t, s) if si > 0.3)
+            figures = p1 if name == "run" else p1[name]
+            # The CSV holds 5 decimals of seconds and of p / (rho g H).
+            self.assertAlmostEqual(figures["second_peak_time"], peak[1], delta=0.02, msg=name)
+            self.assertAlmostEqual(figures["second_peak"], peak[0], delta=1e-3, msg=name)
+            self.assertAlmostEqual(figures["impact_time"], impact, delta=0.02, msg=name)
+        # The references' own order: the experiment's collapse comes before delta-SPH's.
+        self.assertLess(p1["experiment"]["second_peak_time"],
+                        p1["delta_sph_320"]["second_peak_time"])
 
     def check_lobovsky_run_up(self, result, series_csv, records_csv):
         # The first impact and run-up (docs/validation.md 7.49), recomputed here from the CSVs:
@@ -127,7 +163,7 @@ class ValidationPlots(unittest.TestCase):
 
     def test_unwritable_csv_and_records_are_one_clear_line_each(self):
         scene = str(ROOT / "scenes" / "lobovsky_small.json")
-        for option in ("--csv", "--records"):
+        for option in ("--csv", "--records", "--pressure-records"):
             p = subprocess.run([str(BIN / "swell-validate"), "--threads", "1", "lobovsky", scene,
                                 "--until", "0.01", option, "/nonexistent/dir/x.csv"],
                                capture_output=True, text=True)

@@ -1,6 +1,7 @@
 #pragma once
 // The Lobovsky et al. (2014) dam break as a run (docs/validation.md 7.2): the scene's column
-// collapses, and after every step the water level is read at the gauges H1..H4. One run, as
+// collapses, and after every step the water level is read at the gauges H1..H4 and the pressure
+// on the far wall at Buchner's sensor P1 (buchner2002.h, docs/validation.md 7.51). One run, as
 // swell-validate lobovsky reports it and as the CI-resolution test (tests/bake/validation_test.cpp)
 // bounds it. No I/O.
 
@@ -14,6 +15,12 @@
 
 namespace swell::bake {
 
+/// The pressure at a wall sensor at one moment.
+struct PressureSample {
+    double t = 0.0; ///< (s)
+    double p = 0.0; ///< (Pa)
+};
+
 struct LobovskyRun {
     /// "stable", or "stopped: " and the divergence detector's message.
     std::string outcome;
@@ -25,10 +32,18 @@ struct LobovskyRun {
     /// highest non-splash water particle within l0 of the gauge, from the tank floor, 0 where
     /// dry (sampleProbes): what the check compares.
     std::vector<std::vector<LevelPoint>> top;
+    /// Sensor P1 scaled to the scene: from (kBuchnerP1TopOverH - kBuchnerP1HeightOverH) H to
+    /// kBuchnerP1TopOverH H above the tank floor (m), on the downstream wall.
+    double sensorLow = 0.0;
+    double sensorHigh = 0.0;
+    /// At t = 0 and after every step: the mean pressure of the downstream wall's first layer of
+    /// wall particles whose centres lie in [sensorLow, sensorHigh]; 0 where none does.
+    std::vector<PressureSample> farWallPressure;
 };
 
-/// Runs `scene` (which needs a tank; the gauges stand at tank.x0 + their x) to tEnd, or until
-/// the divergence detector stops it. Throws SceneError for a scene without a tank.
+/// Runs `scene` (which needs a tank; the gauges stand at tank.x0 + their x, the sensor on the
+/// wall at tank.x1) to tEnd, or until the divergence detector stops it. Throws SceneError for a
+/// scene without a tank.
 LobovskyRun runLobovsky(const Scene& scene, double tEnd);
 
 } // namespace swell::bake
