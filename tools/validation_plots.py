@@ -250,7 +250,7 @@ def plot_far_wall_pressure(runs, path):
                       f"{own['delta_sph_320']['mean_abs_error']:.3f} against delta-SPH H/320")
     ax.axvspan(5.0, 7.0, color="0.95", zorder=0)
     ax.set_xlim(2.0, 7.4)
-    ax.set_ylim(-0.1, 1.6)
+    ax.set_ylim(-0.1, 1.2)
     ax.set_xlabel("t sqrt(g / H)")
     ax.set_ylabel("p / (rho g H)")
     ax.grid(alpha=0.3)
