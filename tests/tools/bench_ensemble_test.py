@@ -108,7 +108,9 @@ class Validate(unittest.TestCase):
                        "experiment_scatter_over_H": 0.0515}]
             return {"outcome": "stable", "steps": 10, "particles": 100, "solver_seconds": 1.0,
                     "gauges": gauges, "mean_abs_error_over_H_worst": max(h1, h2), "window": [0, 1.5],
-                    "mean_abs_error_over_H_worst_run_up": h2 / 2, "far_gauge_landing_time": 0.9 + h1}
+                    "mean_abs_error_over_H_worst_run_up": h2 / 2, "far_gauge_landing_time": 0.9 + h1,
+                    "far_wall_pressure": {"second_peak_time": 6.0 + h1,
+                                          "delta_sph_320": {"mean_abs_error": h2}}}
         with tempfile.TemporaryDirectory() as tmp:
             ctx = common.Context(quick=True, log=None, out=tmp, members=2)
             ctx.run = lambda cmd, timeout=900: Result({"outcome": "stable",
@@ -128,7 +130,12 @@ class Validate(unittest.TestCase):
         self.assertAlmostEqual(row["run_up_worst_mean_abs_error_over_H"], 0.02)
         self.assertIn("run_up_worst_mean_abs_error_over_H_sd", row)
         self.assertAlmostEqual(row["far_gauge_landing_s"], 0.95)
+        # The far wall's pressure (7.51): the collapse's time and the error, with spreads.
+        self.assertAlmostEqual(row["p1_collapse_t"], 6.05)
+        self.assertIn("p1_collapse_t_sd", row)
+        self.assertAlmostEqual(row["p1_mean_abs_error_delta_sph"], 0.04)
         table = bake.lobovsky_table([row])
+        self.assertIn("P1: run-up's collapse", table)
         self.assertIn("worst over the first impact and run-up", table)
         self.assertIn("lands on the far gauge (s)", table)
         self.assertIn("H2: experiment's two series", table)

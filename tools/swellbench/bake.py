@@ -51,8 +51,9 @@ WAVE_SPREAD = ("H_m", "height_error", "wavelength_error", "wavelength_fit_error"
 
 
 def lobovsky_spread(field):
-    """The Lobovsky figures with a spread: the worst gauge's and each gauge's mean error."""
-    return field.endswith("mean_abs_error_over_H")
+    """The Lobovsky figures with a spread: the worst gauge's and each gauge's mean error, and the
+    far wall's pressure figures (sensor P1)."""
+    return field.endswith("mean_abs_error_over_H") or field.startswith("p1_")
 
 
 def scheme_of(r):
@@ -292,6 +293,11 @@ def lobovsky(ctx):
                             # on the far gauge (docs/validation.md 7.49), and when the run's does.
                             "run_up_worst_mean_abs_error_over_H": j.get("mean_abs_error_over_H_worst_run_up"),
                             "far_gauge_landing_s": j.get("far_gauge_landing_time")})
+                # The far wall's pressure at Buchner's sensor P1 (docs/validation.md 7.51): when
+                # the run-up collapses, and the mean error against delta-SPH at H/dx = 320.
+                p1 = j.get("far_wall_pressure") or {}
+                out.update({"p1_collapse_t": p1.get("second_peak_time"),
+                            "p1_mean_abs_error_delta_sph": (p1.get("delta_sph_320") or {}).get("mean_abs_error")})
                 for g in j.get("gauges") or []:
                     out["%s_x_m" % g["name"]] = g.get("x")
                     out["%s_mean_abs_error_over_H" % g["name"]] = g.get("mean_abs_error_over_H")
@@ -577,7 +583,9 @@ def lobovsky_table(rows):
             ("particles", "particles"), ("steps", "steps"), ("outcome", lambda r: (r.get("outcome") or "")[:60]),
             ("worst mean abs dh / H", "worst_mean_abs_error_over_H"), ("worst gauge", "worst_gauge"),
             ("worst over the first impact and run-up", "run_up_worst_mean_abs_error_over_H"),
-            ("lands on the far gauge (s)", "far_gauge_landing_s")]
+            ("lands on the far gauge (s)", "far_gauge_landing_s"),
+            ("P1: run-up's collapse, t (g/H)^0.5 (delta-SPH 6.43, experiment 5.87)", "p1_collapse_t"),
+            ("P1: mean abs dp / rho g H against delta-SPH", "p1_mean_abs_error_delta_sph")]
     cols += [("%s mean abs dh / H" % n, "%s_mean_abs_error_over_H" % n) for n in gauge_names(rows)]
     cols += [("%s: experiment's two series, mean abs dh / H" % n, "%s_experiment_scatter_over_H" % n)
              for n in gauge_names(rows) if any(r.get("%s_experiment_scatter_over_H" % n) is not None for r in rows)]
