@@ -172,11 +172,13 @@ json pressureFiguresJson(std::span<const PressurePoint> series) {
 
 /// The far wall's pressure at Buchner's sensor P1 against the experiment and Marrone et al.'s
 /// delta-SPH (buchner2002.h, docs/validation.md 7.51), in t sqrt(g / H) and p / (rho g H).
-json farWallPressure(std::span<const PressurePoint> p1, double low, double high) {
+json farWallPressure(std::span<const PressurePoint> p1, double low, double high,
+                     std::size_t particles) {
     json out = pressureFiguresJson(p1);
     out["units"] = "t sqrt(g / H), p / (rho g H)";
     out["sensor"] = "P1";
     out["band"] = {low, high};
+    out["sensor_particles"] = particles;
     const std::pair<const char*, double FarWallPressureSample::*> records[] = {
         {"experiment", &FarWallPressureSample::experiment},
         {"delta_sph_40", &FarWallPressureSample::deltaSph40},
@@ -268,7 +270,11 @@ json lobovsky(const Scene& scene, double tEnd, const std::string& csv) {
         out["far_gauge"] = gauges[far].name;
         out["far_gauge_landing_time"] = lands ? json(*lands) : json(nullptr);
         out["far_gauge_landing_time_record"] = landsRecord;
-        out["far_wall_pressure"] = farWallPressure(p1, run.sensorLow, run.sensorHigh);
+        // Null where the sensor's band holds no wall particle (a spacing above its height).
+        out["far_wall_pressure"] =
+            run.sensorParticles == 0
+                ? json(nullptr)
+                : farWallPressure(p1, run.sensorLow, run.sensorHigh, run.sensorParticles);
     }
     out["steps"] = run.totals.steps;
     out["ppe_iterations_mean"] = run.totals.ppeIterationsMean();
@@ -713,13 +719,19 @@ Figures lobovskyFigures(const json& r) {
     const json& lands = r["far_gauge_landing_time"];
     f.push_back({"far_gauge_landing_time", lands.is_null() ? std::nan("") : lands.get<double>()});
     const json& p1 = r["far_wall_pressure"];
-    const auto value = [](const json& v) { return v.is_null() ? std::nan("") : v.get<double>(); };
-    f.push_back({"far_wall_impact_time", value(p1["impact_time"])});
-    f.push_back({"far_wall_second_peak_time", value(p1["second_peak_time"])});
-    f.push_back({"far_wall_second_peak", value(p1["second_peak"])});
+    // NaN for a figure that says nothing, and for all of them without a sensor.
+    const auto value = [&p1](const char* record, const char* key) {
+        if (p1.is_null())
+            return std::nan("");
+        const json& v = record ? p1[record][key] : p1[key];
+        return v.is_null() ? std::nan("") : v.get<double>();
+    };
+    f.push_back({"far_wall_impact_time", value(nullptr, "impact_time")});
+    f.push_back({"far_wall_second_peak_time", value(nullptr, "second_peak_time")});
+    f.push_back({"far_wall_second_peak", value(nullptr, "second_peak")});
     f.push_back(
-        {"far_wall_mean_abs_error_delta_sph_320", value(p1["delta_sph_320"]["mean_abs_error"])});
-    f.push_back({"far_wall_mean_abs_error_experiment", value(p1["experiment"]["mean_abs_error"])});
+        {"far_wall_mean_abs_error_delta_sph_320", value("delta_sph_320", "mean_abs_error")});
+    f.push_back({"far_wall_mean_abs_error_experiment", value("experiment", "mean_abs_error")});
     return f;
 }
 

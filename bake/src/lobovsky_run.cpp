@@ -48,6 +48,7 @@ LobovskyRun runLobovsky(const Scene& scene, double tEnd) {
                 p.y[i] >= run.sensorLow && p.y[i] <= run.sensorHigh)
                 sensor.push_back(i);
     }
+    run.sensorParticles = sensor.size();
     const auto sampleSensor = [&] {
         double sum = 0.0;
         for (std::size_t i : sensor)

@@ -460,6 +460,8 @@ TEST(Validation, LobovskyRunNeedsATankAndReadsTheColumnAtTheStart) {
     // Sensor P1 on the far wall, scaled by H = 0.3 m: 0.035-0.08 m above the floor, dry.
     EXPECT_NEAR(start.sensorLow, 0.035, 1e-12);
     EXPECT_NEAR(start.sensorHigh, 0.08, 1e-12);
+    // l0 = 0.02 m: the first wall layer's particles at y = 0.05 and 0.07 m lie in the band.
+    EXPECT_EQ(start.sensorParticles, 2u);
     ASSERT_EQ(start.farWallPressure.size(), 1u);
     EXPECT_EQ(start.farWallPressure[0].p, 0.0);
     scene.geometry.tank.reset(); // the gauges stand in a tank: an error naming the key

@@ -36,6 +36,8 @@ struct LobovskyRun {
     /// kBuchnerP1TopOverH H above the tank floor (m), on the downstream wall.
     double sensorLow = 0.0;
     double sensorHigh = 0.0;
+    /// How many wall particles the sensor averages (0: the band holds none at this spacing).
+    std::size_t sensorParticles = 0;
     /// At t = 0 and after every step: the mean pressure of the downstream wall's first layer of
     /// wall particles whose centres lie in [sensorLow, sensorHigh]; 0 where none does.
     std::vector<PressureSample> farWallPressure;
