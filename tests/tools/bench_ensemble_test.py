@@ -141,6 +141,35 @@ class Validate(unittest.TestCase):
         self.assertIn("H2: experiment's two series", table)
         self.assertNotIn("H1: experiment's two series", table)
 
+    def test_a_partial_bake_run_refuses_to_blank_the_other_tables(self):
+        # tools/bench --only lobovsky rewrites the one block of bake tables with the other parts'
+        # rows read back from out/bench/: where they are missing or empty it stops first.
+        with tempfile.TemporaryDirectory() as tmp:
+            chosen = cli.selected({"lobovsky"})
+            self.assertEqual(chosen, {"bake": ["lobovsky"]})
+            with self.assertRaises(SystemExit) as e:
+                cli.missing_bake_rows(chosen, False, tmp)
+            self.assertIn("dam_break", str(e.exception))
+            self.assertIn("--no-docs", str(e.exception))
+            cli.missing_bake_rows(chosen, True, tmp)  # --no-docs: nothing to lose
+            for part in bake.CSVS:  # an empty CSV (a run that wrote no rows) is no better
+                with open(pathlib.Path(tmp) / (part + ".csv"), "w") as f:
+                    f.write("\n")
+            with self.assertRaises(SystemExit):
+                cli.missing_bake_rows(chosen, False, tmp)
+            for part in bake.CSVS:
+                common.write_csv(str(pathlib.Path(tmp) / (part + ".csv")), [{"resolution": "x"}])
+            cli.missing_bake_rows(chosen, False, tmp)
+            cli.missing_bake_rows(cli.selected({"bake"}), False, str(pathlib.Path(tmp) / "none"))
+
+    def test_lobovsky_gauges_are_the_columns_with_a_position(self):
+        # The run-up's and the worst gauge's figures end like a gauge's error but are not gauges.
+        row = {"H1_x_m": 0.3, "H1_mean_abs_error_over_H": 0.02, "H4_x_m": 1.36,
+               "H4_mean_abs_error_over_H": 0.06, "run_up_worst_mean_abs_error_over_H": 0.065,
+               "worst_mean_abs_error_over_H": 0.06}
+        self.assertEqual(bake.gauge_names([row]), ["H1", "H4"])
+        self.assertNotIn("run_up_worst -", bake.lobovsky_text([row]))
+
     def test_regular_wave_rows_say_which_window_the_heights_were_read_over(self):
         # Since 2026-12-04 swell-validate reports gauge_windows and reads each gauge's height over
         # its own window; a stored row from before has no H_window and reads as "common".

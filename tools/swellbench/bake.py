@@ -542,12 +542,14 @@ def regular_wave_table(rows):
 
 
 def gauge_names(rows):
-    """H1.. in the order the rows have them (from the CSV columns NAME_mean_abs_error_over_H)."""
+    """H1.. in the order the rows have them (from the CSV columns NAME_x_m, one per gauge: the
+    other figures ending in _mean_abs_error_over_H, the worst gauge's and the run-up's, are not
+    gauges)."""
     names = []
     for r in rows:
         for k in r:
-            if k.endswith("_mean_abs_error_over_H") and not k.startswith("worst"):
-                n = k[:-len("_mean_abs_error_over_H")]
+            if k.endswith("_x_m"):
+                n = k[:-len("_x_m")]
                 if n not in names:
                     names.append(n)
     return names

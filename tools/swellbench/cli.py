@@ -65,6 +65,21 @@ def selected(only):
     return out
 
 
+def missing_bake_rows(chosen, no_docs, out=bl.OUT):
+    """The bake tables are one block of docs/BENCHMARKS.md: a run of some bake parts rewrites it
+    with the others' rows read back from out/bench/ (bake.run). Where one of those was never
+    written there, or holds no rows, the rewrite would blank its table: refuse before measuring
+    anything."""
+    parts = chosen.get("bake")
+    if no_docs or not parts:
+        return
+    absent = [p for p in BAKE_PARTS if p not in parts and not bl.read_csv(os.path.join(out, p + ".csv"))]
+    if absent:
+        raise SystemExit("tools/bench: the bake tables in docs/BENCHMARKS.md need every part's rows, and "
+                         "out/bench/ has none for %s; run them too (--only bake), or add --no-docs"
+                         % ", ".join(absent))
+
+
 def measure(ctx, chosen):
     """Runs the chosen sections; returns (results {CSV or note name: rows or text}, sections run)."""
     results = {}
@@ -128,8 +143,9 @@ def main(argv=None):
         ctx.note_load("start")
         print("tools/bench (%s): load average %s; log out/bench/commands.log" % (variant, bl.load_average()),
               flush=True)
-        ctx.bake_small_cache()
         chosen = selected(args.only)
+        missing_bake_rows(chosen, args.no_docs)
+        ctx.bake_small_cache()
         results = measure(ctx, chosen)
         ctx.note_load("end")
         m = describe_machine(ctx, variant, t_start, list(chosen))
@@ -158,6 +174,10 @@ def docs_only(args, out=bl.OUT):
             results[csv_name] = bl.read_csv(os.path.join(out, csv_name + ".csv"))
     results[bake.NOTE] = bake.load_note(out)
     names = [n for n in names if results.get(MODULES[n].CSVS[0])]
+    absent = [p for p in BAKE_PARTS if not results.get(p)] if "bake" in names else []
+    if absent:  # one block holds every bake table: it would lose theirs
+        raise SystemExit("tools/bench --docs-only: out/bench/ has no rows for %s, and the bake tables in "
+                         "docs/BENCHMARKS.md are rewritten together; run them first" % ", ".join(absent))
     if not names:
         raise SystemExit("tools/bench --docs-only: no CSV files in out/bench/ for these sections")
     publish(results, m, names, True, out)
