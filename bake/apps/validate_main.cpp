@@ -179,12 +179,7 @@ json farWallPressure(std::span<const PressurePoint> p1, double low, double high,
     out["sensor"] = "P1";
     out["band"] = {low, high};
     out["sensor_particles"] = particles;
-    const std::pair<const char*, double FarWallPressureSample::*> records[] = {
-        {"experiment", &FarWallPressureSample::experiment},
-        {"delta_sph_40", &FarWallPressureSample::deltaSph40},
-        {"delta_sph_80", &FarWallPressureSample::deltaSph80},
-        {"delta_sph_320", &FarWallPressureSample::deltaSph320}};
-    for (const auto& [name, column] : records) {
+    for (const auto& [name, column] : buchnerP1Columns()) {
         const std::vector<PressurePoint> record = buchnerP1Series(column);
         json r = pressureFiguresJson(record);
         const std::optional<double> e = meanAbsPressureError(p1, record);

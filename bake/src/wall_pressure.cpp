@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
-#include <utility>
 
 #include <fmt/format.h>
 
@@ -68,6 +67,15 @@ std::optional<double> meanAbsPressureError(std::span<const PressurePoint> simula
     return sum / static_cast<double>(n);
 }
 
+std::span<const PressureRecordColumn> buchnerP1Columns() {
+    static constexpr PressureRecordColumn kColumns[] = {
+        {"experiment", &FarWallPressureSample::experiment},
+        {"delta_sph_40", &FarWallPressureSample::deltaSph40},
+        {"delta_sph_80", &FarWallPressureSample::deltaSph80},
+        {"delta_sph_320", &FarWallPressureSample::deltaSph320}};
+    return kColumns;
+}
+
 std::vector<PressurePoint> buchnerP1Series(double FarWallPressureSample::*column) {
     std::vector<PressurePoint> out;
     for (const FarWallPressureSample& s : buchnerP1Records())
@@ -77,12 +85,7 @@ std::vector<PressurePoint> buchnerP1Series(double FarWallPressureSample::*column
 
 std::string buchnerP1RecordsCsv() {
     std::string text = "series,t,p\n";
-    const std::pair<const char*, double FarWallPressureSample::*> columns[] = {
-        {"experiment", &FarWallPressureSample::experiment},
-        {"delta_sph_40", &FarWallPressureSample::deltaSph40},
-        {"delta_sph_80", &FarWallPressureSample::deltaSph80},
-        {"delta_sph_320", &FarWallPressureSample::deltaSph320}};
-    for (const auto& [name, column] : columns)
+    for (const auto& [name, column] : buchnerP1Columns())
         for (const FarWallPressureSample& s : buchnerP1Records())
             text += fmt::format("{},{},{}\n", name, s.t, s.*column);
     return text;

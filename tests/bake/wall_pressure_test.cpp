@@ -90,6 +90,12 @@ TEST(WallPressure, RecordsComeOutAsSeriesAndCsv) {
     EXPECT_NEAR(*e.impactTime, 2.58, 0.01);
     EXPECT_NEAR(*s.impactTime, 2.60, 0.01);
 
+    const auto columns = buchnerP1Columns();
+    ASSERT_EQ(columns.size(), 4u);
+    EXPECT_STREQ(columns[0].name, "experiment");
+    EXPECT_STREQ(columns[3].name, "delta_sph_320");
+    EXPECT_EQ(columns[3].column, &FarWallPressureSample::deltaSph320);
+
     std::istringstream csv(buchnerP1RecordsCsv());
     std::string line;
     std::getline(csv, line);

@@ -48,6 +48,14 @@ PressureFigures pressureFigures(std::span<const PressurePoint> series);
 std::optional<double> meanAbsPressureError(std::span<const PressurePoint> simulated,
                                            std::span<const PressurePoint> reference);
 
+/// A column of the P1 records and its name.
+struct PressureRecordColumn {
+    const char* name = "";                           ///< experiment, delta_sph_40, ...
+    double FarWallPressureSample::*column = nullptr; ///< e.g. &FarWallPressureSample::deltaSph320
+};
+/// The records' columns in order: experiment, delta_sph_40, delta_sph_80, delta_sph_320.
+std::span<const PressureRecordColumn> buchnerP1Columns();
+
 /// One column of the P1 records as a series, e.g. &FarWallPressureSample::deltaSph320.
 std::vector<PressurePoint> buchnerP1Series(double FarWallPressureSample::*column);
 
