@@ -216,9 +216,6 @@ def moving_average(t, p, half_width):
     return out
 
 
-P1_SMOOTHING = 0.05  # kPressureSmoothing, t sqrt(g / H)
-
-
 def plot_far_wall_pressure(runs, path):
     """The far wall's pressure at Buchner's sensor P1 against the experiment and Marrone et
     al. (2011)'s delta-SPH (docs/validation.md 7.51), every series smoothed the same way."""
@@ -228,14 +225,15 @@ def plot_far_wall_pressure(runs, path):
         s[0].append(float(r["t"]))
         s[1].append(float(r["p"]))
     p1 = runs[0]["result"]["far_wall_pressure"]
+    half = p1["smoothing_half_width"]  # the app's rule, so the lines are what it read
     fig, ax = plt.subplots(figsize=(11, 4.8))
     t, p = refs["experiment"]
-    ax.plot(t, moving_average(t, p, P1_SMOOTHING), color="black", lw=1.4,
+    ax.plot(t, moving_average(t, p, half), color="black", lw=1.4,
             label=f"Buchner 2002 (experiment): collapse at {p1['experiment']['second_peak_time']:.2f}")
     for name, style in (("delta_sph_40", ":"), ("delta_sph_80", "-."), ("delta_sph_320", "--")):
         t, p = refs[name]
         ref = p1[name]
-        ax.plot(t, moving_average(t, p, P1_SMOOTHING), style, color="tab:red", lw=1.1,
+        ax.plot(t, moving_average(t, p, half), style, color="tab:red", lw=1.1,
                 label=f"Marrone et al. 2011, delta-SPH H/{name.rsplit('_', 1)[1]}: collapse at "
                       f"{ref['second_peak_time']:.2f}")
     for run_, colour in zip(runs, COLOURS):
@@ -245,10 +243,10 @@ def plot_far_wall_pressure(runs, path):
         p = [float(r["p_P1_over_rho_g_H"]) for r in run_["series"]]
         own = res["far_wall_pressure"]
         ax.plot(t, p, color=colour, lw=0.4, alpha=0.35)
-        ax.plot(t, moving_average(t, p, P1_SMOOTHING), color=colour, lw=1.4,
+        ax.plot(t, moving_average(t, p, half), color=colour, lw=1.4,
                 label=f"{run_['label']}: collapse at {own['second_peak_time']:.2f}, mean |dp| "
                       f"{own['delta_sph_320']['mean_abs_error']:.3f} against delta-SPH H/320")
-    ax.axvspan(5.0, 7.0, color="0.95", zorder=0)
+    ax.axvspan(*p1["second_peak_window"], color="0.95", zorder=0)
     ax.set_xlim(2.0, 7.4)
     ax.set_ylim(-0.1, 1.2)
     ax.set_xlabel("t sqrt(g / H)")
@@ -256,7 +254,7 @@ def plot_far_wall_pressure(runs, path):
     ax.grid(alpha=0.3)
     ax.legend(fontsize=7, loc="upper left")
     ax.set_title("Far-wall pressure at sensor P1 (Lobovsky tank, Buchner's tank at half size); "
-                 f"every line a {2 * P1_SMOOTHING:g} moving average\n(faint: the runs unsmoothed; "
+                 f"every line a {2 * half:g} moving average\n(faint: the runs unsmoothed; "
                  "grey: where the run-up's collapse is looked for)", fontsize=10)
     fig.tight_layout()
     fig.savefig(path, dpi=110)

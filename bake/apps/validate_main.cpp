@@ -179,6 +179,10 @@ json farWallPressure(std::span<const PressurePoint> p1, double low, double high,
     out["sensor"] = "P1";
     out["band"] = {low, high};
     out["sensor_particles"] = particles;
+    // The rule every figure is read by (wall_pressure.h), for plots that draw the same.
+    out["smoothing_half_width"] = kPressureSmoothing;
+    out["impact_level"] = kImpactLevel;
+    out["second_peak_window"] = {kSecondPeakFrom, kSecondPeakTo};
     for (const auto& [name, column] : buchnerP1Columns()) {
         const std::vector<PressurePoint> record = buchnerP1Series(column);
         json r = pressureFiguresJson(record);

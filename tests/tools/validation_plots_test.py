@@ -96,6 +96,10 @@ class ValidationPlots(unittest.TestCase):
             series[name] = ([float(r["t"]) for r in records if r["series"] == name],
                             [float(r["p"]) for r in records if r["series"] == name])
         p1 = result["far_wall_pressure"]
+        # The rule as the JSON states it, which the plot draws by.
+        self.assertEqual(p1["smoothing_half_width"], 0.05)
+        self.assertEqual(p1["impact_level"], 0.3)
+        self.assertEqual(p1["second_peak_window"], [5.0, 7.0])
         for name, (t, p) in series.items():
             s = validation_plots.moving_average(t, p, 0.05)
             window = [(si, ti) for ti, si in zip(t, s) if 5.0 <= ti <= 7.0]
