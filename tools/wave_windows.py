@@ -89,19 +89,31 @@ def spread(values):
                                                 min(pct), max(pct))
 
 
+def against_theory(report, window):
+    """The loss along the line against linear theory's record of the same piston in the same
+    tank (swell-validate's decay_total_fit_against_theory_record, 7.40), which is fitted over
+    each gauge's own window only: None for the common window or a report without it."""
+    if window != "own":
+        return None
+    return report.get("decay_total_fit_against_theory_record")
+
+
 def table(groups):
     """Markdown rows: group, window, records, H at the first gauge, worst gauge, lost (the
-    two-gauge ratio and the line through all gauges)."""
+    two-gauge ratio, the line through all gauges, and that line against linear theory's
+    record in the same tank, own windows only)."""
     rows = ["| group | window | records | H at the first gauge | worst gauge | lost, last / first "
-            "gauge | lost, line through all gauges |",
-            "| --- | --- | --- | --- | --- | --- | --- |"]
+            "gauge | lost, line through all gauges | the line's loss against linear theory's record |",
+            "| --- | --- | --- | --- | --- | --- | --- | --- |"]
     for name, reports in groups.items():
         for window, key in WINDOWS:
             f = [figures(r, key) for r in reports]
-            rows.append("| %s | %s | %d | %s | %s | %s | %s |" % (
+            theory = [against_theory(r, window) for r in reports]
+            rows.append("| %s | %s | %d | %s | %s | %s | %s | %s |" % (
                 name, window, len(f), spread([v["first"] for v in f]),
                 spread([v["worst"] for v in f]), spread([v["lost"] for v in f]),
-                spread([v["lost_fit"] for v in f])))
+                spread([v["lost_fit"] for v in f]),
+                "-" if None in theory else spread(theory)))
     return "\n".join(rows)
 
 
@@ -172,7 +184,9 @@ def plot(groups, path):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     panels = [g for g in groups if g.endswith("_j")]
-    fig, axs = plt.subplots(1, len(panels), figsize=(5 * len(panels), 5.4), sharey=True, squeeze=False)
+    # At least 9 inches wide, so that one panel leaves room for the title and the legend.
+    fig, axs = plt.subplots(1, len(panels), figsize=(max(9.0, 5.0 * len(panels)), 5.4),
+                            sharey=True, squeeze=False)
     for ax, name in zip(axs[0], panels):
         members = groups[name]
         x = members[0]["gauges"]
@@ -189,6 +203,11 @@ def plot(groups, path):
             for i, r in enumerate(crosses):
                 ax.plot(x, [100.0 * v for v in r[key]], "x", color=colour, ms=6,
                         label="%s: unjittered records" % lab if i == 0 else None)
+        if "theory_record_height_errors" in members[0]:
+            # What the own windows make of linear theory's undamped record of the same piston
+            # (the same for every member): where a perfect solver would read.
+            ax.plot(x, [100.0 * v for v in members[0]["theory_record_height_errors"]], "--",
+                    color="k", lw=1.0, label="linear theory's record, each gauge's own window")
         ax.axhspan(-5, 5, color="0.93", zorder=0)
         ax.axhline(0, color="k", lw=0.6)
         ax.set_title("%s (%s), %d members" % (stem, members[0]["scene"], len(members)), fontsize=9)
@@ -197,7 +216,7 @@ def plot(groups, path):
     axs[0][0].set_ylabel("H / H_Biesel - 1 (%)")
     handles, labels = axs[0][0].get_legend_handles_labels()
     fig.legend(handles, labels, loc="lower center", ncol=2, fontsize=8)
-    fig.suptitle("Regular waves: height at each gauge over each gauge's own window and over the "
+    fig.suptitle("Regular waves: height at each gauge over each gauge's own window and over the\n"
                  "common window (docs/validation.md 7.39); grey: the 5 % target", fontsize=10)
     fig.tight_layout(rect=(0, 0.1, 1, 1))
     fig.savefig(path, dpi=80)
