@@ -12,7 +12,9 @@ was baked with, so the fit reads the same scene. Each record is fitted with `swe
 --json [--set KEY=VALUE ...] regular-wave SCENE --probes DIR/<name>.probes.csv` (nothing is
 baked) and the table gives, per group and per window, the height error at the first gauge,
 the worst gauge and the height lost over the gauges (1 - H(last) / H(first), and along the
-least-squares line of ln H through all gauges, 7.40), as mean +- sd (range).
+least-squares line of ln H through all gauges, 7.40), and, in each gauge's own window, that
+line's loss against linear theory's record of the same piston in the same tank, as mean +- sd
+(range). The plot draws linear theory's record too.
 
     /usr/bin/python3 tools/wave_windows.py RUNS [--plot PNG] [--periods X]
         [--validate build/bin/swell-validate]
