@@ -8,6 +8,8 @@
 
 #include "swell/bake/checkpoint.h"
 
+#include "temp_dir.h"
+
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
@@ -15,7 +17,6 @@
 #include <string>
 #include <vector>
 
-#include <unistd.h>
 #include <xxhash.h>
 #include <zstd.h>
 
@@ -70,9 +71,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         fixChecksums(file);
         break;
     }
-    static const std::filesystem::path path =
-        std::filesystem::temp_directory_path() /
-        ("swell-checkpoint-fuzz-" + std::to_string(::getpid()) + ".ckpt");
+    // One file per process, in a folder removed when the process exits.
+    static const swell::test::TempDir folder("swell-checkpoint-fuzz-");
+    static const std::filesystem::path path = folder / "input.ckpt";
     std::FILE* f = std::fopen(path.c_str(), "wb");
     swell::fuzz::require(f != nullptr, "cannot write the fuzz input", path.string());
     const bool written = std::fwrite(file.data(), 1, file.size(), f) == file.size();

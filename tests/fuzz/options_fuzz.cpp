@@ -19,6 +19,8 @@
 
 #include "swell/bake/error.h"
 
+#include "temp_dir.h"
+
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
@@ -28,8 +30,6 @@
 #include <sstream>
 #include <string>
 #include <vector>
-
-#include <unistd.h>
 
 using namespace swell::bake;
 namespace fs = std::filesystem;
@@ -47,11 +47,12 @@ constexpr const char* kScene = R"({
   "output": { "frame_interval": 0.1 }
 })";
 
-/// The fixture files, made once per process; '@' tokens map to their paths.
+/// The fixture files, made once per process in a folder removed when the process exits; '@'
+/// tokens map to their paths.
 const std::map<std::string, std::string>& fixtures() {
+    static const swell::test::TempDir folder("swell-options-fuzz-");
     static const std::map<std::string, std::string> files = [] {
-        const fs::path dir =
-            fs::temp_directory_path() / ("swell-options-fuzz-" + std::to_string(::getpid()));
+        const fs::path& dir = folder.path();
         fs::create_directories(dir / "dir");
         std::ofstream(dir / "scene.json") << kScene;
         std::ofstream(dir / "bad.json") << "{\"geometry\": ";
