@@ -14,7 +14,9 @@ baked) and the table gives, per group and per window, the height error at the fi
 the worst gauge and the height lost over the gauges (1 - H(last) / H(first), and along the
 least-squares line of ln H through all gauges, 7.40), and, in each gauge's own window, that
 line's loss against linear theory's record of the same piston in the same tank, as mean +- sd
-(range). The plot draws linear theory's record too.
+(range), and that loss's standard error as each record reads it from its own fluctuations
+(7.56), as mean (range): where the records are members of one ensemble, what one record
+predicts for their sd. The plot draws linear theory's record too.
 
     /usr/bin/python3 tools/wave_windows.py RUNS [--plot PNG] [--periods X]
         [--validate build/bin/swell-validate]
@@ -100,22 +102,43 @@ def against_theory(report, window):
     return report.get("decay_total_fit_against_theory_record")
 
 
+def standard_error(report, window):
+    """That loss's standard error from the record's own fluctuations (swell-validate's
+    decay_total_fit_against_theory_record_standard_error, 7.56): None for the common window or
+    a report without it."""
+    if window != "own":
+        return None
+    return report.get("decay_total_fit_against_theory_record_standard_error")
+
+
+def mean_and_range(values):
+    """'mean % (min to max)' in per cent; one value alone as itself."""
+    pct = [100.0 * v for v in values]
+    if len(pct) == 1:
+        return "%.1f %%" % pct[0]
+    return "%.1f %% (%.1f to %.1f)" % (statistics.mean(pct), min(pct), max(pct))
+
+
 def table(groups):
     """Markdown rows: group, window, records, H at the first gauge, worst gauge, lost (the
     two-gauge ratio, the line through all gauges, and that line against linear theory's
-    record in the same tank, own windows only)."""
+    record in the same tank, own windows only), and each record's standard error of the last
+    (its mean and range over the records: what one record predicts for their spread)."""
     rows = ["| group | window | records | H at the first gauge | worst gauge | lost, last / first "
-            "gauge | lost, line through all gauges | the line's loss against linear theory's record |",
-            "| --- | --- | --- | --- | --- | --- | --- | --- |"]
+            "gauge | lost, line through all gauges | the line's loss against linear theory's record "
+            "| its standard error, one record |",
+            "| --- | --- | --- | --- | --- | --- | --- | --- | --- |"]
     for name, reports in groups.items():
         for window, key in WINDOWS:
             f = [figures(r, key) for r in reports]
             theory = [against_theory(r, window) for r in reports]
-            rows.append("| %s | %s | %d | %s | %s | %s | %s | %s |" % (
+            errors = [standard_error(r, window) for r in reports]
+            rows.append("| %s | %s | %d | %s | %s | %s | %s | %s | %s |" % (
                 name, window, len(f), spread([v["first"] for v in f]),
                 spread([v["worst"] for v in f]), spread([v["lost"] for v in f]),
                 spread([v["lost_fit"] for v in f]),
-                "-" if None in theory else spread(theory)))
+                "-" if None in theory else spread(theory),
+                "-" if None in errors else mean_and_range(errors)))
     return "\n".join(rows)
 
 

@@ -421,6 +421,11 @@ json regularWave(const Scene& scene, double from, double to, const std::string& 
         commonErrors.push_back(c.heightsCommonWindow[g] / c.theory.height - 1.0);
     }
     out["height_errors"] = errors;
+    // Each height error's standard error from its record's fluctuations (7.56), of theory's H.
+    json standardErrors = json::array();
+    for (double se : c.heightStandardErrors)
+        standardErrors.push_back(std::isfinite(se) ? json(se / c.theory.height) : json(nullptr));
+    out["height_errors_standard_error"] = standardErrors;
     // Every gauge in the common window, as the check read it before 2026-12-04 (7.39).
     out["height_errors_common_window"] = commonErrors;
     out["wavelength_theory"] = c.theory.wavelength;
@@ -450,6 +455,11 @@ json regularWave(const Scene& scene, double from, double to, const std::string& 
     // windows: 1 - (1 - lost) / (1 - lost by theory's record).
     out["decay_total_fit_against_theory_record"] =
         1.0 - (1.0 - c.decayOverSpan) / (1.0 - lin.decayOverSpan);
+    // Their standard errors (7.56): linear theory's record has no fluctuations of its own.
+    const auto finiteOrNull = [](double v) { return std::isfinite(v) ? json(v) : json(nullptr); };
+    out["decay_total_fit_standard_error"] = finiteOrNull(c.decayOverSpanStandardError);
+    out["decay_total_fit_against_theory_record_standard_error"] =
+        finiteOrNull(c.decayOverSpanStandardError / (1.0 - lin.decayOverSpan));
     out["steepness_theory"] = c.theory.steepness;
     out["ppe_tolerance"] = scene.solver.pressure.tolerance;
     return out;
@@ -690,9 +700,17 @@ Figures regularWaveFigures(const json& r) {
     double worst = 0.0;
     for (double x : e)
         worst = std::max(worst, std::abs(x));
+    // A standard error (7.56) the member could not measure is null: NaN, out of the spread.
+    const auto orNaN = [](const json& v) { return v.is_null() ? std::nan("") : v.get<double>(); };
+    // Each standard error's mean over the members is what one record predicts for the
+    // members' spread of the figure above it.
     return {{"height_error_first_gauge", e.front()},
+            {"height_error_first_gauge_standard_error",
+             orNaN(r["height_errors_standard_error"].front())},
             {"height_error_worst_gauge", worst},
             {"decay_total", r["decay_total"].get<double>()},
+            {"decay_total_fit", r["decay_total_fit"].get<double>()},
+            {"decay_total_fit_standard_error", orNaN(r["decay_total_fit_standard_error"])},
             {"wavelength_fit_error", r["wavelength_fit_error"].get<double>()}};
 }
 

@@ -139,6 +139,10 @@ RegularWaveCheck checkRegularWave(const Scene& scene, std::span<const ProbeSampl
         out.heightsCommonWindow.push_back(2.0 * fits.back().amplitude);
         out.heights.push_back(2.0 * fitHarmonic(tOwn[g], vOwn[g], omega).amplitude);
         out.gaugeSamples.push_back(tOwn[g].size());
+        out.heightStandardErrors.push_back(
+            tOwn[g].size() >= kStandardErrorMinSamples
+                ? 2.0 * harmonicAmplitudeStandardError(tOwn[g], vOwn[g], omega)
+                : std::numeric_limits<double>::quiet_NaN());
     }
     // Phase lag between the first two gauges: the wave reaches the farther one later.
     const double twoPi = 2.0 * std::numbers::pi;
@@ -172,6 +176,20 @@ RegularWaveCheck checkRegularWave(const Scene& scene, std::span<const ProbeSampl
     out.decayPerWavelength = 1.0 - std::exp(decaySlope * out.theory.wavelength);
     out.decayOverSpan = 1.0 - std::exp(decaySlope * (xs.back() - xs.front()));
     out.decayTotal = 1.0 - out.heights[order.back()] / out.heights[order.front()];
+    double meanX = 0.0;
+    for (double x : xs)
+        meanX += x / static_cast<double>(xs.size());
+    double sxx = 0.0, slopeVariance = 0.0;
+    for (std::size_t i = 0; i < nGauges; ++i) {
+        const std::size_t g = order[i];
+        const double d2 = (xs[i] - meanX) * (xs[i] - meanX);
+        const double relative = out.heightStandardErrors[g] / out.heights[g];
+        sxx += d2;
+        slopeVariance += d2 * relative * relative;
+    }
+    const double span = xs.back() - xs.front();
+    out.decayOverSpanStandardError =
+        std::exp(decaySlope * span) * span * std::sqrt(slopeVariance) / sxx;
     return out;
 }
 

@@ -75,18 +75,22 @@ class WaveWindows(unittest.TestCase):
         self.assertIn("| main_j | own | 2 | -1.0 +- 2.8 % (-3.0 to +1.0) |", rows[2])
         self.assertIn("| main_j | common | 2 | +4.0 +- 2.8 % (+2.0 to +6.0) |", rows[3])
         self.assertIn("| main_u | own | 1 | -1.1 % |", rows[4])
-        # Reports without linear theory's record read "-" in the last column, as the common
-        # window always does.
-        self.assertTrue(all(r.endswith("| - |") for r in rows[2:]))
+        # Reports without linear theory's record read "-" in the last two columns, as the
+        # common window always does.
+        self.assertTrue(all(r.endswith("| - | - |") for r in rows[2:]))
 
     def test_the_loss_against_linear_theory_is_read_in_the_own_window_only(self):
-        a = dict(report([0.0, 0.0, 0.0], [0.0, 0.0, 0.0]), decay_total_fit_against_theory_record=0.02)
-        b = dict(report([0.0, 0.0, 0.0], [0.0, 0.0, 0.0]), decay_total_fit_against_theory_record=0.06)
+        a = dict(report([0.0, 0.0, 0.0], [0.0, 0.0, 0.0]), decay_total_fit_against_theory_record=0.02,
+                 decay_total_fit_against_theory_record_standard_error=0.015)
+        b = dict(report([0.0, 0.0, 0.0], [0.0, 0.0, 0.0]), decay_total_fit_against_theory_record=0.06,
+                 decay_total_fit_against_theory_record_standard_error=0.025)
         rows = ww.table({"deep_j": [a, b]}).splitlines()
         self.assertTrue(rows[2].startswith("| deep_j | own |"))
-        self.assertTrue(rows[2].endswith("| +4.0 +- 2.8 % (+2.0 to +6.0) |"))
+        # The loss's spread, then the records' own standard errors: their mean and range.
+        self.assertTrue(rows[2].endswith("| +4.0 +- 2.8 % (+2.0 to +6.0) | 2.0 % (1.5 to 2.5) |"))
         self.assertTrue(rows[3].startswith("| deep_j | common |"))
-        self.assertTrue(rows[3].endswith("| - |"))
+        self.assertTrue(rows[3].endswith("| - | - |"))
+        self.assertTrue(ww.table({"one": [a]}).splitlines()[2].endswith("| +2.0 % | 1.5 % |"))
 
     def test_one_period_at_a_time_reads_each_periods_height(self):
         # A 1 s wave of height 0.02 m until t = 3 s, then 0.03 m, sampled every 10 ms; a sine, so

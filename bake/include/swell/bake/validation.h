@@ -131,6 +131,28 @@ struct HarmonicFit {
 };
 HarmonicFit fitHarmonic(std::span<const double> t, std::span<const double> v, double omega);
 
+/// The standard error of fitHarmonic's amplitude, from the record's own fluctuations about the
+/// wave (docs/validation.md 7.56). The record v(t), sampled at an even step dt, is fitted with
+/// the mean and the first kStandardErrorHarmonics harmonics of omega, the mean and the first
+/// harmonic's amplitude each drifting linearly across the record (a growing wave front is the
+/// wave's, not a fluctuation). The residual's autocovariance C_k over lags up to one period,
+/// under a triangular lag window, gives its spectral density at omega,
+/// S = C_0 + 2 sum_k (1 - k / (K + 1)) C_k cos(omega k dt) (the Bartlett estimate, never
+/// negative). The fit took the band around omega out of the residual, so S is divided by what
+/// the same estimate reads, per unit of density, from the residual of white noise (exact, from
+/// the fit's projection). Each of fitHarmonic's two coefficients then has the variance 2 S / N
+/// (N samples), which is also the amplitude's where the amplitude is well above it. A flow whose
+/// surface fluctuates between the wave's crests (its particles) makes a fit over a finite window
+/// read a height that differs from one record to the next by about this much. Throws
+/// std::invalid_argument for fewer than kStandardErrorMinSamples samples, t and v of different
+/// lengths, samples not evenly spaced (within 1 % of their mean step), or a fit that does not
+/// resolve the harmonics or leaves nothing to estimate the noise from.
+inline constexpr int kStandardErrorHarmonics = 3;
+/// The fewest samples harmonicAmplitudeStandardError takes: twice its fit's columns.
+inline constexpr std::size_t kStandardErrorMinSamples = 2 * (4 + 2 * kStandardErrorHarmonics);
+double harmonicAmplitudeStandardError(std::span<const double> t, std::span<const double> v,
+                                      double omega);
+
 /// Slope of the least-squares line through (x, y) (a wave's decay or phase along its gauges,
 /// a standing wave's ln amplitude over its periods). Throws std::invalid_argument(what) when
 /// the x are all equal.
