@@ -15,28 +15,33 @@ import json
 import os
 import subprocess
 import sys
+import tempfile
 import time
 
 
 def run_rss(cmd):
-    """(exit code, stdout, stderr, peak RSS bytes, wall seconds) of one process (wait4)."""
-    t0 = time.monotonic()
-    pid = os.fork()
-    if pid == 0:
-        out = os.open(os.devnull if "--json" not in cmd else "/tmp/swell-memory-out.json",
-                      os.O_WRONLY | os.O_CREAT | os.O_TRUNC)
-        err = os.open("/tmp/swell-memory-err.txt", os.O_WRONLY | os.O_CREAT | os.O_TRUNC)
-        os.dup2(out, 1)
-        os.dup2(err, 2)
-        try:
-            os.execv(cmd[0], cmd)
-        finally:
-            os._exit(127)
-    _, status, usage = os.wait4(pid, 0)
-    wall = time.monotonic() - t0
-    code = os.waitstatus_to_exitcode(status)
-    text = open("/tmp/swell-memory-out.json").read() if "--json" in cmd else ""
-    err = open("/tmp/swell-memory-err.txt").read()
+    """(exit code, stdout, stderr, peak RSS bytes, wall seconds) of one process (wait4). Its
+    output goes through files in a temporary folder of this call's own, removed after."""
+    with tempfile.TemporaryDirectory(prefix="swell-memory-") as folder:
+        out_path = os.path.join(folder, "out.json")
+        err_path = os.path.join(folder, "err.txt")
+        t0 = time.monotonic()
+        pid = os.fork()
+        if pid == 0:
+            out = os.open(os.devnull if "--json" not in cmd else out_path,
+                          os.O_WRONLY | os.O_CREAT | os.O_TRUNC)
+            err = os.open(err_path, os.O_WRONLY | os.O_CREAT | os.O_TRUNC)
+            os.dup2(out, 1)
+            os.dup2(err, 2)
+            try:
+                os.execv(cmd[0], cmd)
+            finally:
+                os._exit(127)
+        _, status, usage = os.wait4(pid, 0)
+        wall = time.monotonic() - t0
+        code = os.waitstatus_to_exitcode(status)
+        text = open(out_path).read() if "--json" in cmd else ""
+        err = open(err_path).read()
     return code, text, err, usage.ru_maxrss * 1024, wall
 
 
