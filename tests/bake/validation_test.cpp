@@ -886,7 +886,7 @@ TEST(Validation, HarmonicFitRecoversAmplitudePhaseAndMean) {
 // (amplitude 15 mm, a second harmonic of 1.5 mm) over 3 s at 0.01 s, with noise of 0.5 mm: white,
 // and red with a correlation time of 0.1 s, as the deep wave's gauges read (7.56). Over 400
 // records the amplitudes' standard deviation and the mean predicted standard error agree within
-// 15 % for both (the prediction reads 0.95 and 0.96 of it). The red noise's density at the
+// 15 % for both (the prediction reads 0.95 and 0.94 of it). The red noise's density at the
 // wave's frequency is 12 times its white level, so an estimator that read the residual as white
 // (its variance alone) would predict 3.5 times too little there; one that did not put back the
 // band the fit takes out reads a quarter low.
