@@ -64,6 +64,17 @@ WaveWindow gaugeWindow(const Scene& scene, double h, double x) {
     return win;
 }
 
+/// 2 x harmonicAmplitudeStandardError, or NaN where a window does not allow one (too few or
+/// unevenly spaced samples): the height is fitted all the same, and only its standard error is
+/// missing.
+double heightStandardError(std::span<const double> t, std::span<const double> v, double omega) {
+    try {
+        return 2.0 * harmonicAmplitudeStandardError(t, v, omega);
+    } catch (const std::invalid_argument&) {
+        return std::numeric_limits<double>::quiet_NaN();
+    }
+}
+
 } // namespace
 
 WaveWindow regularWaveWindow(const Scene& scene) {
@@ -139,10 +150,7 @@ RegularWaveCheck checkRegularWave(const Scene& scene, std::span<const ProbeSampl
         out.heightsCommonWindow.push_back(2.0 * fits.back().amplitude);
         out.heights.push_back(2.0 * fitHarmonic(tOwn[g], vOwn[g], omega).amplitude);
         out.gaugeSamples.push_back(tOwn[g].size());
-        out.heightStandardErrors.push_back(
-            tOwn[g].size() >= kStandardErrorMinSamples
-                ? 2.0 * harmonicAmplitudeStandardError(tOwn[g], vOwn[g], omega)
-                : std::numeric_limits<double>::quiet_NaN());
+        out.heightStandardErrors.push_back(heightStandardError(tOwn[g], vOwn[g], omega));
     }
     // Phase lag between the first two gauges: the wave reaches the farther one later.
     const double twoPi = 2.0 * std::numbers::pi;

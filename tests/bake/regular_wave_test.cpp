@@ -166,11 +166,11 @@ TEST(RegularWave, HeightLostOverTheSpanReadsEveryGauge) {
 }
 
 // The standard errors of the heights and of the height lost over the span (docs/validation.md
-// 7.56): zero on a record without fluctuations, and on records of the same undamped wave with
-// red noise added at every gauge (1.2 mm, correlation time 0.1 s, each gauge its own series), the
-// spread over 200 records of the loss along the line and of the first gauge's height is what
-// one record predicts, within 20 % (the prediction reads 0.82 and 0.92 of it: a little low where a
-// gauge's window is short).
+// 7.56): zero on a record without fluctuations, NaN on one whose samples are uneven, and on records
+// of the same undamped wave with red noise added at every gauge (1.2 mm, correlation time 0.1 s,
+// each gauge its own series), the spread over 200 records of the loss along the line and of the
+// first gauge's height is what one record predicts, within 20 % (the prediction reads 0.82 and 0.92
+// of it: a little low where a gauge's window is short).
 TEST(RegularWave, DecayStandardErrorPredictsTheSpreadOverNoisyRecords) {
     const Scene scene = loadScene(kScenes / "progressive_wave.json");
     const WaveWindow w = regularWaveWindow(scene);
@@ -180,6 +180,15 @@ TEST(RegularWave, DecayStandardErrorPredictsTheSpreadOverNoisyRecords) {
     for (double se : exact.heightStandardErrors)
         EXPECT_LT(se, 1e-6 * 0.03);
     EXPECT_LT(exact.decayOverSpanStandardError, 1e-6);
+    // Samples not evenly spaced: the heights are fitted all the same, their standard errors and
+    // the loss's are missing (NaN), not an error.
+    std::vector<ProbeSample> uneven = clean;
+    uneven[uneven.size() - 5].time += 0.004;
+    const RegularWaveCheck u = checkRegularWave(scene, uneven, w, own);
+    EXPECT_NEAR(u.heights.front(), exact.heights.front(), 1e-4);
+    for (double se : u.heightStandardErrors)
+        EXPECT_TRUE(std::isnan(se));
+    EXPECT_TRUE(std::isnan(u.decayOverSpanStandardError));
 
     swell::test::RedNoise noise(1.2e-3, 0.1, 0.01, 11);
     constexpr int kRecords = 200;

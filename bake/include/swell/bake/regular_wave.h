@@ -73,9 +73,9 @@ struct RegularWaveCheck {
     /// 1 - H(last gauge) / H(first gauge), gauges in order of x.
     double decayTotal = 0.0;
     /// Each height's standard error from its record's own fluctuations in its own window, 2 x
-    /// harmonicAmplitudeStandardError (m), in the order of `heights`; NaN for a window of fewer
-    /// than kStandardErrorMinSamples samples. One record's figure differs from another
-    /// record's of the same wave by about this much (docs/validation.md 7.56).
+    /// harmonicAmplitudeStandardError (m), in the order of `heights`; NaN for a window it cannot
+    /// read (fewer than kStandardErrorMinSamples or unevenly spaced samples). One record's figure
+    /// differs from another record's of the same wave by about this much (docs/validation.md 7.56).
     std::vector<double> heightStandardErrors;
     /// The standard error of decayOverSpan, with the gauges' errors taken as independent: the
     /// line's slope b has the variance sum (x - mean x)^2 (se_H / H)^2 / (sum (x - mean x)^2)^2,
