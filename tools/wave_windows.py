@@ -39,6 +39,7 @@ import sys
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 WINDOWS = (("own", "height_errors"), ("common", "height_errors_common_window"))
+AGAINST_THEORY = "decay_total_fit_against_theory_record"
 
 
 def parse_runs(text):
@@ -93,22 +94,14 @@ def spread(values):
                                                 min(pct), max(pct))
 
 
-def against_theory(report, window):
-    """The loss along the line against linear theory's record of the same piston in the same
-    tank (swell-validate's decay_total_fit_against_theory_record, 7.40), which is fitted over
-    each gauge's own window only: None for the common window or a report without it."""
+def own_window_figure(report, window, key):
+    """A figure swell-validate reads over each gauge's own window only: the loss along the line
+    against linear theory's record of the same piston in the same tank (AGAINST_THEORY, 7.40),
+    or its standard error from the record's own fluctuations (AGAINST_THEORY +
+    "_standard_error", 7.56). None for the common window or a report without it."""
     if window != "own":
         return None
-    return report.get("decay_total_fit_against_theory_record")
-
-
-def standard_error(report, window):
-    """That loss's standard error from the record's own fluctuations (swell-validate's
-    decay_total_fit_against_theory_record_standard_error, 7.56): None for the common window or
-    a report without it."""
-    if window != "own":
-        return None
-    return report.get("decay_total_fit_against_theory_record_standard_error")
+    return report.get(key)
 
 
 def mean_and_range(values):
@@ -131,8 +124,9 @@ def table(groups):
     for name, reports in groups.items():
         for window, key in WINDOWS:
             f = [figures(r, key) for r in reports]
-            theory = [against_theory(r, window) for r in reports]
-            errors = [standard_error(r, window) for r in reports]
+            theory = [own_window_figure(r, window, AGAINST_THEORY) for r in reports]
+            errors = [own_window_figure(r, window, AGAINST_THEORY + "_standard_error")
+                      for r in reports]
             rows.append("| %s | %s | %d | %s | %s | %s | %s | %s | %s |" % (
                 name, window, len(f), spread([v["first"] for v in f]),
                 spread([v["worst"] for v in f]), spread([v["lost"] for v in f]),

@@ -49,6 +49,16 @@ using nlohmann::json;
 
 namespace {
 
+/// A figure as JSON: null where the run could not measure it (NaN).
+json finiteOrNull(double v) {
+    return std::isfinite(v) ? json(v) : json(nullptr);
+}
+
+/// A member's figure for the ensemble's spread: NaN for null, which stays out of the spread.
+double numberOrNaN(const json& v) {
+    return v.is_null() ? std::nan("") : v.get<double>();
+}
+
 /// Solver time per step and particle (µs), 0 for a run that took no step.
 double usPerParticleStep(double seconds, long steps, std::size_t particles) {
     return steps > 0 ? 1e6 * seconds / (static_cast<double>(steps) * static_cast<double>(particles))
@@ -424,7 +434,7 @@ json regularWave(const Scene& scene, double from, double to, const std::string& 
     // Each height error's standard error from its record's fluctuations (7.56), of theory's H.
     json standardErrors = json::array();
     for (double se : c.heightStandardErrors)
-        standardErrors.push_back(std::isfinite(se) ? json(se / c.theory.height) : json(nullptr));
+        standardErrors.push_back(finiteOrNull(se / c.theory.height));
     out["height_errors_standard_error"] = standardErrors;
     // Every gauge in the common window, as the check read it before 2026-12-04 (7.39).
     out["height_errors_common_window"] = commonErrors;
@@ -456,7 +466,6 @@ json regularWave(const Scene& scene, double from, double to, const std::string& 
     out["decay_total_fit_against_theory_record"] =
         1.0 - (1.0 - c.decayOverSpan) / (1.0 - lin.decayOverSpan);
     // Their standard errors (7.56): linear theory's record has no fluctuations of its own.
-    const auto finiteOrNull = [](double v) { return std::isfinite(v) ? json(v) : json(nullptr); };
     out["decay_total_fit_standard_error"] = finiteOrNull(c.decayOverSpanStandardError);
     out["decay_total_fit_against_theory_record_standard_error"] =
         finiteOrNull(c.decayOverSpanStandardError / (1.0 - lin.decayOverSpan));
@@ -567,22 +576,22 @@ json wetDamBreak(const Scene& scene, const std::string& csv) {
     if (r.outcome == kStable) {
         const WetDamBreakCheck& c = r.check;
         // NaN (no bore, or no plateau, at a gauge) as null.
-        const auto value = [](double v) { return std::isfinite(v) ? json(v) : json(nullptr); };
         json gauges = json::array();
         for (const WetDamBreakGauge& g : c.gauges)
-            gauges.push_back({{"x", g.x},
-                              {"from", g.from},
-                              {"until", g.until},
-                              {"mean_abs_error_over_h0", g.meanAbsErrorOverH0},
-                              {"mean_signed_error_over_h0", g.meanSignedErrorOverH0},
-                              {"bore_arrival", value(g.boreArrival)},
-                              {"bore_arrival_theory", value(g.boreArrivalTheory)},
-                              {"plateau_depth_over_theory", value(g.plateauDepthOverTheory)}});
+            gauges.push_back(
+                {{"x", g.x},
+                 {"from", g.from},
+                 {"until", g.until},
+                 {"mean_abs_error_over_h0", g.meanAbsErrorOverH0},
+                 {"mean_signed_error_over_h0", g.meanSignedErrorOverH0},
+                 {"bore_arrival", finiteOrNull(g.boreArrival)},
+                 {"bore_arrival_theory", finiteOrNull(g.boreArrivalTheory)},
+                 {"plateau_depth_over_theory", finiteOrNull(g.plateauDepthOverTheory)}});
         out["gauge_records"] = gauges;
         out["bore_speed"] = c.boreSpeed;
         out["bore_speed_error"] = c.boreSpeedError;
         out["bore_gauges"] = c.boreGauges;
-        out["plateau_depth_error"] = value(c.plateauDepthError);
+        out["plateau_depth_error"] = finiteOrNull(c.plateauDepthError);
         out["mean_abs_error_over_h0_worst"] = c.meanAbsErrorOverH0Worst;
     }
     addRunCost(out, r, r.particles);
@@ -700,17 +709,15 @@ Figures regularWaveFigures(const json& r) {
     double worst = 0.0;
     for (double x : e)
         worst = std::max(worst, std::abs(x));
-    // A standard error (7.56) the member could not measure is null: NaN, out of the spread.
-    const auto orNaN = [](const json& v) { return v.is_null() ? std::nan("") : v.get<double>(); };
     // Each standard error's mean over the members is what one record predicts for the
     // members' spread of the figure above it.
     return {{"height_error_first_gauge", e.front()},
             {"height_error_first_gauge_standard_error",
-             orNaN(r["height_errors_standard_error"].front())},
+             numberOrNaN(r["height_errors_standard_error"].front())},
             {"height_error_worst_gauge", worst},
             {"decay_total", r["decay_total"].get<double>()},
             {"decay_total_fit", r["decay_total_fit"].get<double>()},
-            {"decay_total_fit_standard_error", orNaN(r["decay_total_fit_standard_error"])},
+            {"decay_total_fit_standard_error", numberOrNaN(r["decay_total_fit_standard_error"])},
             {"wavelength_fit_error", r["wavelength_fit_error"].get<double>()}};
 }
 
@@ -722,9 +729,8 @@ Figures lobovskyFigures(const json& r) {
         f.push_back(
             {"mean_signed_error_over_H_" + name, g["mean_signed_error_over_H"].get<double>()});
         // The same for every member; kept beside the errors it bounds (NaN: no second series).
-        const json& scatter = g["experiment_scatter_over_H"];
-        f.push_back({"experiment_scatter_over_H_" + name,
-                     scatter.is_null() ? std::nan("") : scatter.get<double>()});
+        f.push_back(
+            {"experiment_scatter_over_H_" + name, numberOrNaN(g["experiment_scatter_over_H"])});
     }
     f.push_back({"mean_abs_error_over_H_worst", r["mean_abs_error_over_H_worst"].get<double>()});
     for (const json& g : r["gauges"]) {
@@ -733,15 +739,13 @@ Figures lobovskyFigures(const json& r) {
     }
     f.push_back({"mean_abs_error_over_H_worst_run_up",
                  r["mean_abs_error_over_H_worst_run_up"].get<double>()});
-    const json& lands = r["far_gauge_landing_time"];
-    f.push_back({"far_gauge_landing_time", lands.is_null() ? std::nan("") : lands.get<double>()});
+    f.push_back({"far_gauge_landing_time", numberOrNaN(r["far_gauge_landing_time"])});
     const json& p1 = r["far_wall_pressure"];
     // NaN for a figure that says nothing, and for all of them without a sensor.
     const auto value = [&p1](const char* record, const char* key) {
         if (p1.is_null())
             return std::nan("");
-        const json& v = record ? p1[record][key] : p1[key];
-        return v.is_null() ? std::nan("") : v.get<double>();
+        return numberOrNaN(record ? p1[record][key] : p1[key]);
     };
     f.push_back({"far_wall_impact_time", value(nullptr, "impact_time")});
     f.push_back({"far_wall_second_peak_time", value(nullptr, "second_peak_time")});
@@ -776,9 +780,8 @@ Figures solitaryWaveFigures(const json& r) {
 }
 
 Figures wetDamBreakFigures(const json& r) {
-    const json& plateau = r["plateau_depth_error"];
     return {{"bore_speed_error", r["bore_speed_error"].get<double>()},
-            {"plateau_depth_error", plateau.is_null() ? std::nan("") : plateau.get<double>()},
+            {"plateau_depth_error", numberOrNaN(r["plateau_depth_error"])},
             {"mean_abs_error_over_h0_worst", r["mean_abs_error_over_h0_worst"].get<double>()}};
 }
 
