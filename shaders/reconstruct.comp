@@ -19,6 +19,7 @@ layout(std430, binding = 1) readonly buffer Columns { vec4 columns[]; };      //
 layout(std430, binding = 2) readonly buffer Rows { ivec2 rows[]; };           // (first j, count)
 layout(std430, binding = 3) readonly buffer RowWeights { float weights[]; };  // G_z per (m, i)
 layout(std430, binding = 4) writeonly buffer Heights { float heights[]; };    // m * N + n
+layout(std430, binding = 5) readonly buffer Blend { vec2 blend[]; };          // (slot, weight)
 
 uniform int u_N;             // cells along x
 uniform int u_Nq;            // column quads, ceil(N / 4)
@@ -45,6 +46,23 @@ void main() {
         if (slot >= 0) {
             cs = columns[(slot * u_Nq + q) * 2];
             cw = columns[(slot * u_Nq + q) * 2 + 1];
+        }
+        vec2 b = blend[row.x + i];
+        if (b.y > 0.0) {
+            // Between two stored frames: blendColumns (cpu_reconstruction.cpp) of the two
+            // profiles, h = mix(h_a, h_b, w), W = mix(W_a, W_b, w), stored as (h W, W).
+            int slot2 = int(b.y > 0.0 ? b.x : -1.0);
+            vec4 cs2 = vec4(u_missing);
+            vec4 cw2 = vec4(0.0);
+            if (slot2 >= 0) {
+                cs2 = columns[(slot2 * u_Nq + q) * 2];
+                cw2 = columns[(slot2 * u_Nq + q) * 2 + 1];
+            }
+            vec4 ha = mix(cs, cs / cw, greaterThan(cw, vec4(0.0)));
+            vec4 hb = mix(cs2, cs2 / cw2, greaterThan(cw2, vec4(0.0)));
+            vec4 hm = mix(ha, hb, b.y);
+            cw = mix(cw, cw2, b.y);
+            cs = mix(hm, hm * cw, greaterThan(cw, vec4(0.0)));
         }
         vec4 has = vec4(greaterThan(cw, vec4(0.0)));          // (fallback, 0) when W = 0
         S += gz * has * cs;

@@ -102,6 +102,11 @@ void addCommon(CLI::App* cmd, Options& o) {
                     "column profiles: envelope (the frame's free surface) or paper (eq. 7's "
                     "Gaussian mean of the surface particles in [3 dx))")
         ->capture_default_str();
+    cmd->add_option("--time-sampling", o.timeSampling,
+                    "what a slice shows between two stored frames: linear (the two frames' "
+                    "profiles blended by the fraction of eq. (5)'s frame number) or nearest "
+                    "(eq. 5's nearest frame, the paper); default linear, nearest for the "
+                    "whirlpool");
     cmd->add_option("--sigma", o.params.sigma, "Gaussian sigma of eq. (7), cells")
         ->capture_default_str();
     cmd->add_option("--fps", o.playbackFps, "output frames per simulated second")
@@ -143,6 +148,20 @@ void finishOptions(Options& o) {
             fmt::format("--window must be steady or all, got '{}'", o.window));
     o.params.steadyWindow = o.window == "steady";
     o.params.reconstruction = reconstructionFromString(o.reconstruction);
+    if (o.timeSampling.empty()) {
+        o.params.timeSampling = o.modeParams.mode == ReplayMode::Whirlpool ? TimeSampling::Nearest
+                                                                           : TimeSampling::Linear;
+    } else if (o.timeSampling == "linear" || o.timeSampling == "nearest") {
+        o.params.timeSampling = timeSamplingFromString(o.timeSampling);
+        if (o.params.timeSampling == TimeSampling::Linear &&
+            o.modeParams.mode == ReplayMode::Whirlpool) {
+            throw std::invalid_argument(
+                "--time-sampling linear is not available with --mode whirlpool (use nearest)");
+        }
+    } else {
+        throw std::invalid_argument(fmt::format(
+            "--time-sampling must be linear or nearest, got '{}'", o.timeSampling));
+    }
     if (o.extent == "water") {
         o.params.extentX = ExtentX::Water;
     } else if (o.extent == "domain") {
@@ -388,6 +407,7 @@ json paramsJson(const Options& o, const ReplaySetup& setup) {
             {"frames_in_cache", set.frameCount},
             {"frames_decoded", set.ids.size()},
             {"reconstruction", o.reconstruction},
+            {"time_sampling", toString(p.timeSampling)},
             {"grid_x",
              {{"x0", grid.x0},
               {"x1", grid.x0 + grid.cellsX * grid.dx},

@@ -40,6 +40,9 @@ struct Options {
     std::string reconstruction = "envelope"; ///< column profiles: envelope or paper (eq. 7)
     std::string filter = "low";              ///< noise band: low, high or none
     std::string mode = "surging";            ///< slice layout: surging, ripple or whirlpool
+    /// Frames between stored frames: linear or nearest (eq. 5); empty: the mode's default
+    /// (linear for surging and ripple, nearest for the whirlpool).
+    std::string timeSampling;
     double playbackFps = 30.0;               ///< output frames per simulated second
     double start = 0.0;                      ///< simulated second of the first frame, from tau = 0
     bool json = false;                       ///< one JSON object on stdout

@@ -33,6 +33,15 @@ void profileTap(double u, int N, int& n0, int& n1, double& beta) {
     beta = fu - n0;
 }
 
+/// The spirals show eq. (5)'s nearest frame: spiral_mapping.comp reads one column slot per
+/// slice.
+void requireNearest(const ReplayParams& params) {
+    if (params.timeSampling != TimeSampling::Nearest) {
+        throw std::invalid_argument(
+            "--time-sampling linear is not available with --mode whirlpool (use nearest)");
+    }
+}
+
 } // namespace
 
 SpiralGeometry::SpiralGeometry(const Grid& grid, const WhirlpoolParams& params)
@@ -70,7 +79,9 @@ double SpiralGeometry::spinSlices(double tau) const {
 CpuWhirlpool::CpuWhirlpool(const FrameSet& frames, const ReplayParams& params,
                            const WhirlpoolParams& whirlpool, const SliceSampler& sampler)
     : m_sampler(sampler), m_profiles(frames, params, sampler),
-      m_geometry(m_profiles.grid(), whirlpool) {}
+      m_geometry(m_profiles.grid(), whirlpool) {
+    requireNearest(params);
+}
 
 HeightField CpuWhirlpool::heights(double tau) const {
     const Grid& g = m_profiles.grid();
@@ -117,6 +128,7 @@ GpuWhirlpool::GpuWhirlpool(const FrameSet& frames, const ReplayParams& params,
                            const WhirlpoolParams& whirlpool, const SliceSampler& sampler)
     : m_replay(frames, params, sampler), m_geometry(m_replay.grid(), whirlpool),
       m_out(m_replay.grid().cellsX, m_replay.grid().cellsZ) {
+    requireNearest(params);
     const Grid& g = m_replay.grid();
     const int N = g.cellsX;
     const int M = g.cellsZ;

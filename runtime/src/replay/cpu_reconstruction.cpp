@@ -145,20 +145,30 @@ ColumnSum CpuReconstruction::column(const TimelineEntry& e, int n) const {
 HeightField CpuReconstruction::heights(double tau) const {
     const int N = m_grid.cellsX;
     const int M = m_grid.cellsZ;
-    const std::vector<std::size_t> slice = m_sampler.entries(tau); // eq. (5), once per slice
     const Timeline& timeline = m_sampler.timeline();
+    // eq. (5), once per slice: the entries around its frame number and the fraction between.
+    std::vector<SliceBlend> slice(static_cast<std::size_t>(m_sampler.sliceCount()));
+    for (std::size_t j = 0; j < slice.size(); ++j)
+        slice[j] = m_sampler.blend(tau, static_cast<int>(j));
     // Slices read straight from their particles (the paper's eq. (7) on one frame); the others
-    // (cross-fades, envelope profiles) through their column sums.
+    // (cross-fades, time blends, envelope profiles) through their column sums.
     const bool direct = m_params.reconstruction == Reconstruction::Paper;
     std::vector<const BinnedFrame*> frameOf(slice.size(), nullptr);
     for (std::size_t j = 0; j < slice.size(); ++j) {
-        const TimelineEntry& e = timeline[slice[j]];
-        const BinnedFrame& a = binned(e.a); // throws when a frame is not held
-        if (e.blended())
-            (void)binned(e.b);
-        else if (direct)
-            frameOf[j] = &a;
+        for (const std::size_t i : {slice[j].first, slice[j].second}) {
+            const TimelineEntry& e = timeline[i];
+            const BinnedFrame& a = binned(e.a); // throws when a frame is not held
+            if (e.blended())
+                (void)binned(e.b);
+            else if (direct && slice[j].weight == 0.0)
+                frameOf[j] = &a;
+        }
     }
+    auto sliceColumn = [&](std::size_t j, int n) {
+        const SliceBlend& b = slice[j];
+        const ColumnSum c = column(timeline[b.first], n);
+        return b.weight == 0.0 ? c : blendColumns(c, column(timeline[b.second], n), b.weight);
+    };
 
     const double inv2s2 = 1.0 / (2.0 * m_params.sigma * m_params.sigma);
     HeightField out;
@@ -177,7 +187,7 @@ HeightField CpuReconstruction::heights(double tau) const {
             for (int j : m_rowSlices[static_cast<std::size_t>(m)]) {
                 const double dz = single ? 0.0 : m_grid.sliceZCells(j) - Pz;
                 if (frameOf[static_cast<std::size_t>(j)] == nullptr) {
-                    const ColumnSum c = column(timeline[slice[static_cast<std::size_t>(j)]], n);
+                    const ColumnSum c = sliceColumn(static_cast<std::size_t>(j), n);
                     const double Gz = std::exp(-dz * dz * inv2s2);
                     if (c.W > 0.0) {
                         sumGh += Gz * c.S;
@@ -208,7 +218,7 @@ HeightField CpuReconstruction::heights(double tau) const {
                     const BinnedFrame* f = frameOf[static_cast<std::size_t>(j)];
                     sumF += Gz * (f != nullptr
                                       ? fallback(*f, n)
-                                      : column(timeline[slice[static_cast<std::size_t>(j)]], n).S);
+                                      : sliceColumn(static_cast<std::size_t>(j), n).S);
                     sumGz += Gz;
                 }
                 h = sumF / sumGz;

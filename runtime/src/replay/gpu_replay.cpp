@@ -272,6 +272,7 @@ void GpuReplay::buildLookupAndRows(const ReplayParams& params, const SliceSample
     m_slotOf = makeStorageBuffer(slotOf.size() * sizeof(GLuint), slotOf.data());
     m_shown = makeStorageBuffer(shown.size() * sizeof(GLint), shown.data());
     m_slices = makeStorageBuffer(static_cast<std::size_t>(J) * 2 * sizeof(GLint), nullptr);
+    m_blend = makeStorageBuffer(static_cast<std::size_t>(J) * 2 * sizeof(float), nullptr);
     const GLuint lp = m_lookup.get();
     m_lookupTau = uniformLocation(m_lookup, "u_tau");
     glProgramUniform1d(lp, uniformLocation(m_lookup, "u_F"), m_F);
@@ -282,6 +283,8 @@ void GpuReplay::buildLookupAndRows(const ReplayParams& params, const SliceSample
     glProgramUniform1i(lp, uniformLocation(m_lookup, "u_frameCount"),
                        static_cast<GLint>(m_timelineSize));
     glProgramUniform1i(lp, uniformLocation(m_lookup, "u_loop"), m_loop ? 1 : 0);
+    glProgramUniform1i(lp, uniformLocation(m_lookup, "u_linear"),
+                       sampler.timeSampling() == TimeSampling::Linear ? 1 : 0);
 
     // ---- z windows: first slice, count and G_z per row (definitions: cpu_reconstruction.h)
     std::vector<GLint> rows(2 * static_cast<std::size_t>(M));
@@ -364,6 +367,7 @@ void GpuReplay::lookupSlices(double tau) {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, m_slotOf.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, m_slices.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, m_shown.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, m_blend.get());
     glUseProgram(m_lookup.get());
     if (m_timing)
         glQueryCounter(m_queries[0].get(), GL_TIMESTAMP);
@@ -379,6 +383,7 @@ void GpuReplay::reconstructHeights() {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, m_rows.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, m_weights.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, m_out->buffer());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, m_blend.get());
     glUseProgram(m_reconstruct.get());
     glDispatchCompute(groups((m_grid.cellsX + 3) / 4, m_quadsPerGroup),
                       static_cast<GLuint>(m_grid.cellsZ), 1);

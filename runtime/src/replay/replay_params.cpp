@@ -51,6 +51,19 @@ Reconstruction reconstructionFromString(const std::string& name) {
         fmt::format("reconstruction must be envelope or paper, got '{}'", name));
 }
 
+std::string toString(TimeSampling sampling) {
+    return sampling == TimeSampling::Nearest ? "nearest" : "linear";
+}
+
+TimeSampling timeSamplingFromString(const std::string& name) {
+    if (name == "nearest")
+        return TimeSampling::Nearest;
+    if (name == "linear")
+        return TimeSampling::Linear;
+    throw std::invalid_argument(
+        fmt::format("time_sampling must be linear or nearest, got '{}'", name));
+}
+
 void ReplayParams::validate() const {
     if (cellsX < 1 || cellsX > 8192 || cellsZ < 1 || cellsZ > 8192) {
         throw std::invalid_argument(
@@ -140,7 +153,8 @@ nlohmann::json toJson(const ReplayParams& p) {
                              : nlohmann::json(toString(p.extentX))},
             {"reconstruction", toString(p.reconstruction)},
             {"window", p.steadyWindow ? "steady" : "all"},
-            {"crossfade_seconds", p.crossfadeSeconds}};
+            {"crossfade_seconds", p.crossfadeSeconds},
+            {"time_sampling", toString(p.timeSampling)}};
 }
 
 ReplayParams replayParamsFromJson(const nlohmann::json& j) {
@@ -151,7 +165,7 @@ ReplayParams replayParamsFromJson(const nlohmann::json& j, const ReplayParams& b
     rejectUnknown(j,
                   {"cells_x", "cells_z", "slices", "fluctuation", "time_unit_seconds", "policy",
                    "sigma", "extent_z", "seed", "noise", "extent_x", "reconstruction", "window",
-                   "crossfade_seconds"},
+                   "crossfade_seconds", "time_sampling"},
                   "");
     ReplayParams p = base;
     read(j, "cells_x", "", p.cellsX);
@@ -169,6 +183,9 @@ ReplayParams replayParamsFromJson(const nlohmann::json& j, const ReplayParams& b
     std::string reconstruction = toString(p.reconstruction);
     read(j, "reconstruction", "", reconstruction);
     p.reconstruction = reconstructionFromString(reconstruction);
+    std::string sampling = toString(p.timeSampling);
+    read(j, "time_sampling", "", sampling);
+    p.timeSampling = timeSamplingFromString(sampling);
     std::string window = p.steadyWindow ? "steady" : "all";
     read(j, "window", "", window);
     if (window != "steady" && window != "all")

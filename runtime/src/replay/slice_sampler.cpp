@@ -11,7 +11,8 @@ SliceSampler::SliceSampler(const ReplayParams& params, std::size_t frameCount, d
     : SliceSampler(params, Timeline::whole(frameCount, params.policy), A) {}
 
 SliceSampler::SliceSampler(const ReplayParams& params, Timeline timeline, double A)
-    : m_K(params.slices), m_timeline(std::move(timeline)), m_A(A), m_F(params.fluctuation) {
+    : m_K(params.slices), m_timeline(std::move(timeline)), m_A(A), m_F(params.fluctuation),
+      m_sampling(params.timeSampling) {
     params.validate();
     if (m_timeline.size() == 0)
         throw std::invalid_argument("the replay's timeline has no frames");
@@ -56,6 +57,26 @@ std::size_t SliceSampler::entry(double tau, int j) const {
     return m_timeline.index(s);
 }
 
+SliceBlend SliceSampler::blend(double tau, int j) const {
+    const std::size_t nearest = entry(tau, j); // checks j and tau
+    if (m_sampling == TimeSampling::Nearest)
+        return {nearest, nearest, 0.0};
+    // Same operations, in the same order, as shaders/slice_lookup.comp.
+    const double x = m_F != 0.0 ? tau + m_F * noiseAt(tau, j) : tau;
+    const double scaled = x * m_A;
+    double base = std::floor(scaled);
+    double w = scaled - base;
+    if (w > 1.0 - 1e-9) { // on a stored frame, up to rounding
+        base += 1.0;
+        w = 0.0;
+    } else if (w < 1e-9) {
+        w = 0.0;
+    }
+    const auto s = static_cast<long long>(base);
+    const std::size_t first = m_timeline.index(s);
+    return {first, w == 0.0 ? first : m_timeline.index(s + 1), w};
+}
+
 std::uint32_t SliceSampler::frame(double tau, int j) const {
     return m_timeline[entry(tau, j)].shown();
 }
@@ -78,10 +99,13 @@ std::vector<std::uint32_t> SliceSampler::framesUsed(std::span<const double> taus
     std::vector<bool> used(static_cast<std::size_t>(m_timeline.maxFrame()) + 1, false);
     for (double tau : taus) {
         for (int j = 0; j < sliceCount(); ++j) {
-            const TimelineEntry& e = m_timeline[entry(tau, j)];
-            used[e.a] = true;
-            if (e.blended())
-                used[e.b] = true;
+            const SliceBlend b = blend(tau, j);
+            for (const std::size_t i : {b.first, b.second}) {
+                const TimelineEntry& e = m_timeline[i];
+                used[e.a] = true;
+                if (e.blended())
+                    used[e.b] = true;
+            }
         }
     }
     std::vector<std::uint32_t> out;

@@ -2,10 +2,13 @@
 
 #include "synthetic_frames.h"
 
+#include <nlohmann/json.hpp>
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <set>
+#include <stdexcept>
+#include <string>
 
 namespace swell::runtime {
 namespace {
@@ -207,6 +210,70 @@ TEST(CpuReconstruction, AFrameOutsideTheSetIsAnError) {
     const CpuReconstruction cpu(set, p, s);
     EXPECT_NO_THROW(cpu.heights(0.0));
     EXPECT_THROW(cpu.heights(2.0), std::invalid_argument);
+}
+
+} // namespace swell::runtime
+
+namespace swell::runtime {
+
+TEST(CpuReconstruction, LinearTimeSamplingShowsTheHalfWayProfile) {
+    // A travelling wave stored every frame: at a time half-way between two stored frames the
+    // replay shows the mean of their profiles (envelope columns are exact), nearest sampling
+    // shows one of them, and on a stored frame both agree.
+    std::vector<cache::Frame> frames;
+    for (int f = 0; f < 8; ++f) {
+        cache::Frame fr;
+        for (int i = 0; i <= 64; ++i) {
+            const double x = 0.25 * i;
+            fr.surface.push_back(static_cast<float>(x));
+            fr.surface.push_back(static_cast<float>(1.0 + 0.2 * std::sin(0.8 * x - 0.5 * f)));
+        }
+        frames.push_back(std::move(fr));
+    }
+    const FrameSet set = frameSet(std::move(frames));
+    ReplayParams p = smallParams(16, 8, 4, 0.0);
+    p.reconstruction = Reconstruction::Envelope;
+    p.policy = FramePolicy::Clamp;
+    p.timeSampling = TimeSampling::Linear;
+    // A = timeUnitSeconds / (dt frameInterval) = 4 / 0.01 = 400 frames per time unit.
+    const double A = framesPerTimeUnit(set.header, p);
+    const SliceSampler linear(p, set.frameCount, A);
+    const CpuReconstruction cpu(set, p, linear);
+    ReplayParams pn = p;
+    pn.timeSampling = TimeSampling::Nearest;
+    const SliceSampler nearest(pn, set.frameCount, A);
+    const CpuReconstruction cpuNearest(set, pn, nearest);
+    const HeightField h2 = cpu.heights(2.0 / A);
+    const HeightField h3 = cpu.heights(3.0 / A);
+    const HeightField half = cpu.heights(2.5 / A);
+    const HeightField quarter = cpu.heights(2.25 / A);
+    EXPECT_EQ(cpuNearest.heights(2.0 / A).heights, h2.heights);
+    double differs = 0.0;
+    for (std::size_t i = 0; i < half.heights.size(); ++i) {
+        EXPECT_NEAR(half.heights[i], 0.5 * (h2.heights[i] + h3.heights[i]), 1e-12) << i;
+        EXPECT_NEAR(quarter.heights[i], 0.75 * h2.heights[i] + 0.25 * h3.heights[i], 1e-12) << i;
+        differs = std::max(differs, std::abs(h3.heights[i] - h2.heights[i]));
+    }
+    EXPECT_GT(differs, 0.01); // the two frames differ, so the blend is not trivially met
+    const SliceBlend b = linear.blend(2.5 / A, 0);
+    EXPECT_EQ(b.first, 2u);
+    EXPECT_EQ(b.second, 3u);
+    EXPECT_NEAR(b.weight, 0.5, 1e-9);
+    EXPECT_EQ(linear.frame(2.5 / A, 0), nearest.frame(2.5 / A, 0)); // the heavier frame
+    EXPECT_EQ(linear.framesUsed(std::vector<double>{2.25 / A}), (std::vector<std::uint32_t>{2, 3}));
+    EXPECT_EQ(nearest.framesUsed(std::vector<double>{2.25 / A}), (std::vector<std::uint32_t>{2}));
+}
+
+TEST(ReplayParams, TimeSamplingReadsByNameAndRejectsOthers) {
+    EXPECT_EQ(replayParamsFromJson(nlohmann::json{{"time_sampling", "linear"}}).timeSampling,
+              TimeSampling::Linear);
+    EXPECT_EQ(toJson(ReplayParams{})["time_sampling"], "nearest");
+    try {
+        (void)replayParamsFromJson(nlohmann::json{{"time_sampling", "cubic"}});
+        FAIL() << "no error";
+    } catch (const std::invalid_argument& e) {
+        EXPECT_NE(std::string(e.what()).find("time_sampling"), std::string::npos) << e.what();
+    }
 }
 
 } // namespace swell::runtime

@@ -13,6 +13,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <memory>
@@ -253,6 +254,52 @@ TEST_F(GpuReconstruction, StageTimesComeFromTimerQueries) {
     EXPECT_GT(t.sliceLookupMs + t.reconstructMs, 0.0);
     EXPECT_GE(gpu.columnPassMs(), 0.0);
     EXPECT_THROW(gpu.update(std::nan("")), std::invalid_argument);
+}
+
+} // namespace swell::runtime
+
+namespace swell::runtime {
+
+TEST_F(GpuReconstruction, LinearTimeSamplingMatchesTheCpuReference) {
+    // Between stored frames (TimeSampling::Linear): the same frames, slots and blended heights
+    // as the CPU reference, for both column profiles, clamp and loop, with and without noise.
+    const FrameSet set = test::syntheticSet(260, 320, 21);
+    const double depth = test::kSyntheticDepth;
+    const Case cases[] = {
+        {128, 128, 256, 0.3, FramePolicy::Loop, 1},
+        {97, 53, 40, 0.4, FramePolicy::Clamp, 2},
+        {64, 200, 16, 0.0, FramePolicy::Loop, 3},
+    };
+    SplitMix64 rng(7);
+    for (const Reconstruction reconstruction : {Reconstruction::Paper, Reconstruction::Envelope}) {
+        for (const Case& c : cases) {
+            ReplayParams p = test::sized(c.N, c.M, c.K, ReplayParams{});
+            p.fluctuation = c.F;
+            p.policy = c.policy;
+            p.seed = c.seed;
+            p.reconstruction = reconstruction;
+            p.timeSampling = TimeSampling::Linear;
+            const SliceSampler sampler = test::samplerOf(set, p);
+            GpuReplay gpu(set, p, sampler);
+            const CpuReconstruction cpu(set, p, sampler);
+            for (int t = 0; t < 3; ++t) {
+                const double tau = -0.5 + 1.7 * rng.uniform();
+                SCOPED_TRACE(::testing::Message() << toString(reconstruction) << " " << c.N << "x"
+                                                  << c.M << " F " << c.F << " tau " << tau);
+                gpu.update(tau);
+                EXPECT_EQ(gpu.readSliceFrames(), sampler.frames(tau));
+                const HeightField g = gpu.readHeights();
+                const HeightField r = cpu.heights(tau);
+                ASSERT_EQ(g.heights.size(), r.heights.size());
+                double worst = 0.0;
+                for (std::size_t i = 0; i < g.heights.size(); ++i) {
+                    ASSERT_TRUE(std::isfinite(g.heights[i])) << "cell " << i;
+                    worst = std::max(worst, std::abs(g.heights[i] - r.heights[i]));
+                }
+                EXPECT_LE(worst, 1e-5 * depth);
+            }
+        }
+    }
 }
 
 } // namespace swell::runtime

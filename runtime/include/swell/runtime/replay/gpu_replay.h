@@ -114,6 +114,7 @@ private:
     GlBuffer m_slotOf;
     GlBuffer m_shown;
     GlBuffer m_slices;
+    GlBuffer m_blend; ///< per slice j: (second column slot, weight), slice_lookup.comp
     GlBuffer m_columns;
     GlBuffer m_rows;
     GlBuffer m_weights;

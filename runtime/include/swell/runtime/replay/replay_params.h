@@ -44,6 +44,19 @@ enum class Reconstruction {
     Envelope,
 };
 
+/// What a slice shows between two stored frames (eq. (5)'s frame number is continuous).
+enum class TimeSampling {
+    /// eq. (5) as the paper writes it: the nearest stored frame (halves up).
+    Nearest,
+    /// The column profiles of the two stored frames around s = (tau + F N) A, blended linearly
+    /// by the fraction of s: two slices a fraction of a frame apart differ by that fraction.
+    Linear,
+};
+
+std::string toString(TimeSampling sampling);
+/// Inverse of toString; throws std::invalid_argument naming "time_sampling".
+TimeSampling timeSamplingFromString(const std::string& name);
+
 std::string toString(ExtentX extent);
 std::string toString(Reconstruction reconstruction);
 /// Inverse of toString; throws std::invalid_argument naming "reconstruction".
@@ -72,6 +85,9 @@ struct ReplayParams {
     Reconstruction reconstruction = Reconstruction::Paper;
     /// Only frames of the bake's steady window (bake_record.h) are replayed; false: every frame.
     bool steadyWindow = true;
+    /// Frames between stored frames (see TimeSampling). The library default is the paper's;
+    /// swell-play's default is Linear for surging and ripple.
+    TimeSampling timeSampling = TimeSampling::Nearest;
     /// Length of the seamless loop's cross-fade (FramePolicy::Seamless), simulated seconds.
     double crossfadeSeconds = 0.4;
 
@@ -83,7 +99,7 @@ struct ReplayParams {
 /// {"cells_x", "cells_z", "slices", "fluctuation", "time_unit_seconds", "policy", "sigma",
 ///  "extent_z", "seed", "noise": {"time_samples", "beta", "cutoff", "filter"},
 ///  "extent_x": "water" | "domain" | [x0, x1], "reconstruction": "paper" | "envelope",
-///  "window": "steady" | "all", "crossfade_seconds"}.
+///  "window": "steady" | "all", "crossfade_seconds", "time_sampling": "nearest" | "linear"}.
 nlohmann::json toJson(const ReplayParams& params);
 /// Reads the keys present over the defaults, then validate(). An unknown key, a wrong type or
 /// a bad value throws std::invalid_argument naming the key.

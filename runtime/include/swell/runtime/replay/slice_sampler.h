@@ -13,6 +13,14 @@
 
 namespace swell::runtime {
 
+/// What slice j shows at one animation time: (1 - weight) x entry `first` + weight x entry
+/// `second` (column profiles); weight 0 with TimeSampling::Nearest or on a stored frame.
+struct SliceBlend {
+    std::size_t first = 0;  ///< timeline entry at floor(s) (Nearest: the nearest entry)
+    std::size_t second = 0; ///< timeline entry at floor(s) + 1 (== first when weight == 0)
+    double weight = 0.0;    ///< fraction of s = (tau + F N) A past floor(s), in [0, 1)
+};
+
 class SliceSampler {
 public:
     /// Builds the noise (none when F = 0). The slices show `timeline`'s entries (timeline.h),
@@ -28,6 +36,11 @@ public:
     /// the mean of its neighbours' noise, i.e. N at k + 1/2. Throws std::invalid_argument
     /// when |tau| is so large that (|tau| + 1) A leaves the 32-bit frame range.
     std::size_t entry(double tau, int j) const;
+    /// The two timeline entries around slice j's continuous frame number s = (tau + F N) A
+    /// and the fraction between them (TimeSampling::Linear); with Nearest, entry(tau, j) with
+    /// weight 0. A fraction within 1e-9 of a stored frame snaps to it. shown() of the heavier
+    /// entry is frame(tau, j) in both.
+    SliceBlend blend(double tau, int j) const;
     /// entry(tau, j) for every slice.
     std::vector<std::size_t> entries(double tau) const;
     /// The cache frame slice j shows (its entry's TimelineEntry::shown()).
@@ -44,6 +57,7 @@ public:
     const Timeline& timeline() const { return m_timeline; }
     double A() const { return m_A; }
     double fluctuation() const { return m_F; }
+    TimeSampling timeSampling() const { return m_sampling; }
     FramePolicy policy() const { return m_timeline.policy(); }
     /// The noise, or null when F = 0 (none is built).
     const FbmNoise* noise() const { return m_noise ? &*m_noise : nullptr; }
@@ -53,6 +67,7 @@ private:
     Timeline m_timeline;
     double m_A;
     double m_F;
+    TimeSampling m_sampling;
     std::optional<FbmNoise> m_noise;
 };
 
