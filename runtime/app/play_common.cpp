@@ -159,8 +159,8 @@ void finishOptions(Options& o) {
                 "--time-sampling linear is not available with --mode whirlpool (use nearest)");
         }
     } else {
-        throw std::invalid_argument(fmt::format(
-            "--time-sampling must be linear or nearest, got '{}'", o.timeSampling));
+        throw std::invalid_argument(
+            fmt::format("--time-sampling must be linear or nearest, got '{}'", o.timeSampling));
     }
     if (o.extent == "water") {
         o.params.extentX = ExtentX::Water;

@@ -43,9 +43,9 @@ struct Options {
     /// Frames between stored frames: linear or nearest (eq. 5); empty: the mode's default
     /// (linear for surging and ripple, nearest for the whirlpool).
     std::string timeSampling;
-    double playbackFps = 30.0;               ///< output frames per simulated second
-    double start = 0.0;                      ///< simulated second of the first frame, from tau = 0
-    bool json = false;                       ///< one JSON object on stdout
+    double playbackFps = 30.0; ///< output frames per simulated second
+    double start = 0.0;        ///< simulated second of the first frame, from tau = 0
+    bool json = false;         ///< one JSON object on stdout
     /// GiB a replay may hold (decoded frames + GPU buffers, replay_memory.h): more fails up
     /// front, or, in heights, is streamed in chunks that fit.
     double memoryBudgetGiB = runtime::kDefaultMemoryBudgetGiB;

@@ -216,9 +216,8 @@ HeightField CpuReconstruction::heights(double tau) const {
                     const double dz = single ? 0.0 : m_grid.sliceZCells(j) - Pz;
                     const double Gz = std::exp(-dz * dz * inv2s2);
                     const BinnedFrame* f = frameOf[static_cast<std::size_t>(j)];
-                    sumF += Gz * (f != nullptr
-                                      ? fallback(*f, n)
-                                      : sliceColumn(static_cast<std::size_t>(j), n).S);
+                    sumF += Gz * (f != nullptr ? fallback(*f, n)
+                                               : sliceColumn(static_cast<std::size_t>(j), n).S);
                     sumGz += Gz;
                 }
                 h = sumF / sumGz;
