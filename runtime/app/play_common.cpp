@@ -102,6 +102,11 @@ void addCommon(CLI::App* cmd, Options& o) {
                     "column profiles: envelope (the frame's free surface) or paper (eq. 7's "
                     "Gaussian mean of the surface particles in [3 dx))")
         ->capture_default_str();
+    cmd->add_option("--preset", o.preset,
+                    "defaults of -F, --beta, --cutoff, --slices and --time-sampling not given: "
+                    "swell (surging: F 0.07, beta 4, cut-off 4, linear time; long crests) or "
+                    "paper (Table 4, eq. 5's nearest frame)")
+        ->capture_default_str();
     cmd->add_option("--time-sampling", o.timeSampling,
                     "what a slice shows between two stored frames: linear (the two frames' "
                     "profiles blended by the fraction of eq. (5)'s frame number) or nearest "
@@ -137,7 +142,11 @@ void finishOptions(Options& o) {
     o.params.cellsX = n;
     o.params.cellsZ = m;
     o.modeParams.mode = replayModeFromString(o.mode);
-    const ReplayParams table4 = paperDefaults(o.modeParams.mode);
+    if (o.preset != "swell" && o.preset != "paper")
+        throw std::invalid_argument(
+            fmt::format("--preset must be swell or paper, got '{}'", o.preset));
+    const ReplayParams table4 =
+        o.preset == "paper" ? paperDefaults(o.modeParams.mode) : swellDefaults(o.modeParams.mode);
     for (const auto& [option, copy] : o.modal) {
         if (option->count() == 0)
             copy(o.params, table4); // not given: the mode's Table 4 value
@@ -149,8 +158,9 @@ void finishOptions(Options& o) {
     o.params.steadyWindow = o.window == "steady";
     o.params.reconstruction = reconstructionFromString(o.reconstruction);
     if (o.timeSampling.empty()) {
-        o.params.timeSampling = o.modeParams.mode == ReplayMode::Whirlpool ? TimeSampling::Nearest
-                                                                           : TimeSampling::Linear;
+        o.params.timeSampling = o.modeParams.mode == ReplayMode::Whirlpool || o.preset == "paper"
+                                    ? TimeSampling::Nearest
+                                    : TimeSampling::Linear;
     } else if (o.timeSampling == "linear" || o.timeSampling == "nearest") {
         o.params.timeSampling = timeSamplingFromString(o.timeSampling);
         if (o.params.timeSampling == TimeSampling::Linear &&
@@ -408,6 +418,7 @@ json paramsJson(const Options& o, const ReplaySetup& setup) {
             {"frames_decoded", set.ids.size()},
             {"reconstruction", o.reconstruction},
             {"time_sampling", toString(p.timeSampling)},
+            {"preset", o.preset},
             {"grid_x",
              {{"x0", grid.x0},
               {"x1", grid.x0 + grid.cellsX * grid.dx},

@@ -43,6 +43,8 @@ struct Options {
     /// Frames between stored frames: linear or nearest (eq. 5); empty: the mode's default
     /// (linear for surging and ripple, nearest for the whirlpool).
     std::string timeSampling;
+    /// Noise defaults of options not given: swell (swellDefaults) or paper (Table 4).
+    std::string preset = "swell";
     double playbackFps = 30.0; ///< output frames per simulated second
     double start = 0.0;        ///< simulated second of the first frame, from tau = 0
     bool json = false;         ///< one JSON object on stdout

@@ -397,3 +397,44 @@ TEST_F(PlayApp, FidelityReportsTheErrorAgainstTheSimulatedSurface) {
 
 } // namespace
 } // namespace swell::runtime
+
+namespace swell::runtime {
+
+TEST_F(PlayApp, PresetsSetTheNoiseAndTimeSamplingDefaults) {
+    const std::string common = " --res 32x24 --frames 5 --warmup 1 --error-frames 1 "
+                               "--cpu-frames 1 --json";
+    Result r = run("bench " + cachePath() + common);
+    ASSERT_EQ(r.code, 0) << r.err;
+    nlohmann::json j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["preset"], "swell");
+    EXPECT_EQ(j["fluctuation"], 0.07);
+    EXPECT_EQ(j["beta"], 4.0);
+    EXPECT_EQ(j["cutoff"], 4.0);
+    EXPECT_EQ(j["time_sampling"], "linear");
+    EXPECT_TRUE(j["frames_exact"].get<bool>());
+    EXPECT_LE(j["max_abs_error"].get<double>(), 1e-5 * test::kSyntheticDepth);
+
+    r = run("bench " + cachePath() + " --preset paper" + common);
+    ASSERT_EQ(r.code, 0) << r.err;
+    j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["fluctuation"], 0.3); // Table 4, surging
+    EXPECT_EQ(j["beta"], 2.0);
+    EXPECT_EQ(j["cutoff"], 128.0);
+    EXPECT_EQ(j["time_sampling"], "nearest");
+
+    r = run("bench " + cachePath() + " --preset paper --time-sampling linear -F 0.2" + common);
+    ASSERT_EQ(r.code, 0) << r.err;
+    j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["fluctuation"], 0.2); // given options win over the preset
+    EXPECT_EQ(j["time_sampling"], "linear");
+
+    for (const std::string bad :
+         {"--preset fancy", "--time-sampling cubic", "--mode whirlpool --time-sampling linear"}) {
+        r = run("bench " + cachePath() + " " + bad + common);
+        EXPECT_NE(r.code, 0) << bad;
+        const std::string option = bad.substr(bad.rfind("--"), bad.rfind(' ') - bad.rfind("--"));
+        EXPECT_NE(r.err.find(option), std::string::npos) << bad << ": " << r.err;
+    }
+}
+
+} // namespace swell::runtime

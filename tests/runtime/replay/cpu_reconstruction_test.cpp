@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <numbers>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -273,6 +274,75 @@ TEST(ReplayParams, TimeSamplingReadsByNameAndRejectsOthers) {
         FAIL() << "no error";
     } catch (const std::invalid_argument& e) {
         EXPECT_NE(std::string(e.what()).find("time_sampling"), std::string::npos) << e.what();
+    }
+}
+
+} // namespace swell::runtime
+
+#include "swell/runtime/modes/mode_params.h"
+
+namespace swell::runtime {
+
+namespace {
+
+/// mean |dh/dz| / mean |dh/dx| over the inner 80 % of a height field: about tan of the crests'
+/// angle to z for waves running along x (0 for an extrusion, 0.15-0.6 for a natural sea).
+double crestRatio(const HeightField& h) {
+    double gx = 0.0, gz = 0.0;
+    const int N = h.cellsX, M = h.cellsZ;
+    for (int m = M / 10; m < M - M / 10; ++m) {
+        for (int n = N / 10; n < N - N / 10; ++n) {
+            const double c = h.heights[static_cast<std::size_t>(m) * N + n];
+            gx += std::abs(h.heights[static_cast<std::size_t>(m) * N + n + 1] - c);
+            gz += std::abs(h.heights[static_cast<std::size_t>(m + 1) * N + n] - c);
+        }
+    }
+    return gz / gx;
+}
+
+} // namespace
+
+TEST(CpuReconstruction, SwellDefaultsGiveLongCrestsWherePaperDefaultsStripe) {
+    // A tank the size of scenes/surging_small.json (2 m of water 0.16 m deep, l0 = 0.02 m):
+    // waves of 1 m at the shallow-water speed sqrt(g h) = 1.25 m/s, stored at 50 fps for 8 s.
+    std::vector<cache::Frame> frames;
+    for (int f = 0; f < 400; ++f) {
+        cache::Frame fr;
+        const double t = 0.02 * f;
+        for (int i = 0; i <= 200; ++i) {
+            const double x = 0.01 * i;
+            const double eta = 0.02 * std::sin(2.0 * std::numbers::pi * (x - 1.25 * t)) +
+                               0.008 * std::sin(2.0 * std::numbers::pi * (2.3 * x - 2.0 * t));
+            fr.surface.push_back(static_cast<float>(x));
+            fr.surface.push_back(static_cast<float>(0.16 + eta));
+        }
+        frames.push_back(std::move(fr));
+    }
+    cache::Header h;
+    h.domain = {0.0f, 0.0f, 2.0f, 0.5f};
+    h.dt = 0.001;
+    h.frameInterval = 20;
+    const FrameSet set = FrameSet::whole(h, std::move(frames));
+    auto ratioOf = [&](ReplayParams p, TimeSampling sampling, std::uint64_t seed) {
+        p = test::sized(100, 100, p.slices, p);
+        p.reconstruction = Reconstruction::Envelope;
+        p.policy = FramePolicy::Loop;
+        p.timeSampling = sampling;
+        p.seed = seed;
+        const SliceSampler sampler = test::samplerOf(set, p);
+        const CpuReconstruction cpu(set, p, sampler);
+        double sum = 0.0;
+        for (int i = 0; i < 3; ++i)
+            sum += crestRatio(cpu.heights(0.4 + 0.3 * i));
+        return sum / 3.0;
+    };
+    for (const std::uint64_t seed : {1u, 2u, 3u}) {
+        SCOPED_TRACE(::testing::Message() << "seed " << seed);
+        const double swell =
+            ratioOf(swellDefaults(ReplayMode::Surging), TimeSampling::Linear, seed);
+        EXPECT_GE(swell, 0.15);
+        EXPECT_LE(swell, 0.6);
+        EXPECT_GT(ratioOf(paperDefaults(ReplayMode::Surging), TimeSampling::Nearest, seed), 1.0);
     }
 }
 

@@ -74,6 +74,11 @@ ModeParams modeParamsFromJson(const nlohmann::json& j);
 /// whirlpool: K 128, F 0.4, beta 2.5, c 64.
 ReplayParams paperDefaults(ReplayMode mode);
 
+/// swell-play's noise defaults for `mode` (`--preset swell`): surging F 0.07, beta 4, c 4 with
+/// K 256, chosen from a measured sweep for long crests that still differ between seeds
+/// (docs/runtime.md, "Presets"); ripple and whirlpool: paperDefaults(mode).
+ReplayParams swellDefaults(ReplayMode mode);
+
 /// Noise seed of slice set d: the run's seed for d = 0 (so one ripple direction at 0 degrees
 /// is exactly the surging replay), else the d-th output of SplitMix64(seed).
 std::uint64_t sliceSetSeed(std::uint64_t seed, int d);
