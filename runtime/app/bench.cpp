@@ -99,7 +99,7 @@ public:
 
     int run() override {
         const cache::Reader reader(m_o.cache);
-        resolveAutoRes(m_o, reader.header());
+        resolveFromCache(m_o, reader.header());
         const std::vector<double> taus =
             frameTaus(m_o, static_cast<std::size_t>(m_warmup + m_frames));
         auto t0 = Clock::now();

@@ -111,7 +111,7 @@ public:
 
     int run() override {
         const cache::Reader reader(m_o.cache);
-        resolveAutoRes(m_o, reader.header());
+        resolveFromCache(m_o, reader.header());
         const EglContext context;
         m_o0 = m_o; // every slice one frame: F = 0, the window's frames in order
         m_o0.params.fluctuation = 0.0;

@@ -50,7 +50,7 @@ public:
 
     int run() override {
         const cache::Reader reader(m_o.cache);
-        resolveAutoRes(m_o, reader.header());
+        resolveFromCache(m_o, reader.header());
         const std::vector<double> taus = outputTaus(m_o, m_seconds);
         const TimelinePlan plan = planReplay(m_o, reader);
         // More output than the memory budget holds at once is replayed in chunks of output

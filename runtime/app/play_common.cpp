@@ -55,6 +55,10 @@ void addCommon(CLI::App* cmd, Options& o) {
     cmd->add_option("--spin", o.modeParams.whirlpool.turnsPerTimeUnit,
                     "whirlpool: turns per animation time unit")
         ->capture_default_str();
+    cmd->add_option("--eye-depth", o.eyeDepth,
+                    "whirlpool: depth of the funnel at the eye, a fraction of the still-water "
+                    "depth, 0 .. 1 (0: the paper's flat eye; default 0.5, 0 with --preset "
+                    "paper)");
     cmd->add_option("--res", o.res, "base mesh N x M cells (x = propagation, z = transverse)")
         ->capture_default_str();
     auto modal = [&](CLI::Option* opt, void (*copy)(ReplayParams&, const ReplayParams&)) {
@@ -110,8 +114,8 @@ void addCommon(CLI::App* cmd, Options& o) {
     cmd->add_option("--time-sampling", o.timeSampling,
                     "what a slice shows between two stored frames: linear (the two frames' "
                     "profiles blended by the fraction of eq. (5)'s frame number) or nearest "
-                    "(eq. 5's nearest frame, the paper); default linear, nearest for the "
-                    "whirlpool");
+                    "(eq. 5's nearest frame, the paper); default linear, nearest with "
+                    "--preset paper");
     cmd->add_option("--sigma", o.params.sigma, "Gaussian sigma of eq. (7), cells")
         ->capture_default_str();
     cmd->add_option("--fps", o.playbackFps, "output frames per simulated second")
@@ -133,7 +137,7 @@ void finishOptions(Options& o) {
     int n = 0, m = 0;
     char x = 0, extra = 0;
     if (o.res == "auto") {
-        n = m = 256; // resolveAutoRes sets it from the cache
+        n = m = 256; // resolveFromCache sets it from the cache
     } else if (std::sscanf(o.res.c_str(), "%d%c%d%c", &n, &x, &m, &extra) != 3 ||
                (x != 'x' && x != 'X')) {
         throw std::invalid_argument(
@@ -157,17 +161,16 @@ void finishOptions(Options& o) {
             fmt::format("--window must be steady or all, got '{}'", o.window));
     o.params.steadyWindow = o.window == "steady";
     o.params.reconstruction = reconstructionFromString(o.reconstruction);
+    // The paper's whirlpool has a flat eye; metres once the cache is open (resolveFromCache).
+    o.eyeDepthFraction = o.eyeDepth.value_or(o.preset == "paper" ? 0.0 : 0.5);
+    if (!(o.eyeDepthFraction >= 0.0 && o.eyeDepthFraction <= 1.0))
+        throw std::invalid_argument(
+            fmt::format("--eye-depth must be a fraction 0 .. 1 of the still-water depth, got {}",
+                        o.eyeDepthFraction));
     if (o.timeSampling.empty()) {
-        o.params.timeSampling = o.modeParams.mode == ReplayMode::Whirlpool || o.preset == "paper"
-                                    ? TimeSampling::Nearest
-                                    : TimeSampling::Linear;
+        o.params.timeSampling = o.preset == "paper" ? TimeSampling::Nearest : TimeSampling::Linear;
     } else if (o.timeSampling == "linear" || o.timeSampling == "nearest") {
         o.params.timeSampling = timeSamplingFromString(o.timeSampling);
-        if (o.params.timeSampling == TimeSampling::Linear &&
-            o.modeParams.mode == ReplayMode::Whirlpool) {
-            throw std::invalid_argument(
-                "--time-sampling linear is not available with --mode whirlpool (use nearest)");
-        }
     } else {
         throw std::invalid_argument(
             fmt::format("--time-sampling must be linear or nearest, got '{}'", o.timeSampling));
@@ -239,7 +242,20 @@ ReferenceLevel displacementReference(const ReplaySetup& setup) {
     return {0.0, "y = 0: the cache records no still-water level (G is the height itself)"};
 }
 
-void resolveAutoRes(Options& o, const cache::Header& header) {
+void resolveFromCache(Options& o, const cache::Header& header) {
+    // The eye's depth: a fraction of the still water's depth above the tank floor (half the
+    // domain's height when the cache records no still-water level).
+    BakeRecord record;
+    try {
+        record = bakeRecord(header);
+    } catch (const std::invalid_argument& e) {
+        throw std::invalid_argument(fmt::format("{}: {}", o.cache, e.what()));
+    }
+    const double still = record.stillWaterLevel;
+    const double depth = std::isfinite(still) && still > record.floorLevel
+                             ? still - record.floorLevel
+                             : 0.5 * (static_cast<double>(header.domain.yMax) - header.domain.yMin);
+    o.modeParams.whirlpool.eyeDepth = o.eyeDepthFraction * depth;
     if (o.res != "auto")
         return;
     const int n = autoCells(header, o.params);

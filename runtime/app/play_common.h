@@ -15,6 +15,7 @@
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -45,9 +46,11 @@ struct Options {
     std::string timeSampling;
     /// Noise defaults of options not given: swell (swellDefaults) or paper (Table 4).
     std::string preset = "swell";
-    double playbackFps = 30.0; ///< output frames per simulated second
-    double start = 0.0;        ///< simulated second of the first frame, from tau = 0
-    bool json = false;         ///< one JSON object on stdout
+    std::optional<double> eyeDepth; ///< --eye-depth, default by --preset
+    double eyeDepthFraction = 0.0;  ///< of the still-water depth (finishOptions)
+    double playbackFps = 30.0;      ///< output frames per simulated second
+    double start = 0.0;             ///< simulated second of the first frame, from tau = 0
+    bool json = false;              ///< one JSON object on stdout
     /// GiB a replay may hold (decoded frames + GPU buffers, replay_memory.h): more fails up
     /// front, or, in heights, is streamed in chunks that fit.
     double memoryBudgetGiB = runtime::kDefaultMemoryBudgetGiB;
@@ -65,8 +68,9 @@ void addCommon(CLI::App* cmd, Options& o);
 void addHeightFormatOption(CLI::App* cmd, std::string& value, const std::string& name);
 /// Resolves the string options into o.params and validates everything.
 void finishOptions(Options& o);
-/// With --res auto, sets the grid from the cache (see Options::res); else nothing.
-void resolveAutoRes(Options& o, const cache::Header& header);
+/// The options that need the cache: with --res auto the grid (see Options::res), and the
+/// whirlpool's eye depth in metres. Errors name the cache file.
+void resolveFromCache(Options& o, const cache::Header& header);
 /// Animation time of output frame i: (start + i / fps) / time unit (eq. 5's tau); tau = 0 is
 /// the timeline's first entry (the steady window's first frame, or the loop's in-frame).
 double tauOf(const Options& o, std::size_t i);

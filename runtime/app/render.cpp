@@ -42,6 +42,7 @@ struct RenderOptions {
     int sheetFrames = 6;           ///< frames on the contact sheet
     int pngCompression = 1;        ///< zlib level of the frame PNGs
     bool noSplashes = false;       ///< skip the splash pass
+    std::string splashes = "auto"; ///< --splashes: auto (not in the whirlpool), on or off
     ShadingParams shading;         ///< shading (size and samples are set from the options)
     SplashParams splash;           ///< splash particles (Sec. 5)
     SkyParams sky;                 ///< procedural sky and sun
@@ -51,7 +52,7 @@ struct RenderOptions {
     HeightSequenceParams heights; ///< what heights/ holds (normals, displacement, format)
 
     /// Checks and resolves the string options; throws std::invalid_argument naming the option.
-    void finish() {
+    void finish(ReplayMode mode) {
         int width = 0, height = 0;
         char x = 0, extra = 0;
         if (std::sscanf(size.c_str(), "%d%c%d%c", &width, &x, &height, &extra) != 3 ||
@@ -62,7 +63,12 @@ struct RenderOptions {
         shading.width = width;
         shading.height = height;
         shading.validate();
-        splash.enabled = !noSplashes;
+        if (splashes != "auto" && splashes != "on" && splashes != "off")
+            throw std::invalid_argument(
+                fmt::format("--splashes must be auto, on or off, got '{}'", splashes));
+        // The whirlpool's spirals carry the bake's spray at one x to one radius: a ring.
+        splash.enabled =
+            !noSplashes && splashes != "off" && (splashes == "on" || mode != ReplayMode::Whirlpool);
         splash.validate();
         sky.validate();
         checkSeconds(seconds);
@@ -450,12 +456,12 @@ public:
 
     void check() override {
         finishOptions(m_o);
-        m_r.finish();
+        m_r.finish(m_o.modeParams.mode);
     }
 
     int run() override {
         const cache::Reader reader(m_o.cache);
-        resolveAutoRes(m_o, reader.header());
+        resolveFromCache(m_o, reader.header());
         const std::vector<double> taus = outputTaus(m_o, m_r.seconds);
         const ReplaySetup setup = prepareReplay(m_o, reader, taus);
         const fs::path out(m_r.outDir);
@@ -521,7 +527,11 @@ private:
         cmd->add_option("--splash-spread", r.splash.spawnRadius,
                         "radius of the sphere artificial splashes start in, metres")
             ->capture_default_str();
-        cmd->add_flag("--no-splashes", r.noSplashes, "skip the splash pass");
+        cmd->add_flag("--no-splashes", r.noSplashes, "skip the splash pass (--splashes off)");
+        cmd->add_option("--splashes", r.splashes,
+                        "splash pass: auto (on, but off in the whirlpool, whose spirals turn the "
+                        "bake's spray at one x into a ring), on or off")
+            ->capture_default_str();
         cmd->add_option("--sheet-frames", r.sheetFrames, "frames on the contact sheet")
             ->capture_default_str()
             ->check(CLI::Range(1, 64));

@@ -91,6 +91,10 @@ void WhirlpoolParams::validate() const {
             fmt::format("whirlpool.turns_per_time_unit must be finite and |.| <= 1000, got {}",
                         turnsPerTimeUnit));
     }
+    if (!std::isfinite(eyeDepth) || eyeDepth < 0.0 || eyeDepth > 1e3) {
+        throw std::invalid_argument(
+            fmt::format("whirlpool.eye_depth must be in [0, 1000] m, got {}", eyeDepth));
+    }
 }
 
 void ModeParams::validate() const {
@@ -110,7 +114,8 @@ nlohmann::json toJson(const ModeParams& p) {
             {"whirlpool",
              {{"inner_radius_cells", p.whirlpool.innerRadiusCells},
               {"growth", p.whirlpool.growth},
-              {"turns_per_time_unit", p.whirlpool.turnsPerTimeUnit}}}};
+              {"turns_per_time_unit", p.whirlpool.turnsPerTimeUnit},
+              {"eye_depth", p.whirlpool.eyeDepth}}}};
 }
 
 ModeParams modeParamsFromJson(const nlohmann::json& j) {
@@ -127,11 +132,13 @@ ModeParams modeParamsFromJson(const nlohmann::json& j) {
     }
     if (j.contains("whirlpool")) {
         const nlohmann::json& w = j.at("whirlpool");
-        json_read::rejectUnknown(w, {"inner_radius_cells", "growth", "turns_per_time_unit"},
-                                 "whirlpool.", "whirlpool");
+        json_read::rejectUnknown(
+            w, {"inner_radius_cells", "growth", "turns_per_time_unit", "eye_depth"}, "whirlpool.",
+            "whirlpool");
         read(w, "inner_radius_cells", "whirlpool.", p.whirlpool.innerRadiusCells);
         read(w, "growth", "whirlpool.", p.whirlpool.growth);
         read(w, "turns_per_time_unit", "whirlpool.", p.whirlpool.turnsPerTimeUnit);
+        read(w, "eye_depth", "whirlpool.", p.whirlpool.eyeDepth);
     }
     p.validate();
     return p;
@@ -153,9 +160,10 @@ ReplayParams paperDefaults(ReplayMode mode) {
 
 ReplayParams swellDefaults(ReplayMode mode) {
     ReplayParams p = paperDefaults(mode);
-    if (mode == ReplayMode::Surging) {
-        // Crests along z: mean |dh/dz| / mean |dh/dx| 0.31-0.44 on surging_small (seeds 1-3),
-        // against 3.0 with Table 4's values.
+    if (mode == ReplayMode::Surging || mode == ReplayMode::Whirlpool) {
+        // Surging: crests along z, mean |dh/dz| / mean |dh/dx| 0.31-0.44 on surging_small
+        // (seeds 1-3), against 3.0 with Table 4's values. Whirlpool: neighbouring spirals close
+        // in time, so that the footprint filter leaves no needle cells (docs/runtime.md).
         p.fluctuation = 0.07;
         p.noise.beta = 4.0;
         p.noise.cutoff = 4.0;

@@ -16,6 +16,9 @@ namespace {
 
 constexpr GLuint kGroup = 64; // local_size_x of spiral_mapping.comp
 constexpr double kTwoPi = 2.0 * std::numbers::pi;
+/// The filter's footprint, cells: the two cells that the surface's bilinear interpolation
+/// between cell centres spans.
+constexpr double kFootprintCells = 2.0;
 
 /// x in [0, period): the floor-based remainder, with the rounding case x -> period folded to 0.
 double wrap(double x, double period) {
@@ -25,24 +28,47 @@ double wrap(double x, double period) {
     return w;
 }
 
-/// Linear interpolation between column centres (whirlpool.h): lower column and weight.
-void profileTap(double u, int N, int& n0, int& n1, double& beta) {
-    const double fu = std::clamp(u - 0.5, 0.0, static_cast<double>(N - 1));
-    n0 = std::max(0, std::min(static_cast<int>(std::floor(fu)), N - 2));
-    n1 = std::min(n0 + 1, N - 1);
-    beta = fu - n0;
+/// The integral from v = 0 of a profile p linear between column centres (v = u - 1/2 the
+/// column coordinate from the first centre), constant beyond the end centres, with
+/// C[k] = integral to v = k (whirlpool.h).
+double profileIntegral(const double* p, const double* C, int N, double v) {
+    if (v <= 0.0)
+        return v * p[0];
+    if (v >= N - 1)
+        return C[N - 1] + (v - (N - 1)) * p[N - 1];
+    const int k = static_cast<int>(std::floor(v));
+    const double a = v - k;
+    return C[k] + a * p[k] + 0.5 * a * a * (p[k + 1] - p[k]);
 }
 
-/// The spirals show eq. (5)'s nearest frame: spiral_mapping.comp reads one column slot per
-/// slice.
-void requireNearest(const ReplayParams& params) {
-    if (params.timeSampling != TimeSampling::Nearest) {
-        throw std::invalid_argument(
-            "--time-sampling linear is not available with --mode whirlpool (use nearest)");
-    }
+/// C[k] for profileIntegral: the trapezoid sums of p to column centre k.
+void integrate(const double* p, double* C, int N) {
+    C[0] = 0.0;
+    for (int k = 1; k < N; ++k)
+        C[k] = C[k - 1] + 0.5 * (p[k - 1] + p[k]);
+}
+
+/// The integral of hat(x) = max(0, 1 - |x|) from -infinity to x.
+double hatIntegral(double x) {
+    if (x <= -1.0)
+        return 0.0;
+    if (x <= 0.0)
+        return 0.5 * (x + 1.0) * (x + 1.0);
+    if (x < 1.0)
+        return 1.0 - 0.5 * (1.0 - x) * (1.0 - x);
+    return 1.0;
+}
+
+double smoothstep(double e0, double e1, double x) {
+    const double t = std::clamp((x - e0) / (e1 - e0), 0.0, 1.0);
+    return t * t * (3.0 - 2.0 * t);
 }
 
 } // namespace
+
+double footprintWeight(double x, double w) {
+    return (hatIntegral(0.5 * w - x) - hatIntegral(-0.5 * w - x)) / w;
+}
 
 SpiralGeometry::SpiralGeometry(const Grid& grid, const WhirlpoolParams& params)
     : m_grid(grid), m_params(params), m_J(grid.sliceCount()),
@@ -65,8 +91,33 @@ SpiralPoint SpiralGeometry::at(int n, int m) const {
     // radius the spirals keep winding (t > 2 pi) but show their outer end (u = N).
     p.t = r > m_a ? std::log(r / m_a) / m_params.growth : 0.0;
     p.u = m_grid.cellsX * std::min(p.t, kTwoPi) / kTwoPi;
+    const double N = m_grid.cellsX;
+    const double b = m_params.growth;
+    const double cell = kFootprintCells * std::max(m_grid.dx, m_grid.dz);
+    // Along the profile: |grad u| = N / (2 pi b r) columns per metre in the band; in the eye
+    // the window widens from its width at r = a to the whole profile at the centre.
+    const double atA = std::max(1.0, N / (kTwoPi * b * m_a) * cell);
+    if (r <= m_a) {
+        const double e = 1.0 - r / m_a;
+        p.uWidth = std::max(atA, N * e * e);
+    } else if (p.t < kTwoPi) {
+        p.uWidth = std::max(1.0, N / (kTwoPi * b * r) * cell);
+    }
+    p.uWidth = std::min(p.uWidth, N);
+    p.uCentre = std::clamp(p.u, 0.5 * p.uWidth, N - 0.5 * p.uWidth);
     // The spiral through P at parameter t starts at angle theta - t: slice coordinate.
     p.s = wrap((theta - p.t) * m_J / kTwoPi, static_cast<double>(m_J));
+    // Across the spirals: |grad s| = J sqrt(1 + 1 / b^2) / (2 pi r) slices per metre.
+    const double perMetre = m_J * std::sqrt(1.0 + 1.0 / (b * b)) / (kTwoPi * r);
+    p.width = r > 0.0 ? std::clamp(perMetre * cell, 1.0, static_cast<double>(m_J))
+                      : static_cast<double>(m_J);
+    // Rankine funnel of depth D at the centre.
+    const double D = m_params.eyeDepth;
+    const double R = outerRadius();
+    if (r <= m_a)
+        p.dip = D * (1.0 - r * r / (2.0 * m_a * m_a));
+    else if (r < R)
+        p.dip = D * m_a * m_a / (2.0 * r * r) * (1.0 - smoothstep(m_a, R, r));
     return p;
 }
 
@@ -79,17 +130,30 @@ double SpiralGeometry::spinSlices(double tau) const {
 CpuWhirlpool::CpuWhirlpool(const FrameSet& frames, const ReplayParams& params,
                            const WhirlpoolParams& whirlpool, const SliceSampler& sampler)
     : m_sampler(sampler), m_profiles(frames, params, sampler),
-      m_geometry(m_profiles.grid(), whirlpool) {
-    requireNearest(params);
-}
+      m_geometry(m_profiles.grid(), whirlpool) {}
 
 HeightField CpuWhirlpool::heights(double tau) const {
     const Grid& g = m_profiles.grid();
     const int N = g.cellsX;
     const int M = g.cellsZ;
     const int J = g.sliceCount();
-    const std::vector<std::size_t> entry = m_sampler.entries(tau); // eq. (5), once per slice
     const Timeline& timeline = m_sampler.timeline();
+    // Every spiral's profile p_j(n) at this tau (eq. 5 once per slice, blended in time) and
+    // its integral along the profile.
+    const std::size_t row = static_cast<std::size_t>(N);
+    std::vector<double> p(static_cast<std::size_t>(J) * row);
+    std::vector<double> C(p.size());
+    for (int j = 0; j < J; ++j) {
+        const SliceBlend b = m_sampler.blend(tau, j);
+        double* pj = &p[static_cast<std::size_t>(j) * row];
+        for (int n = 0; n < N; ++n) {
+            pj[n] = m_profiles.profile(timeline[b.first], n);
+            if (b.weight > 0.0)
+                pj[n] =
+                    (1.0 - b.weight) * pj[n] + b.weight * m_profiles.profile(timeline[b.second], n);
+        }
+        integrate(pj, &C[static_cast<std::size_t>(j) * row], N);
+    }
     const double spin = m_geometry.spinSlices(tau);
     HeightField out;
     out.cellsX = N;
@@ -97,26 +161,28 @@ HeightField CpuWhirlpool::heights(double tau) const {
     out.heights.resize(static_cast<std::size_t>(N) * static_cast<std::size_t>(M));
     for (int m = 0; m < M; ++m) {
         for (int n = 0; n < N; ++n) {
-            const SpiralPoint p = m_geometry.at(n, m);
-            double s = p.s - spin; // the spirals turned by spin(tau)
+            const SpiralPoint q = m_geometry.at(n, m);
+            double s = q.s - spin; // the spirals turned by spin(tau)
             if (s < 0.0)
                 s += J;
-            int j0 = static_cast<int>(std::floor(s));
-            double alpha = s - j0;
-            if (j0 >= J) {
-                j0 = 0;
-                alpha = 0.0;
+            // The box mean over the footprint: along the profile, the box of uWidth columns
+            // around u; across, the spirals j with |j - s| < w / 2 + 1.
+            const double v0 = q.uCentre - 0.5 - 0.5 * q.uWidth;
+            const double v1 = q.uCentre - 0.5 + 0.5 * q.uWidth;
+            const int first = static_cast<int>(std::floor(s - 0.5 * q.width)) - 1;
+            const int last = static_cast<int>(std::floor(s + 0.5 * q.width)) + 1;
+            double h = 0.0;
+            for (int j = first; j <= last; ++j) {
+                const double k = footprintWeight(j - s, q.width);
+                if (k == 0.0)
+                    continue;
+                const std::size_t jw = static_cast<std::size_t>(((j % J) + J) % J) * row;
+                h += k *
+                     (profileIntegral(&p[jw], &C[jw], N, v1) -
+                      profileIntegral(&p[jw], &C[jw], N, v0)) /
+                     q.uWidth;
             }
-            const int j1 = j0 + 1 == J ? 0 : j0 + 1;
-            int n0 = 0, n1 = 0;
-            double beta = 0.0;
-            profileTap(p.u, N, n0, n1, beta);
-            auto along = [&](int j) { // the spiral's eq. (7) profile at u
-                const TimelineEntry& f = timeline[entry[static_cast<std::size_t>(j)]];
-                return (1.0 - beta) * m_profiles.profile(f, n0) + beta * m_profiles.profile(f, n1);
-            };
-            out.heights[static_cast<std::size_t>(m) * N + n] =
-                (1.0 - alpha) * along(j0) + alpha * along(j1);
+            out.heights[static_cast<std::size_t>(m) * N + n] = h - q.dip;
         }
     }
     return out;
@@ -128,25 +194,25 @@ GpuWhirlpool::GpuWhirlpool(const FrameSet& frames, const ReplayParams& params,
                            const WhirlpoolParams& whirlpool, const SliceSampler& sampler)
     : m_replay(frames, params, sampler), m_geometry(m_replay.grid(), whirlpool),
       m_out(m_replay.grid().cellsX, m_replay.grid().cellsZ) {
-    requireNearest(params);
     const Grid& g = m_replay.grid();
     const int N = g.cellsX;
     const int M = g.cellsZ;
     struct GpuCell {
-        GLint n0;
-        float beta, s, pad;
+        float v, uWidth, s, width, dip, pad[3];
     };
     std::vector<GpuCell> cells(static_cast<std::size_t>(N) * static_cast<std::size_t>(M));
     for (int m = 0; m < M; ++m) {
         for (int n = 0; n < N; ++n) {
             const SpiralPoint p = m_geometry.at(n, m);
-            int n0 = 0, n1 = 0;
-            double beta = 0.0;
-            profileTap(p.u, N, n0, n1, beta);
             float s = static_cast<float>(p.s);
             if (s >= static_cast<float>(g.sliceCount()))
                 s = 0.0f; // float rounding at the wrap
-            cells[static_cast<std::size_t>(m) * N + n] = {n0, static_cast<float>(beta), s, 0.0f};
+            cells[static_cast<std::size_t>(m) * N + n] = {static_cast<float>(p.uCentre - 0.5),
+                                                          static_cast<float>(p.uWidth),
+                                                          s,
+                                                          static_cast<float>(p.width),
+                                                          static_cast<float>(p.dip),
+                                                          {0.0f, 0.0f, 0.0f}};
         }
     }
     GLint64 maxBlock = 0;
@@ -161,14 +227,15 @@ GpuWhirlpool::GpuWhirlpool(const FrameSet& frames, const ReplayParams& params,
     m_cells = makeStorageBuffer(cells.size() * sizeof(GpuCell), cells.data());
 
     // Profiles from the column pass, once: p = S / W, or the fallback S when W = 0
-    // (column_pass.comp's layout), stored as pairs (p(n), p(min(n + 1, N - 1))).
+    // (column_pass.comp's layout), stored per column centre k as (p(k), p(min(k + 1, N - 1)),
+    // C(k) split into a float and the float of its remainder), C the profile's integral.
     const std::size_t slots = m_replay.slotCount();
     const int Nq = m_replay.columnQuads();
     std::vector<float> columns(std::max<std::size_t>(slots, 1) * static_cast<std::size_t>(Nq) * 8);
     glGetNamedBufferSubData(m_replay.columnBuffer(), 0,
                             static_cast<GLsizeiptr>(columns.size() * sizeof(float)),
                             columns.data());
-    std::vector<float> pairs(std::max<std::size_t>(slots, 1) * static_cast<std::size_t>(N) * 2);
+    std::vector<float> pairs(std::max<std::size_t>(slots, 1) * static_cast<std::size_t>(N) * 4);
     auto profileAt = [&](std::size_t slot, int n) {
         const std::size_t base =
             ((slot * static_cast<std::size_t>(Nq) + static_cast<std::size_t>(n / 4)) * 2) * 4 +
@@ -177,12 +244,19 @@ GpuWhirlpool::GpuWhirlpool(const FrameSet& frames, const ReplayParams& params,
         const float W = columns[base + 4];
         return W > 0.0f ? S / W : S;
     };
+    std::vector<double> prof(static_cast<std::size_t>(N)), C(static_cast<std::size_t>(N));
     for (std::size_t slot = 0; slot < slots; ++slot) {
+        for (int n = 0; n < N; ++n)
+            prof[static_cast<std::size_t>(n)] = profileAt(slot, n);
+        integrate(prof.data(), C.data(), N);
         for (int n = 0; n < N; ++n) {
-            pairs[(slot * static_cast<std::size_t>(N) + static_cast<std::size_t>(n)) * 2] =
-                profileAt(slot, n);
-            pairs[(slot * static_cast<std::size_t>(N) + static_cast<std::size_t>(n)) * 2 + 1] =
-                profileAt(slot, std::min(n + 1, N - 1));
+            float* q =
+                &pairs[(slot * static_cast<std::size_t>(N) + static_cast<std::size_t>(n)) * 4];
+            const double c = C[static_cast<std::size_t>(n)];
+            q[0] = static_cast<float>(prof[static_cast<std::size_t>(n)]);
+            q[1] = static_cast<float>(prof[static_cast<std::size_t>(std::min(n + 1, N - 1))]);
+            q[2] = static_cast<float>(c);
+            q[3] = static_cast<float>(c - static_cast<double>(q[2]));
         }
     }
     if (static_cast<GLint64>(pairs.size() * sizeof(float)) > maxBlock) {
@@ -223,6 +297,7 @@ void GpuWhirlpool::update(double tau) {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, m_profiles.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, m_cells.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, m_out.buffer());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, m_replay.blendBuffer());
     glUseProgram(m_mapping.get());
     const long long cells = static_cast<long long>(grid().cellsX) * grid().cellsZ;
     glDispatchCompute(static_cast<GLuint>((cells + kGroup - 1) / kGroup), 1, 1);

@@ -47,6 +47,14 @@ BakeRecord bakeRecord(const cache::Header& header) {
     }
     if (spacing != nullptr && spacing->is_number())
         r.particleSpacing = spacing->get<double>();
+    r.floorLevel = header.domain.yMin;
+    const json* tank = nullptr;
+    if (meta.contains("scene") && meta["scene"].is_object() && meta["scene"].contains("geometry") &&
+        meta["scene"]["geometry"].is_object() && meta["scene"]["geometry"].contains("tank"))
+        tank = &meta["scene"]["geometry"]["tank"];
+    if (tank != nullptr && tank->is_object() && tank->contains("y0") && (*tank)["y0"].is_number() &&
+        std::isfinite((*tank)["y0"].get<double>()))
+        r.floorLevel = (*tank)["y0"].get<double>();
 
     if (!meta.contains("replay")) {
         r.note = "the cache records no water extent or steady start (baked before they were "

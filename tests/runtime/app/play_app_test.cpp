@@ -431,8 +431,24 @@ TEST_F(PlayApp, PresetsSetTheNoiseAndTimeSamplingDefaults) {
     EXPECT_EQ(j["fluctuation"], 0.2); // given options win over the preset
     EXPECT_EQ(j["time_sampling"], "linear");
 
-    for (const std::string bad :
-         {"--preset fancy", "--time-sampling cubic", "--mode whirlpool --time-sampling linear"}) {
+    // The whirlpool: the swell preset's noise and time sampling and a funnel of half the
+    // still-water depth; the paper's flat eye and nearest frame with --preset paper.
+    r = run("bench " + cachePath() + " --mode whirlpool" + common);
+    ASSERT_EQ(r.code, 0) << r.err;
+    j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["fluctuation"], 0.07);
+    EXPECT_EQ(j["time_sampling"], "linear");
+    EXPECT_GT(j["mode_params"]["whirlpool"]["eye_depth"].get<double>(), 0.0);
+    EXPECT_LE(j["max_abs_error"].get<double>(), 1e-5 * test::kSyntheticDepth);
+    r = run("bench " + cachePath() + " --mode whirlpool --preset paper" + common);
+    ASSERT_EQ(r.code, 0) << r.err;
+    j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["fluctuation"], 0.4); // Table 4, whirlpool
+    EXPECT_EQ(j["time_sampling"], "nearest");
+    EXPECT_EQ(j["mode_params"]["whirlpool"]["eye_depth"].get<double>(), 0.0);
+
+    for (const std::string bad : {"--preset fancy", "--time-sampling cubic",
+                                  "--mode whirlpool --eye-depth 1.5", "--eye-depth -0.1"}) {
         r = run("bench " + cachePath() + " " + bad + common);
         EXPECT_NE(r.code, 0) << bad;
         const std::string option = bad.substr(bad.rfind("--"), bad.rfind(' ') - bad.rfind("--"));

@@ -170,6 +170,8 @@ TEST_F(RenderApp, RippleAndWhirlpoolDrawSplashesAndTheWhirlpoolIsSeenFromHigher)
         const Result r =
             run("render " + cache() + " --out " + out.string() + " --mode " + modes[k] +
                 " --res 64x64 --slices 16 --size 160x90 --seconds 0.2 --fps 20 --json"
+                // The whirlpool draws splashes only when asked.
+                + (k == 2 ? std::string(" --splashes on") : std::string()) +
                 // The first frames: their splashes lie where the whirlpool's spirals reach.
                 " --policy loop");
         ASSERT_EQ(r.code, 0) << modes[k] << ": " << r.err;
@@ -187,6 +189,21 @@ TEST_F(RenderApp, RippleAndWhirlpoolDrawSplashesAndTheWhirlpoolIsSeenFromHigher)
     // 55 degrees above the horizon instead of 28 (relative to the distance: the height over
     // the target grows more than the framing distance changes).
     EXPECT_GT(eyeHeight[2], eyeHeight[0]);
+}
+
+TEST_F(RenderApp, TheWhirlpoolDrawsNoSplashRingUnlessAsked) {
+    const fs::path out = s_dir / "whirlpool_default";
+    const Result r = run("render " + cache() + " --out " + out.string() +
+                         " --mode whirlpool --res 64x64 --slices 16 --size 160x90 --seconds 0.1"
+                         " --fps 20 --policy loop");
+    ASSERT_EQ(r.code, 0) << r.err;
+    const nlohmann::json meta = nlohmann::json::parse(slurp(out / "render.json"));
+    EXPECT_FALSE(meta["splash"]["active"].get<bool>());
+    for (const auto& f : meta["frames"])
+        EXPECT_EQ(f["splash_sprites"].get<std::size_t>(), 0u);
+    const Result bad = run("render " + cache() + " --out " + out.string() + " --splashes maybe");
+    EXPECT_NE(bad.code, 0);
+    EXPECT_NE(bad.err.find("--splashes"), std::string::npos) << bad.err;
 }
 
 TEST_F(RenderApp, ACacheWithoutSplashRunsNoSplashPass) {

@@ -47,6 +47,8 @@ struct WhirlpoolParams {
                                      ///< unit mesh; outer radius a e^(2 pi b) = 3.41 a)
     double turnsPerTimeUnit = 0.125; ///< spin: turns of the spiral set per animation time unit
                                      ///< (counter-clockwise in (x, z); 0: still)
+    double eyeDepth = 0.0;           ///< depth of the eye's funnel at the centre, metres
+                                     ///< (whirlpool.h; 0: the paper's flat eye)
 
     /// Throws std::invalid_argument naming "whirlpool.inner_radius_cells" etc.
     void validate() const;

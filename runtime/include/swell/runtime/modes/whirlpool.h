@@ -16,16 +16,37 @@
 //  * Cell centre P at polar (r, theta) about C (theta from +x towards +z):
 //    t = ln(r / a) / b for r > a, else 0; u = N min(t, 2 pi) / (2 pi);
 //    s = (theta - t - spin(tau)) J / (2 pi) mod J, in [0, J).
-//    Height: the two nearest spirals j0 = floor(s), j1 = (j0 + 1) mod J, weights 1 - (s - j0)
-//    and s - j0, each read at u from its frame's eq. (7) profile (CpuReconstruction::profile:
-//    the Gaussian mean of the slice's particles around the column centre, or the fallback)
-//    linearly between column centres: fu = clamp(u - 1/2, 0, N - 1), n0 = min(floor(fu), N - 2)
-//    (0 when N = 1), weight fu - n0 for min(n0 + 1, N - 1).
+//  * The spirals as a function of s: f(s) = sum_j hat(s - j) p_j(u), hat(x) = max(0, 1 - |x|)
+//    (linear between the two nearest spirals), p_j(u) slice j's eq. (7) profile
+//    (CpuReconstruction::profile: the Gaussian mean of the slice's particles around the column
+//    centre, or the fallback; with TimeSampling::Linear the blend of the two stored frames
+//    around its frame number) linear between column centres u = k + 1/2 and constant beyond
+//    the first and last.
+//  * Footprint filter: the two cells (c = 2 max(dx, dz)) that the surface's bilinear
+//    interpolation spans cover |grad s| c slices, |grad s| = J sqrt(1 + 1 / b^2) / (2 pi r)
+//    (the angle's and the spiral parameter's share; used in the eye too, where it
+//    over-filters on purpose), and |grad u| c columns of the profile, |grad u| =
+//    N / (2 pi b r) in the band a < r < R (0 beyond R). In the eye the profile window widens
+//    from its width W_a at r = a to the whole profile at the centre: max(W_a, N (1 - r/a)^2).
+//    The cell's height is the box mean of f over w = clamp(|grad s| c, 1, J) slices centred
+//    on s and wu = clamp(|grad u| c, 1, N) columns centred on u clamped into
+//    [wu / 2, N - wu / 2] (so the window stays on the profile and moves continuously):
+//      sum_j [H(s + w/2 - j) - H(s - w/2 - j)] / w  x  (1 / wu) integral of p_j over the box,
+//    H(x) the integral of the hat to x, so that a cell that spans several spirals or several
+//    profile columns shows their mean, not one of them (point sampling there aliases the
+//    slices' frame noise and the profile's short waves into single-cell needles), and the
+//    eye's centre shows the mean of every spiral over its whole length (steady: the tank's
+//    water volume) instead of the wave maker's end of each. The profile's integral uses
+//    C_j(k) = sum_{i < k} (p_j(i) + p_j(i + 1)) / 2 at column centres.
+//  * Eye funnel: minus the surface of a Rankine vortex of depth D at the
+//    centre (WhirlpoolParams::eyeDepth), d(r) = D (1 - r^2 / (2 a^2)) for r <= a, D a^2 / (2 r^2)
+//    (1 - smoothstep(a, R, r)) for a < r < R (value and slope continuous at a), 0 beyond R.
 //  * Outside the spiral band a <= r <= R: the eye r < a shows the inner ends (t = 0, u = 0) of
-//    the spirals through the cell's angle (radial there); beyond R (the mesh's corners with
-//    the defaults) the spirals keep winding, r = a e^(b t) with t > 2 pi, and show their outer
-//    end's profile (u = N). The field is continuous at r = a and r = R, with no hole and no
-//    NaN. The slice axis wraps around (j = J - 1 neighbours j = 0; the noise is periodic in k).
+//    the spirals through the cell's angle (radial there, filtered as above); beyond R (the mesh's
+//    corners with the defaults) the spirals keep winding, r = a e^(b t) with t > 2 pi, and show
+//    their outer end's profile (u = N). The field is continuous at r = a and r = R, with no hole
+//    and no NaN. The slice axis wraps around (j = J - 1 neighbours j = 0; the noise is periodic in
+//    k).
 
 #include "swell/runtime/modes/mode_params.h"
 #include "swell/runtime/replay/cpu_reconstruction.h"
@@ -42,10 +63,18 @@ namespace swell::runtime {
 
 /// Where a cell lies on the spiral set at spin 0.
 struct SpiralPoint {
-    double t = 0.0; ///< spiral parameter ln(r / a) / b, 0 in the eye (> 2 pi beyond R)
-    double u = 0.0; ///< column coordinate along the profile, N t / (2 pi), in [0, N]
-    double s = 0.0; ///< slice coordinate at spin 0, (theta - t) J / (2 pi) mod J, in [0, J)
+    double t = 0.0;       ///< spiral parameter ln(r / a) / b, 0 in the eye (> 2 pi beyond R)
+    double u = 0.0;       ///< column coordinate along the profile, N t / (2 pi), in [0, N]
+    double s = 0.0;       ///< slice coordinate at spin 0, (theta - t) J / (2 pi) mod J, in [0, J)
+    double uWidth = 1.0;  ///< footprint filter width along the profile, columns, in [1, N]
+    double uCentre = 0.5; ///< centre of that window, u clamped into [uWidth / 2, N - uWidth / 2]
+    double width = 1.0;   ///< footprint filter width w across the spirals, slices, in [1, J]
+    double dip = 0.0;     ///< eye funnel depth d(r) subtracted from the height, metres
 };
+
+/// Weight of spiral j (an integer offset x = j - s from the cell's slice coordinate) in the
+/// box mean of width w of the linear interpolant: [H(w/2 - x) - H(-w/2 - x)] / w.
+double footprintWeight(double x, double w);
 
 class SpiralGeometry {
 public:

@@ -16,6 +16,8 @@ struct BakeRecord {
     double waterXMax = 0.0; ///< m: highest x where water can be (fallback: domain xMax)
     /// m: y of the still-water surface (fallback: the metadata's "still_water_level", else NaN).
     double stillWaterLevel = 0.0;
+    /// m: y of the tank's floor, the scene's geometry.tank.y0 (fallback: the domain's yMin).
+    double floorLevel = 0.0;
     /// m: l0 (fallback: scene.geometry.particle_spacing, else 0: unknown).
     double particleSpacing = 0.0;
     double steadyStartSeconds = 0.0; ///< s of simulated time; 0 when not recorded

@@ -57,6 +57,10 @@ public:
     GlName heightTexture() { return m_out->texture(); }
     /// SSBO of 2K - 1 ivec2: (cache frame shown, column slot or -1) of slice j, at z_j.
     GlName sliceBuffer() const { return m_slices.get(); }
+    /// SSBO of 2K - 1 vec2: (second column slot or -1, its weight) of slice j: the slice
+    /// shows mix(slot of sliceBuffer(), this slot, weight) (TimeSampling::Linear; weight 0
+    /// with Nearest).
+    GlName blendBuffer() const { return m_blend.get(); }
     /// Reads the heights back (blocks).
     HeightField readHeights() const { return m_out->read(); }
     /// Reads the frame of every slice back (blocks).
