@@ -13,6 +13,10 @@ void placeSplashes(std::vector<SplashSprite>& sprites, const Grid& grid, const M
                    int direction, double tau) {
     constexpr double kTwoPi = 2.0 * std::numbers::pi;
     const double cx = grid.x0 + 0.5 * grid.cellsX * grid.dx, cz = 0.5 * grid.extentZ;
+    const double x1 = grid.x0 + grid.cellsX * grid.dx;
+    // Spray outside the slices' own x range (e.g. the wave maker's zone) is not shown: cut
+    // before the mode moves it into the mesh.
+    std::erase_if(sprites, [&](const SplashSprite& p) { return !(p.x >= grid.x0 && p.x <= x1); });
     switch (mode.mode) {
     case ReplayMode::Surging:
         break;
@@ -46,7 +50,6 @@ void placeSplashes(std::vector<SplashSprite>& sprites, const Grid& grid, const M
         break;
     }
     }
-    const double x1 = grid.x0 + grid.cellsX * grid.dx;
     std::erase_if(sprites, [&](const SplashSprite& p) {
         return !(p.x >= grid.x0 && p.x <= x1 && p.z >= 0.0 && p.z <= grid.extentZ);
     });

@@ -36,12 +36,23 @@ void periodicTap(double c, int cells, int& i0, int& i1, double& f) {
     f = fc - i0;
 }
 
+double smoothstep(double e0, double e1, double x) {
+    const double t = std::clamp((x - e0) / (e1 - e0), 0.0, 1.0);
+    return t * t * (3.0 - 2.0 * t);
+}
+
 void checkSamplers(const ModeParams& mode, std::span<const SliceSampler> samplers) {
     if (samplers.size() != static_cast<std::size_t>(mode.sliceSets()))
         throw std::logic_error("ripple: one slice sampler per direction is needed");
 }
 
 } // namespace
+
+double rippleEdgeWeight(double u, int N, double side) {
+    const double margin = kRippleEdgeMargin * N;
+    const double a = std::min(u, N - u) + std::max(margin - side, 0.0);
+    return kRippleEdgeFloor + (1.0 - kRippleEdgeFloor) * smoothstep(0.0, margin, a);
+}
 
 bool rippleIsIdentity(const RippleParams& ripple) {
     return ripple.anglesDegrees.size() == 1 && ripple.anglesDegrees[0] == 0.0;
@@ -66,6 +77,9 @@ std::vector<RippleTap> rippleTaps(const Grid& grid, const RippleParams& ripple) 
         for (int n = 0; n < N; ++n) {
             const double px = grid.x0 + (n + 0.5) * grid.dx - Cx;
             const double pz = (m + 0.5) * grid.dz - Cz;
+            // Distance to the base mesh's nearest side, in cells of dx.
+            const double side = std::min(0.5 * N - std::abs(px) / grid.dx,
+                                         (0.5 * grid.extentZ - std::abs(pz)) / grid.dx);
             RippleTap* cell =
                 &taps[(static_cast<std::size_t>(m) * static_cast<std::size_t>(N) + n) * D];
             for (std::size_t d = 0; d < D; ++d) {
@@ -78,8 +92,13 @@ std::vector<RippleTap> rippleTaps(const Grid& grid, const RippleParams& ripple) 
                 t.inside = u >= 0.0 && u <= N && v >= 0.0 && v <= M;
                 clampedTap(u, N, t.n0, t.n1, t.fx);
                 periodicTap(v, M, t.m0, t.m1, t.fz);
-                t.weight = omega[d]; // eq. (8)'s omega_d
+                t.weight = omega[d] * rippleEdgeWeight(u, N, side); // eq. (8)'s omega_d, tapered
             }
+            double sum = 0.0;
+            for (std::size_t d = 0; d < D; ++d)
+                sum += cell[d].weight;
+            for (std::size_t d = 0; d < D; ++d)
+                cell[d].weight /= sum;
         }
     }
     return taps;
@@ -175,6 +194,10 @@ GpuRipple::GpuRipple(const FrameSet& frames, const ReplayParams& params, const R
     glProgramUniform1f(sp, uniformLocation(m_synthesis, "u_cx"), static_cast<float>(0.5 * N));
     glProgramUniform1f(sp, uniformLocation(m_synthesis, "u_cz"), static_cast<float>(0.5 * M));
     glProgramUniform1f(sp, uniformLocation(m_synthesis, "u_dzdx"), static_cast<float>(g.dz / g.dx));
+    glProgramUniform1f(sp, uniformLocation(m_synthesis, "u_edgeMargin"),
+                       static_cast<float>(kRippleEdgeMargin * g.cellsX));
+    glProgramUniform1f(sp, uniformLocation(m_synthesis, "u_edgeFloor"),
+                       static_cast<float>(kRippleEdgeFloor));
     for (GlQuery& q : m_queries)
         q = makeTimestampQuery();
     checkGl("setting up the ripple synthesis");

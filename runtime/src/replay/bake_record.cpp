@@ -47,6 +47,14 @@ BakeRecord bakeRecord(const cache::Header& header) {
     }
     if (spacing != nullptr && spacing->is_number())
         r.particleSpacing = spacing->get<double>();
+    r.waveMakerXMax = std::numeric_limits<double>::quiet_NaN();
+    if (meta.contains("scene") && meta["scene"].is_object() &&
+        meta["scene"].contains("recycling") && meta["scene"]["recycling"].is_object()) {
+        const json& rec = meta["scene"]["recycling"];
+        if (rec.contains("inflow_x1") && rec["inflow_x1"].is_number() &&
+            std::isfinite(rec["inflow_x1"].get<double>()))
+            r.waveMakerXMax = rec["inflow_x1"].get<double>();
+    }
     r.floorLevel = header.domain.yMin;
     const json* tank = nullptr;
     if (meta.contains("scene") && meta["scene"].is_object() && meta["scene"].contains("geometry") &&
@@ -88,6 +96,14 @@ BakeRecord bakeRecord(const cache::Header& header) {
     if (block.contains("steady_reason") && block["steady_reason"].is_string())
         r.steadyReason = block["steady_reason"].get<std::string>();
     return r;
+}
+
+std::pair<double, double> shownWaterX(const BakeRecord& record) {
+    double x0 = record.waterXMin;
+    if (std::isfinite(record.waveMakerXMax) && record.waveMakerXMax > x0 &&
+        record.waveMakerXMax < record.waterXMax)
+        x0 = record.waveMakerXMax;
+    return {x0, record.waterXMax};
 }
 
 } // namespace swell::runtime

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
+#include <tuple>
 
 namespace swell::runtime {
 
@@ -223,8 +224,7 @@ Grid makeGrid(const cache::Header& header, const ReplayParams& params) {
     double x1 = header.domain.xMax;
     if (params.extentX == ExtentX::Water) {
         const BakeRecord record = bakeRecord(header); // the domain when nothing is recorded
-        x0 = record.waterXMin;
-        x1 = record.waterXMax;
+        std::tie(x0, x1) = shownWaterX(record);
     } else if (params.extentX == ExtentX::Explicit) {
         x0 = params.extentX0;
         x1 = params.extentX1;

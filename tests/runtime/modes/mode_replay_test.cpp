@@ -191,7 +191,8 @@ TEST_F(ModeReplayTest, OneRippleDirectionAtZeroIsTheSurgingReplayWithoutSynthesi
 
 TEST_F(ModeReplayTest, RippleAtZeroAndNinetyDegreesWithoutNoiseIsTheMeanOfTwoProfiles) {
     // F = 0: every direction's field is the same profile p(n) on every row. Direction 90 reads
-    // base cell (n, m) at its cell (m, N - 1 - n), so eq. (8) gives (p(n) + p(m)) / 2.
+    // base cell (n, m) at its cell (m, N - 1 - n), so eq. (8) gives the mean of p(n) and p(m)
+    // weighted by the edge tapers e(n + 1/2) and e(m + 1/2) of the two directions.
     const FrameSet& set = *s_frames;
     ReplayParams p = paperDefaults(ReplayMode::Ripple);
     p = test::sized(40, 40, 32, p);
@@ -210,11 +211,44 @@ TEST_F(ModeReplayTest, RippleAtZeroAndNinetyDegreesWithoutNoiseIsTheMeanOfTwoPro
     double spread = 0.0;
     for (int m = 0; m < 40; ++m) {
         for (int n = 0; n < 40; ++n) {
-            EXPECT_NEAR(h.at(n, m), 0.5 * (s.at(n, 0) + s.at(m, 0)), 1e-5) << n << ", " << m;
+            const double side = std::min({n + 0.5, 39.5 - n, m + 0.5, 39.5 - m});
+            const double e0 = rippleEdgeWeight(n + 0.5, 40, side);
+            const double e1 = rippleEdgeWeight(m + 0.5, 40, side);
+            EXPECT_NEAR(h.at(n, m), (e0 * s.at(n, 0) + e1 * s.at(m, 0)) / (e0 + e1), 1e-5)
+                << n << ", " << m;
             spread = std::max(spread, std::abs(s.at(n, 0) - s.at(0, 0)));
         }
     }
     EXPECT_GT(spread, 0.01); // the profile is not flat, so the test can tell directions apart
+}
+
+TEST(RippleTaps, WeightsFadeSmoothlyWhereADirectionsFieldEnds) {
+    // Two directions, 0 and 30 degrees: the rotated one's field ends inside the base mesh.
+    Grid g;
+    g.cellsX = g.cellsZ = 64;
+    g.slices = 16;
+    g.dx = g.dz = 0.05;
+    g.extentZ = 64 * 0.05;
+    RippleParams r;
+    r.anglesDegrees = {0.0, 30.0};
+    const std::vector<RippleTap> taps = rippleTaps(g, r);
+    double worstStep = 0.0, least = 1.0;
+    for (int m = 0; m < 64; ++m) {
+        for (int n = 0; n < 64; ++n) {
+            const RippleTap* c = &taps[(static_cast<std::size_t>(m) * 64 + n) * 2];
+            EXPECT_NEAR(c[0].weight + c[1].weight, 1.0, 1e-12);
+            least = std::min(least, c[1].weight);
+            if (n + 1 < 64)
+                worstStep = std::max(worstStep, std::abs(c[3].weight - c[1].weight));
+            if (m + 1 < 64)
+                worstStep = std::max(worstStep, std::abs(c[129].weight - c[1].weight));
+        }
+    }
+    // Outside its field the rotated direction keeps only the floor's share...
+    EXPECT_LT(least, 2.0 * kRippleEdgeFloor);
+    // ...and fades there over the margin (9.6 cells): no weight jumps between neighbours (a
+    // cut at the field's end would step by 0.5).
+    EXPECT_LT(worstStep, 0.12);
 }
 
 TEST_F(ModeReplayTest, WhirlpoolRotatesWithAnimationTime) {

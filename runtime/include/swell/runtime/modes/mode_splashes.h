@@ -25,7 +25,9 @@ namespace swell::runtime {
 /// Moves `sprites` (laid out by SplashSystem on the surging slice set of `grid`) to the layout
 /// of `mode` (ripple: direction `direction`; whirlpool: spin at animation time `tau`; surging:
 /// where they are) and drops those outside the mesh: in the surging tank, spray thrown past a
-/// wall would fall outside the box, where the simulated tank's walls hold it. Throws
+/// wall would fall outside the box, where the simulated tank's walls hold it. Spray outside
+/// the grid's own x range (the wave maker's zone, ExtentX::Water) is dropped before the move,
+/// so that no mode turns it into a line or ring of sprites inside the mesh. Throws
 /// std::invalid_argument for a ripple direction out of range.
 void placeSplashes(std::vector<SplashSprite>& sprites, const Grid& grid, const ModeParams& mode,
                    int direction, double tau);

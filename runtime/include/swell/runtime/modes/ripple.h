@@ -21,7 +21,14 @@
 //    row 0 show neighbouring noise), beyond the ends of the cache's x range it continues its
 //    edge column. So every direction contributes to every cell with its weight and the sum
 //    has no seam, no hole and no NaN.
-//  * Weights: eq. (8)'s omega_d normalised to sum 1 (default equal: the mean).
+//  * Weights: eq. (8)'s omega_d (default equal) times an edge taper e that fades a direction
+//    out where its own field ends along x inside the base mesh (there its clamped edge column
+//    would meet the other directions in a straight crease):
+//      e = f + (1 - f) S(min(u, N - u) + max(L - b, 0)),
+//    S the smoothstep from 0 to L = kRippleEdgeMargin N cells, b the cell's distance to the
+//    base mesh's nearest side in cells of dx (so a direction is not faded within L of the
+//    mesh's own sides, and the unrotated direction never is), floor f = kRippleEdgeFloor;
+//    the weights of a cell normalised to sum 1 over the directions.
 //  * One direction at angle 0: the base cell is the direction's own cell; no synthesis pass.
 
 #include "swell/runtime/modes/mode_params.h"
@@ -38,6 +45,14 @@
 
 namespace swell::runtime {
 
+/// Edge taper of the ripple weights (definitions above): the share of a direction's cells, at
+/// each end of its x range, over which its weight fades, and the weight left beyond its ends.
+inline constexpr double kRippleEdgeMargin = 0.15;
+inline constexpr double kRippleEdgeFloor = 0.01;
+/// e at column coordinate u of a direction with N columns, for a cell `side` cells of dx from
+/// the base mesh's nearest side.
+double rippleEdgeWeight(double u, int N, double side);
+
 /// Where one base cell reads one direction (definitions above).
 struct RippleTap {
     int n0 = 0;          ///< lower column of the 2 x 2 neighbours in the direction's field
@@ -46,7 +61,7 @@ struct RippleTap {
     int m1 = 0;          ///< upper row ((m0 + 1) mod M)
     double fx = 0.0;     ///< bilinear fraction along the direction's x
     double fz = 0.0;     ///< bilinear fraction along the direction's z
-    double weight = 0.0; ///< eq. (8) weight, omega_d normalised to sum 1 over the directions
+    double weight = 0.0; ///< eq. (8) weight omega_d e(u), normalised to sum 1 over the directions
     bool inside = false; ///< (u, v) lies inside the direction's own grid (no fallback used)
 };
 

@@ -7,6 +7,7 @@
 #include "swell/cache/header.h"
 
 #include <string>
+#include <utility>
 
 namespace swell::runtime {
 
@@ -16,6 +17,9 @@ struct BakeRecord {
     double waterXMax = 0.0; ///< m: highest x where water can be (fallback: domain xMax)
     /// m: y of the still-water surface (fallback: the metadata's "still_water_level", else NaN).
     double stillWaterLevel = 0.0;
+    /// m: the end of the wave maker's own zone, the scene's recycling.inflow_x1 (NaN when the
+    /// scene has none): the water before it is where waves are made, not where they are.
+    double waveMakerXMax = 0.0;
     /// m: y of the tank's floor, the scene's geometry.tank.y0 (fallback: the domain's yMin).
     double floorLevel = 0.0;
     /// m: l0 (fallback: scene.geometry.particle_spacing, else 0: unknown).
@@ -28,5 +32,9 @@ struct BakeRecord {
 /// The record of `header`'s metadata. Throws std::invalid_argument naming the key when the
 /// block is present but malformed (wrong type, non-finite, x_max <= x_min, negative start).
 BakeRecord bakeRecord(const cache::Header& header);
+
+/// The x range a replay shows with ExtentX::Water: the recorded water extent less the wave
+/// maker's zone (when it leaves some water).
+std::pair<double, double> shownWaterX(const BakeRecord& record);
 
 } // namespace swell::runtime

@@ -27,8 +27,8 @@ FramePolicy framePolicyFromString(const std::string& name);
 
 /// Which x range the base mesh's N cells span.
 enum class ExtentX {
-    Water,    ///< the water's x range recorded by the bake (bake_record.h); the cache domain when
-              ///< the cache has no record
+    Water,    ///< the water's x range recorded by the bake less the wave maker's zone
+              ///< (bake_record.h, shownWaterX); the cache domain when the cache has no record
     Domain,   ///< the cache's whole domain (the solver's padded box)
     Explicit, ///< [ReplayParams::extentX0, extentX1]
 };
