@@ -1,6 +1,6 @@
 #pragma once
 // One swell-play subcommand: it adds itself and its options to the command line, then runs.
-// main.cpp only wires them (bench.cpp, heights.cpp, render.cpp, fidelity.cpp).
+// main.cpp only wires them (bench.cpp, heights.cpp, render.cpp, fidelity.cpp, look.cpp).
 
 #include <CLI/CLI.hpp>
 #include <memory>
@@ -23,5 +23,6 @@ std::unique_ptr<Command> makeBenchCommand();
 std::unique_ptr<Command> makeHeightsCommand();
 std::unique_ptr<Command> makeRenderCommand();
 std::unique_ptr<Command> makeFidelityCommand();
+std::unique_ptr<Command> makeLookCommand();
 
 } // namespace swell::play

@@ -13,6 +13,7 @@ PlayCommandLine::PlayCommandLine()
     m_commands.push_back(makeHeightsCommand());
     m_commands.push_back(makeRenderCommand());
     m_commands.push_back(makeFidelityCommand());
+    m_commands.push_back(makeLookCommand());
     for (const auto& c : m_commands)
         m_subcommands.push_back(c->add(m_app));
 }

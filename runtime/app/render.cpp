@@ -132,9 +132,11 @@ public:
           m_heights(m_out / "heights", r.heights, heightScale(setup.set.header.domain),
                     m_gpu.grid(), displacementReference(setup)),
           // The artificial splashes get their own stream per slice set (the ripple's
-          // directions), derived from the run's seed; they follow the mode's layout.
-          m_splashes(makeSplashSystems(setup.set, m_gpu.grid(), r.splash, o.params.seed,
-                                       setup.samplers.size())) {}
+          // directions), derived from the run's seed; they follow the mode's layout. A wave
+          // maker's own spray is not shown.
+          m_splashes(makeSplashSystems(setup.set, m_gpu.grid(),
+                                       keepSprayAwayFromTheWaveMaker(r.splash, setup.plan.record),
+                                       o.params.seed, setup.samplers.size())) {}
 
     /// Renders and writes every frame of `taus`, the contact sheet and the video.
     void renderAll(const std::vector<double>& taus, DeferredRenames& staged) {

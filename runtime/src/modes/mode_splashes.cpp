@@ -55,6 +55,18 @@ void placeSplashes(std::vector<SplashSprite>& sprites, const Grid& grid, const M
     });
 }
 
+SplashParams keepSprayAwayFromTheWaveMaker(SplashParams params, const BakeRecord& record) {
+    if (!std::isfinite(record.waveMakerXMax) || !(record.particleSpacing > 0.0))
+        return params;
+    const auto [x0, x1] = shownWaterX(record);
+    const double band = kRecyclingSprayBand * record.particleSpacing;
+    if (x1 - x0 > 2.0 * band) {
+        params.keepX0 = std::max(params.keepX0, x0 + band);
+        params.keepX1 = std::min(params.keepX1, x1 - band);
+    }
+    return params;
+}
+
 std::vector<SplashSystem> makeSplashSystems(const FrameSet& frames, const Grid& grid,
                                             const SplashParams& params, std::uint64_t seed,
                                             std::size_t sets) {

@@ -44,6 +44,8 @@ void SplashParams::validate() const {
         throw std::invalid_argument("splash gravity must be >= 0");
     if (sliceStride < 1)
         throw std::invalid_argument("splash slice stride must be >= 1");
+    if (std::isnan(keepX0) || std::isnan(keepX1) || !(keepX1 > keepX0))
+        throw std::invalid_argument("splash keep range needs x0 < x1");
 }
 
 SplashParams splashParamsFromJson(const nlohmann::json& j) {
@@ -161,8 +163,11 @@ std::vector<SplashSprite> SplashSystem::sprites(std::span<const std::uint32_t> s
         if (frame == nullptr)
             continue; // not held: nothing to show (like the replay's yMin)
         const double z = m_grid.sliceZCells(j) * m_grid.dz;
-        for (std::size_t i = 0; i < frame->splashCount(); ++i)
-            reals.push_back({&frame->splash[4 * i], j, i, z});
+        for (std::size_t i = 0; i < frame->splashCount(); ++i) {
+            const float x = frame->splash[4 * i];
+            if (x >= q.keepX0 && x <= q.keepX1)
+                reals.push_back({&frame->splash[4 * i], j, i, z});
+        }
     }
     const auto per = static_cast<std::size_t>(1 + q.artificialPerReal);
     out.resize(reals.size() * per);

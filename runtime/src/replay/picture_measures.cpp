@@ -4,6 +4,7 @@
 #include <cmath>
 #include <map>
 #include <numbers>
+#include <set>
 #include <stdexcept>
 #include <vector>
 
@@ -122,7 +123,7 @@ double creaseRatio(const HeightField& h, double pn, double pm, double tn, double
             if (distance <= 1.5) {
                 onSum += std::abs(d2);
                 ++on;
-            } else {
+            } else if (distance > 3.0 && distance <= 8.0) { // beside it, either side
                 offSum += std::abs(d2);
                 ++off;
             }
@@ -133,28 +134,33 @@ double creaseRatio(const HeightField& h, double pn, double pm, double tn, double
     return (onSum / static_cast<double>(on)) / (offSum / static_cast<double>(off));
 }
 
-double lineShare(std::span<const double> xs, std::span<const double> zs, double halfWidth) {
+double lineCoverage(std::span<const double> xs, std::span<const double> zs, double halfWidth,
+                    double span) {
     if (xs.size() != zs.size())
-        throw std::invalid_argument("line share: as many x as z coordinates are needed");
-    if (!(halfWidth > 0.0))
-        throw std::invalid_argument("line share: the half-width must be > 0");
-    if (xs.empty())
-        return 0.0;
+        throw std::invalid_argument("line coverage: as many x as z coordinates are needed");
+    if (!(halfWidth > 0.0) || !(span > 0.0))
+        throw std::invalid_argument("line coverage: the half-width and span must be > 0");
     std::size_t best = 0;
     for (int degrees = 0; degrees < 180; ++degrees) {
         const double a = degrees * std::numbers::pi / 180.0;
-        const double nx = -std::sin(a), nz = std::cos(a);
-        // Offsets along the normal in bins of the half-width; a line of that half-width
-        // covers two neighbouring bins.
-        std::map<long long, std::size_t> bins;
-        for (std::size_t i = 0; i < xs.size(); ++i)
-            ++bins[static_cast<long long>(std::floor((xs[i] * nx + zs[i] * nz) / halfWidth))];
-        for (const auto& [bin, count] : bins) {
-            const auto next = bins.find(bin + 1);
-            best = std::max(best, count + (next == bins.end() ? 0 : next->second));
+        const double tx = std::cos(a), tz = std::sin(a);
+        // Offsets across the line in bins of the half-width (a line covers two neighbouring
+        // ones), positions along it in bins of the width.
+        std::map<long long, std::set<long long>> along;
+        for (std::size_t i = 0; i < xs.size(); ++i) {
+            const long long across =
+                static_cast<long long>(std::floor((-xs[i] * tz + zs[i] * tx) / halfWidth));
+            along[across].insert(
+                static_cast<long long>(std::floor((xs[i] * tx + zs[i] * tz) / (2.0 * halfWidth))));
+        }
+        for (const auto& [bin, occupied] : along) {
+            std::set<long long> both = occupied;
+            if (const auto next = along.find(bin + 1); next != along.end())
+                both.insert(next->second.begin(), next->second.end());
+            best = std::max(best, both.size());
         }
     }
-    return static_cast<double>(best) / static_cast<double>(xs.size());
+    return std::min(1.0, static_cast<double>(best) * 2.0 * halfWidth / span);
 }
 
 } // namespace swell::runtime

@@ -76,23 +76,28 @@ TEST(PictureMeasures, ACreaseAlongALineAndNoneOnASmoothField) {
     EXPECT_THROW(creaseRatio(smooth, 0.5, 0.5, 0.0, 0.0), std::invalid_argument);
 }
 
-TEST(PictureMeasures, ARowOfPointsIsALineAndScatteredPointsAreNot) {
+TEST(PictureMeasures, ARowOfPointsCoversALineAndScatteredClustersDoNot) {
+    // A row along a 30-degree line across a 10 m mesh.
     std::vector<double> xs, zs;
     SplitMix64 rng(3);
-    for (int i = 0; i < 200; ++i) {
+    for (int i = 0; i < 400; ++i) {
         const double t = 10.0 * rng.uniform();
-        xs.push_back(1.0 + t * std::cos(std::numbers::pi / 6.0));
-        zs.push_back(2.0 + t * std::sin(std::numbers::pi / 6.0));
+        xs.push_back(t * std::cos(std::numbers::pi / 6.0));
+        zs.push_back(t * std::sin(std::numbers::pi / 6.0));
     }
-    EXPECT_GT(lineShare(xs, zs, 0.05), 0.95);
+    EXPECT_GT(lineCoverage(xs, zs, 0.05, 10.0), 0.9);
+    // Twenty clusters of twenty points, 4 cm across, scattered over the mesh.
     std::vector<double> sx, sz;
-    for (int i = 0; i < 200; ++i) {
-        sx.push_back(10.0 * rng.uniform());
-        sz.push_back(10.0 * rng.uniform());
+    for (int c = 0; c < 20; ++c) {
+        const double cx = 10.0 * rng.uniform(), cz = 10.0 * rng.uniform();
+        for (int i = 0; i < 20; ++i) {
+            sx.push_back(cx + 0.04 * (rng.uniform() - 0.5));
+            sz.push_back(cz + 0.04 * (rng.uniform() - 0.5));
+        }
     }
-    EXPECT_LT(lineShare(sx, sz, 0.05), 0.1);
-    EXPECT_EQ(lineShare({}, {}, 0.05), 0.0);
-    EXPECT_THROW(lineShare(sx, sz, 0.0), std::invalid_argument);
+    EXPECT_LT(lineCoverage(sx, sz, 0.05, 10.0), 0.1);
+    EXPECT_EQ(lineCoverage({}, {}, 0.05, 10.0), 0.0);
+    EXPECT_THROW(lineCoverage(sx, sz, 0.0, 10.0), std::invalid_argument);
 }
 
 } // namespace swell::runtime

@@ -13,6 +13,7 @@
 
 #include "swell/runtime/modes/mode_params.h"
 #include "swell/runtime/render/splash_system.h"
+#include "swell/runtime/replay/bake_record.h"
 #include "swell/runtime/replay/replay_params.h"
 #include "swell/runtime/replay/slice_sampler.h"
 
@@ -29,6 +30,16 @@ namespace swell::runtime {
 /// the grid's own x range (the wave maker's zone, ExtentX::Water) is dropped before the move,
 /// so that no mode turns it into a line or ring of sprites inside the mesh. Throws
 /// std::invalid_argument for a ripple direction out of range.
+/// Reach of the recycling's cut lines, in l0: within it the MPS kernel (r_e = 3.1 l0 for the
+/// Laplacian) finds too few neighbours and the bake marks particles as splashes.
+inline constexpr double kRecyclingSprayBand = 4.0;
+
+/// A scene with a wave maker's zone (bake_record.h: a recycling channel's inflow, and its
+/// outflow at the water's end): the spray shown kept kRecyclingSprayBand l0 inside the shown
+/// water range (shownWaterX), away from the inflow zone's end and the outflow, where the
+/// recycling itself makes it. Otherwise `params` unchanged.
+SplashParams keepSprayAwayFromTheWaveMaker(SplashParams params, const BakeRecord& record);
+
 void placeSplashes(std::vector<SplashSprite>& sprites, const Grid& grid, const ModeParams& mode,
                    int direction, double tau);
 

@@ -10,6 +10,7 @@
 #include "swell/runtime/replay/replay_params.h"
 
 #include <cstdint>
+#include <limits>
 #include <nlohmann/json_fwd.hpp>
 #include <span>
 #include <vector>
@@ -29,6 +30,10 @@ struct SplashParams {
     double maxLifetime = 1.2;  ///< longest lifetime, seconds
     double gravity = 9.81;     ///< downward acceleration of the ballistic motion, m/s^2
     int sliceStride = 1;       ///< use every n-th real slice (1: all K)
+    /// Real splashes are shown only with x in [keepX0, keepX1] (metres; default: all), e.g.
+    /// not the spray a wave maker makes (keepSprayAwayFromTheWaveMaker).
+    double keepX0 = -std::numeric_limits<double>::infinity();
+    double keepX1 = std::numeric_limits<double>::infinity();
     /// Memory for the artificial splashes' random numbers, drawn once (72 bytes per artificial
     /// splash a frame can show); when they need more, they are drawn again every frame (the
     /// same numbers, more CPU). 0: always every frame.

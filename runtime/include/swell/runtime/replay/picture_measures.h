@@ -13,11 +13,13 @@
 //  * Disc mean: the mean height of the cells whose centres lie within a radius of a point
 //    (the whirlpool's eye).
 //  * Crease ratio: the mean |second difference| across a straight line (cells within 1.5
-//    cells of it, differences along its normal) over the mean elsewhere: a slope break along
-//    the line gives more than 1.
-//  * Line share: the largest share of points within a half-width of one straight line (every
-//    direction in 1-degree steps, offsets in bins of the half-width): points scattered over
-//    an area give a small share; a row of sprites gives one near 1.
+//    cells of it, differences along the grid axis nearer its normal) over the mean beside it
+//    (cells 3 to 8 cells from it): a slope break along the line gives more than 1.
+//  * Line coverage: how much of one straight line the points cover: over every direction in
+//    1-degree steps and offsets in bins of a half-width w (a line covers two neighbouring
+//    bins), the most bins of width 2 w along the line that hold a point, times 2 w, over a
+//    span (the mesh's longer side); at most 1. Sparse splashes give a small coverage; spray
+//    repeated at one place in every slice makes a row of sprites across the mesh, near 1.
 
 #include "swell/runtime/replay/height_field.h"
 
@@ -44,7 +46,8 @@ double discMean(const HeightField& h, double cn, double cm, double radius);
 /// The line through (pn, pm) along direction (tn, tm), in cells. Throws
 /// std::invalid_argument when fewer than 4 cells lie on either side of the comparison.
 double creaseRatio(const HeightField& h, double pn, double pm, double tn, double tm);
-/// Points (xs[i], zs[i]); 0 when there are none.
-double lineShare(std::span<const double> xs, std::span<const double> zs, double halfWidth);
+/// Points (xs[i], zs[i]), metres; 0 when there are none.
+double lineCoverage(std::span<const double> xs, std::span<const double> zs, double halfWidth,
+                    double span);
 
 } // namespace swell::runtime
