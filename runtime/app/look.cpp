@@ -7,8 +7,8 @@
 //  * frame-to-frame change against the bake's own (the same grid replayed at F = 0);
 //  * whirlpool: the eye's largest change between consecutive frames against the bake's own;
 //  * ripple: the crease ratio where each rotated direction's field ends inside the mesh;
-//  * splash sprites (surging, ripple: the render's default splash pass): the largest share
-//    along one straight line.
+//  * splash sprites (surging, ripple: the render's default splash pass): how many, and how
+//    much of the mesh's side one straight row of them covers (frames with 10 or more).
 
 #include "command.h"
 #include "play_common.h"
@@ -123,7 +123,7 @@ public:
                 m_o.params.seed, setup.samplers.size());
 
         std::vector<double> slopeMean, slopeP99, needles, seeds, change, bakeChange, eyeStep,
-            sprites;
+            sprites, spriteCounts;
         std::vector<std::vector<double>> creases;
         std::optional<HeightField> previous;
         std::optional<double> previousEye;
@@ -162,6 +162,7 @@ public:
                     xs.push_back(p.x);
                     zs.push_back(p.z);
                 }
+                spriteCounts.push_back(static_cast<double>(xs.size()));
                 if (xs.size() >= 10)
                     sprites.push_back(lineCoverage(xs, zs, SplashParams{}.spawnRadius,
                                                    std::max(grid.cellsX * grid.dx, grid.extentZ)));
@@ -202,6 +203,10 @@ public:
                                 1.25,
                                 "|second difference| across a rotated direction's field end / "
                                 "elsewhere"});
+        }
+        if (!spriteCounts.empty()) {
+            measures.push_back({"sprites", median(spriteCounts), -INFINITY, INFINITY,
+                                "splash sprites per frame (the render's splash pass)"});
         }
         if (!sprites.empty()) {
             measures.push_back({"sprite_line_coverage", median(sprites), -INFINITY,
