@@ -457,3 +457,54 @@ TEST_F(PlayApp, PresetsSetTheNoiseAndTimeSamplingDefaults) {
 }
 
 } // namespace swell::runtime
+
+namespace swell::runtime {
+
+TEST_F(PlayApp, LookMeasuresThePictureAgainstItsTargets) {
+    const std::string common = " --res 64x64 --seconds 0.5 --json";
+    Result r = run("look " + cachePath() + common);
+    ASSERT_EQ(r.code, 0) << r.err;
+    nlohmann::json j = nlohmann::json::parse(r.out);
+    const nlohmann::json& m = j["measures"];
+    EXPECT_EQ(j["frames"], 15);
+    EXPECT_EQ(j["preset"], "swell");
+    // The defaults: long crests, no needles, seeds that differ.
+    EXPECT_TRUE(m["slope_ratio_mean"]["met"].get<bool>()) << m.dump();
+    EXPECT_TRUE(m["slope_ratio_p99"]["met"].get<bool>()) << m.dump();
+    EXPECT_TRUE(m["needle_share"]["met"].get<bool>()) << m.dump();
+    EXPECT_TRUE(m["seed_difference"]["met"].get<bool>()) << m.dump();
+    EXPECT_GT(m["frame_change_ratio"]["value"].get<double>(), 0.0);
+    // Table 4's values stripe the same wave: the check says so.
+    r = run("look " + cachePath() + " --preset paper" + common);
+    ASSERT_EQ(r.code, 0) << r.err;
+    j = nlohmann::json::parse(r.out);
+    EXPECT_FALSE(j["measures"]["slope_ratio_mean"]["met"].get<bool>()) << j.dump();
+    EXPECT_GT(j["measures"]["slope_ratio_mean"]["value"].get<double>(), 0.6);
+
+    // The whirlpool at its defaults: no needles, an eye steadier than the bake.
+    r = run("look " + cachePath() + " --mode whirlpool" + common);
+    ASSERT_EQ(r.code, 0) << r.err;
+    j = nlohmann::json::parse(r.out);
+    EXPECT_TRUE(j["measures"]["needle_share"]["met"].get<bool>()) << j.dump();
+    EXPECT_TRUE(j["measures"]["eye_step_ratio"]["met"].get<bool>()) << j.dump();
+    EXPECT_FALSE(j["measures"].contains("slope_ratio_mean"));
+
+    // The ripple: a crease ratio per end of the rotated direction's field inside the mesh.
+    r = run("look " + cachePath() + " --mode ripple --angles 0 30" + common);
+    ASSERT_EQ(r.code, 0) << r.err;
+    j = nlohmann::json::parse(r.out);
+    EXPECT_TRUE(j["measures"].contains("crease_ratio_0")) << j.dump();
+    for (const auto& [name, v] : j["measures"].items()) {
+        if (name.rfind("crease_ratio_", 0) == 0) {
+            EXPECT_TRUE(v["met"].get<bool>()) << name << ": " << v.dump();
+        }
+    }
+
+    // The same inputs give the same report; bad values are one clear line.
+    EXPECT_EQ(run("look " + cachePath() + common).out, run("look " + cachePath() + common).out);
+    r = run("look " + cachePath() + " --seconds 0");
+    EXPECT_NE(r.code, 0);
+    EXPECT_NE(r.err.find("--seconds"), std::string::npos) << r.err;
+}
+
+} // namespace swell::runtime
