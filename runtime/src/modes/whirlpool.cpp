@@ -99,7 +99,7 @@ SpiralPoint SpiralGeometry::at(int n, int m) const {
     const double atA = std::max(1.0, N / (kTwoPi * b * m_a) * cell);
     if (r <= m_a) {
         const double e = 1.0 - r / m_a;
-        p.uWidth = std::max(atA, N * e * e);
+        p.uWidth = std::max(atA, N * e);
     } else if (p.t < kTwoPi) {
         p.uWidth = std::max(1.0, N / (kTwoPi * b * r) * cell);
     }

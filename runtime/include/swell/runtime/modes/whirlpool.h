@@ -27,7 +27,7 @@
 //    (the angle's and the spiral parameter's share; used in the eye too, where it
 //    over-filters on purpose), and |grad u| c columns of the profile, |grad u| =
 //    N / (2 pi b r) in the band a < r < R (0 beyond R). In the eye the profile window widens
-//    from its width W_a at r = a to the whole profile at the centre: max(W_a, N (1 - r/a)^2).
+//    from its width W_a at r = a to the whole profile at the centre: max(W_a, N (1 - r/a)).
 //    The cell's height is the box mean of f over w = clamp(|grad s| c, 1, J) slices centred
 //    on s and wu = clamp(|grad u| c, 1, N) columns centred on u clamped into
 //    [wu / 2, N - wu / 2] (so the window stays on the profile and moves continuously):
