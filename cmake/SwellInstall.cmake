@@ -12,7 +12,7 @@ install(TARGETS swell_cache swell_bake swell_runtime swell_shaders swell_c
     LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
     RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR}
     INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
-install(TARGETS swell-bake swell-play swell-cache swell-validate
+install(TARGETS swell-bake swell-play swell-cache
     RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 foreach(dir cache bake runtime shaders)
     install(DIRECTORY ${PROJECT_SOURCE_DIR}/${dir}/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})

@@ -116,7 +116,7 @@ def goring_stroke(height, depth):
 def half_height_duration(amplitude, depth, k=None):
     """The time a record of a sech^2 wave of crest `amplitude` stays above half of it,
     2 acosh(sqrt 2) / (k c), c = sqrt(g (h + A)); k defaults to Boussinesq's for that crest (the
-    width the solitary-wave check compares with, bake/src/solitary_wave.cpp)."""
+    width the solitary-wave check compares with, bake/validation/src/solitary_wave.cpp)."""
     k = k or boussinesq_k(amplitude, depth)
     return 2.0 * math.acosh(math.sqrt(2.0)) / (k * math.sqrt(G * (depth + amplitude)))
 

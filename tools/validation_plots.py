@@ -298,7 +298,7 @@ def plot_solitary(runs, path):
 def stoker_depth(theory, h0, h1, dx, t):
     """Stoker's depth (m) at x - x0 = dx (m), time t (s), from the theory swell-validate reports
     (its bore's speed S, the state (h2, u2) behind it, c0 and c2): the same piecewise solution
-    as StokerDamBreak::depth (bake/include/swell/bake/wet_dam_break.h)."""
+    as StokerDamBreak::depth (bake/validation/include/swell/bake/validation/wet_dam_break.h)."""
     if t <= 0.0:
         return h0 if dx < 0.0 else h1
     xi = dx / t

@@ -245,7 +245,7 @@ std::vector<std::string> sceneWarnings(const Scene& scene) {
     const double depth = stillWaterLevel(scene) - scene.geometry.tank->y0;
     if (!(depth > 0.0))
         return out;
-    // Linear theory: Biesel transfer H/S and dispersion give H/L; Miche limits it.
+    // Linear theory: the piston transfer function H/S and dispersion give H/L; Miche limits it.
     // Random motion: the steepest combination is the largest stroke at the shortest period.
     const bool sinus = p.kind == PistonKind::Sinusoidal;
     const double stroke = sinus ? p.stroke : p.strokeMax;

@@ -32,7 +32,7 @@ double groupVelocity(double omega, double depth, double gravity) {
     return 0.5 * (omega / k) * (1.0 + ratio);
 }
 
-double bieselHeightOverStroke(double kh) {
+double pistonHeightOverStroke(double kh) {
     const double k2 = 2.0 * kh;
     return 2.0 * (std::cosh(k2) - 1.0) / (std::sinh(k2) + k2);
 }
@@ -48,7 +48,7 @@ LinearPistonWave linearPistonWave(double stroke, double period, double depth, do
     w.wavenumber = dispersionWavenumber(2.0 * std::numbers::pi / period, depth, gravity);
     w.wavelength = 2.0 * std::numbers::pi / w.wavenumber;
     w.kh = w.wavenumber * depth;
-    w.height = stroke * bieselHeightOverStroke(w.kh);
+    w.height = stroke * pistonHeightOverStroke(w.kh);
     w.steepness = w.height / w.wavelength;
     w.breakingSteepness = micheLimitSteepness(w.kh);
     return w;

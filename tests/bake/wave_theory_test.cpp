@@ -44,17 +44,17 @@ TEST(WaveTheory, GroupVelocity) {
 
 TEST(WaveTheory, BieselTransferFunction) {
     // Values of 2 (cosh 2kh - 1) / (sinh 2kh + 2kh), computed independently (Python).
-    EXPECT_NEAR(bieselHeightOverStroke(1.0), 0.981789, 1e-6);
-    EXPECT_NEAR(bieselHeightOverStroke(1.5), 1.393109, 1e-6);
-    EXPECT_NEAR(bieselHeightOverStroke(20.0), 2.0, 1e-12);       // deep water: H = 2 S
-    EXPECT_NEAR(bieselHeightOverStroke(1e-3) / 1e-3, 1.0, 1e-3); // shallow water: H/S = kh
+    EXPECT_NEAR(pistonHeightOverStroke(1.0), 0.981789, 1e-6);
+    EXPECT_NEAR(pistonHeightOverStroke(1.5), 1.393109, 1e-6);
+    EXPECT_NEAR(pistonHeightOverStroke(20.0), 2.0, 1e-12);       // deep water: H = 2 S
+    EXPECT_NEAR(pistonHeightOverStroke(1e-3) / 1e-3, 1.0, 1e-3); // shallow water: H/S = kh
 }
 
 TEST(WaveTheory, PistonWaveAndBreakingLimit) {
     EXPECT_NEAR(micheLimitSteepness(50.0), 0.142, 1e-12);
     const auto calm = linearPistonWave(0.02, 1.0, 0.3, 9.81);
     EXPECT_NEAR(calm.wavelength, 2.0 * std::numbers::pi / calm.wavenumber, 1e-12);
-    EXPECT_NEAR(calm.height, 0.02 * bieselHeightOverStroke(calm.kh), 1e-15);
+    EXPECT_NEAR(calm.height, 0.02 * pistonHeightOverStroke(calm.kh), 1e-15);
     EXPECT_FALSE(calm.breaks());
     const auto steep = linearPistonWave(0.3, 0.6, 0.3, 9.81);
     EXPECT_TRUE(steep.breaks());

@@ -1,5 +1,6 @@
 // libFuzzer target for every program's command line: swell-bake (bake/app/bake_cli.h),
-// swell-cache (cache/app/cache_cli.h), swell-validate and swell-mps-bench (bake/apps/*_cli.h) and
+// swell-cache (cache/app/cache_cli.h), swell-validate (bake/validation/app/validate_cli.h),
+// swell-mps-bench (bake/app/mps_bench_cli.h) and
 // swell-play (runtime/app/play_cli.h). The input's first line names the program, the others are
 // its arguments. Tokens that start with '@' name a fixed set of files in a temporary folder:
 // @scene (a small valid scene), @bad (not JSON), @empty, @dir (a folder), @missing (no such

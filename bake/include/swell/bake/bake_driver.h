@@ -111,7 +111,7 @@ long frameIntervalSteps(const Scene& scene);
 long totalSteps(const Scene& scene);
 
 /// Warnings about a scene that a bake should print, e.g. a piston whose linear-theory wave
-/// (Biesel transfer, dispersion) is steeper than the Miche breaking limit.
+/// (piston transfer function, dispersion) is steeper than the Miche breaking limit.
 std::vector<std::string> sceneWarnings(const Scene& scene);
 
 /// Runs the bake, holding the output's lock (cache::OutputLock) throughout; first removes the

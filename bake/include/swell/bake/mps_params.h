@@ -297,7 +297,7 @@ inline SolverParams schemeParams(Scheme scheme) {
         // The mixed source projects u* to zero divergence and keeps only a small density
         // relaxation, so density noise of a disordered particle set is not kicked into the
         // velocity every step; shifting keeps the particle set ordered instead. Collisions
-        // from 0.8 l0, fully inelastic, keep impacts (Lobovsky) stable under that source.
+        // from 0.8 l0, fully inelastic, keep dam-break impacts stable under that source.
         p.pressure.sourceTerm = SourceTerm::Mixed;
         p.pressure.relaxation = 0.02;
         p.model.shifting = 0.02;

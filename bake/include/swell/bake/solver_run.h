@@ -1,5 +1,5 @@
 #pragma once
-// A solver run as every check steps it (still tank, standing wave, dam break, Lobovsky): the
+// A solver run as every check steps it (still tank, standing wave, dam breaks): the
 // step loop that turns the divergence detector's stop into the run's outcome, and the probes'
 // settings read from the solver's own constants. No I/O.
 

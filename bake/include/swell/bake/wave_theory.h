@@ -1,6 +1,6 @@
 #pragma once
 // Linear water-wave theory used to set up and validate wave scenes: the dispersion
-// relation, the Biesel piston-wavemaker transfer function and a breaking limit.
+// relation, the linear piston-wavemaker transfer function and a breaking limit.
 
 namespace swell::bake {
 
@@ -14,9 +14,9 @@ double dispersionWavenumber(double omega, double depth, double gravity);
 /// c / 2 in deep water and to sqrt(g h) in shallow water. Throws like dispersionWavenumber.
 double groupVelocity(double omega, double depth, double gravity);
 
-/// Biesel (1951) piston wavemaker in linear theory: wave height over stroke,
+/// Piston wavemaker in linear (first-order wavemaker) theory: wave height over stroke,
 /// H / S = 2 (cosh 2kh - 1) / (sinh 2kh + 2kh). S is the full stroke (twice the amplitude).
-double bieselHeightOverStroke(double kh);
+double pistonHeightOverStroke(double kh);
 
 /// Miche (1944) limiting steepness of a progressive wave: H_max / L = 0.142 tanh(k h).
 /// A wave steeper than this breaks.
@@ -27,7 +27,7 @@ struct LinearPistonWave {
     double wavenumber = 0.0;        ///< k (1/m)
     double wavelength = 0.0;        ///< L = 2 pi / k (m)
     double kh = 0.0;                ///< relative depth (-)
-    double height = 0.0;            ///< H = S * Biesel(kh) (m)
+    double height = 0.0;            ///< H = S * pistonHeightOverStroke(kh) (m)
     double steepness = 0.0;         ///< H / L (-)
     double breakingSteepness = 0.0; ///< Miche limit at this kh (-)
     bool breaks() const { return steepness > breakingSteepness; }
