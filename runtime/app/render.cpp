@@ -217,8 +217,9 @@ private:
         const FrameSet& set = m_setup.set;
         const double waterLevel = set.header.domain.yMin + waterDepth(set);
         // The whirlpool's spirals show best from higher up; the surging and ripple waves from a
-        // lower three-quarter view.
-        const double elevation = m_o.modeParams.mode == ReplayMode::Whirlpool ? 55.0 : 28.0;
+        // lower three-quarter view with the horizon behind the block.
+        const double elevation =
+            m_o.modeParams.mode == ReplayMode::Whirlpool ? 55.0 : kDefaultCameraElevationDegrees;
         Camera camera = defaultCamera(m_gpu.grid(), set.header.domain, waterLevel,
                                       static_cast<double>(m_r.shading.width) / m_r.shading.height,
                                       m_r.fov, elevation);
@@ -362,6 +363,9 @@ private:
                  {{"source", r.skyDir.empty() ? std::string("procedural") : r.skyDir},
                   {"sun_azimuth_degrees", r.sky.sunAzimuthDegrees},
                   {"sun_elevation_degrees", r.sky.sunElevationDegrees},
+                  {"sun_direction", vec3Json(sunDirection(r.sky))},
+                  {"sun_radius_degrees", r.sky.sunRadiusDegrees},
+                  {"sun_glow", r.sky.sunGlow},
                   {"cloud_cover", r.sky.cloudCover},
                   {"face_size", m_faces[0].width}}},
                 {"shading",
@@ -372,6 +376,11 @@ private:
                   {"sun_shininess", r.shading.sunShininess},
                   {"sun_intensity", r.shading.sunIntensity},
                   {"sides", r.shading.sides}}},
+                {"floor",
+                 {{"enabled", r.shading.floor.enabled},
+                  {"tile_size_m", r.shading.floor.tileSize},
+                  {"tile_contrast", r.shading.floor.tileContrast},
+                  {"haze_distance_m", r.shading.floor.hazeDistance}}},
                 {"splash",
                  {{"active", m_splashes.front().active()},
                   {"artificial_per_real", r.splash.artificialPerReal},

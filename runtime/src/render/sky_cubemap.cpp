@@ -70,6 +70,12 @@ void SkyParams::validate() const {
         throw std::invalid_argument(
             fmt::format("sky cloud cover must be in [0, 1], got {}", cloudCover));
     }
+    if (!(sunRadiusDegrees > 0.0 && sunRadiusDegrees <= 10.0)) {
+        throw std::invalid_argument(
+            fmt::format("sky sun radius must be in (0, 10] degrees, got {}", sunRadiusDegrees));
+    }
+    if (!(sunGlow >= 0.0 && sunGlow <= 4.0))
+        throw std::invalid_argument(fmt::format("sky sun glow must be in [0, 4], got {}", sunGlow));
     if (faceSize < 8 || faceSize > 4096) {
         throw std::invalid_argument(
             fmt::format("sky face size must be in [8, 4096], got {}", faceSize));
@@ -148,12 +154,19 @@ CubeFaces proceduralSky(const SkyParams& sky) {
                         c[k] =
                             sky.horizonColour[k] + (sky.groundColour[k] - sky.horizonColour[k]) * t;
                 }
-                // Sun disc and glow.
+                // Sun: a disc of angular radius sunRadiusDegrees with a soft rim, a tight
+                // glow around it and a wide haze, warm-tinted (the glint's light, sunDirection).
                 const double cosSun = d[0] * sun[0] + d[1] * sun[1] + d[2] * sun[2];
+                const double angle = std::acos(std::clamp(cosSun, -1.0, 1.0)) / kDeg;
+                const double disc =
+                    std::clamp((sky.sunRadiusDegrees + 0.25 - angle) / 0.5, 0.0, 1.0);
+                const double near = std::max(cosSun, 0.0);
                 const double glow =
-                    0.35 * std::pow(std::max(cosSun, 0.0), 24.0) + (cosSun > 0.9995 ? 1.0 : 0.0);
+                    sky.sunGlow * (0.6 * std::pow(near, 300.0) + 0.3 * std::pow(near, 24.0) +
+                                   0.12 * std::pow(near, 4.0));
+                static constexpr double kWarm[3] = {1.0, 0.92, 0.75};
                 for (int k = 0; k < 3; ++k)
-                    c[k] += glow * (k == 2 ? 0.8 : 1.0);
+                    c[k] += (glow + 2.0 * disc) * kWarm[k];
                 std::uint8_t* p = im.pixel(x, y);
                 for (int k = 0; k < 3; ++k)
                     p[k] = toByte(c[k]);

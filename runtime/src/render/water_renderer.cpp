@@ -24,7 +24,8 @@ namespace {
 constexpr GLint kViewProj = 0, kCells = 1, kOrigin = 2, kSpacing = 3, kEye = 4, kSunDir = 5,
                 kBedY = 6, kAbsorption = 7, kScatter = 8, kBed = 9, kEta = 10, kF0 = 11, kSun = 12,
                 kSunColour = 13, kEdge = 14, kPixelsPerMetre = 15, kRadius = 16, kSplashColour = 17,
-                kReflectionLod = 18, kAmbient = 19, kDropLight = 20, kSideLight = 21;
+                kReflectionLod = 18, kAmbient = 19, kDropLight = 20, kSideLight = 21, kFloor = 22,
+                kBlock = 23, kBlockTop = 24;
 
 void setVec3(GLuint program, GLint loc, const Vec3& v) {
     glProgramUniform3f(program, loc, static_cast<float>(v[0]), static_cast<float>(v[1]),
@@ -36,6 +37,19 @@ bool finiteColour(const Vec3& v) {
 }
 
 } // namespace
+
+void FloorParams::validate() const {
+    if (!(tileSize > 0.0) || !std::isfinite(tileSize))
+        throw std::invalid_argument(fmt::format("floor tile size must be > 0 m, got {}", tileSize));
+    if (!(tileContrast >= 0.0 && tileContrast <= 1.0)) {
+        throw std::invalid_argument(
+            fmt::format("floor tile contrast must be in [0, 1], got {}", tileContrast));
+    }
+    if (!(hazeDistance > 0.0) || !std::isfinite(hazeDistance)) {
+        throw std::invalid_argument(
+            fmt::format("floor haze distance must be > 0 m, got {}", hazeDistance));
+    }
+}
 
 void ShadingParams::validate() const {
     if (width < 16 || height < 16 || width > 8192 || height > 8192) {
@@ -58,6 +72,7 @@ void ShadingParams::validate() const {
         !std::isfinite(sunIntensity)) {
         throw std::invalid_argument("sun shininess must be >= 1 and intensity >= 0");
     }
+    floor.validate();
 }
 
 WaterRenderer::WaterRenderer(const Grid& grid, const cache::Domain& domain,
@@ -165,6 +180,21 @@ WaterRenderer::WaterRenderer(const Grid& grid, const cache::Domain& domain,
     glProgramUniform1f(v, kF0, f0);
     glProgramUniform1f(v, kReflectionLod, static_cast<float>(shading.reflectionLod));
     glProgramUniform1f(m_skirtProgram.get(), kF0, f0);
+    // The floor, drawn with the sky (sky.frag): the bed's colour and lighting, the block's
+    // footprint (the mesh's extent, as the sides) for its shadow.
+    const GLuint f = m_skyProgram.get();
+    setVec3(f, kSunDir, sun);
+    glProgramUniform1f(f, kBedY, bedY);
+    setVec3(f, kAbsorption, shading.absorption);
+    setVec3(f, kBed, shading.bedColour);
+    glProgramUniform4f(f, kFloor, static_cast<float>(shading.floor.tileSize),
+                       static_cast<float>(shading.floor.tileContrast),
+                       static_cast<float>(shading.floor.hazeDistance),
+                       shading.floor.enabled ? 1.0f : 0.0f);
+    const MeshLayout mesh = meshLayout();
+    glProgramUniform4f(f, kBlock, static_cast<float>(mesh.x0), static_cast<float>(mesh.z0),
+                       static_cast<float>(mesh.x0 + (N - 1) * mesh.dx),
+                       static_cast<float>(mesh.z0 + (M - 1) * mesh.dz));
     const GLuint w = m_waterProgram.get();
     setVec3(w, kSunDir, sun);
     glProgramUniform2f(w, kSun, static_cast<float>(shading.sunShininess),
@@ -227,7 +257,7 @@ void WaterRenderer::drawSurface(GlName heightBuffer, const Camera& camera, bool 
                             m_backgroundCamera.target == camera.target &&
                             m_backgroundCamera.fovYDegrees == camera.fovYDegrees;
     if (!sameCamera)
-        renderBackground(camera, invViewProj);
+        renderBackground(camera, invViewProj, heightBuffer);
     if (!m_indexValid || m_indexEye != eye)
         updateMeshOrder(eye);
 
@@ -395,9 +425,23 @@ void WaterRenderer::updateMeshOrder(const Vec3& eye) {
     m_indexValid = true;
 }
 
-void WaterRenderer::renderBackground(const Camera& camera, const Mat4& invViewProj) {
-    // The environment seen through each pixel; it depends on the camera only, so it is drawn
-    // once per camera and copied into every frame.
+void WaterRenderer::renderBackground(const Camera& camera, const Mat4& invViewProj,
+                                     GlName heightBuffer) {
+    // The environment seen through each pixel, sky and floor; it depends on the camera only, so
+    // it is drawn once per camera and copied into every frame. The block's shadow on the floor
+    // is that of its mean water level in the frame drawn then.
+    if (m_shading.floor.enabled) {
+        std::vector<float> heights(static_cast<std::size_t>(m_grid.cellsX) * m_grid.cellsZ);
+        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+        glGetNamedBufferSubData(heightBuffer, 0,
+                                static_cast<GLsizeiptr>(heights.size() * sizeof(float)),
+                                heights.data());
+        double sum = 0.0;
+        for (float h : heights)
+            sum += std::max(h, m_domain.yMin);
+        glProgramUniform1f(m_skyProgram.get(), kBlockTop,
+                           static_cast<float>(sum / static_cast<double>(heights.size())));
+    }
     glEnable(GL_FRAMEBUFFER_SRGB);
     glBindFramebuffer(GL_FRAMEBUFFER, m_backgroundFramebuffer);
     glViewport(0, 0, m_shading.width, m_shading.height);

@@ -24,6 +24,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <numbers>
 #include <unistd.h>
 
 namespace swell::runtime {
@@ -128,9 +129,11 @@ TEST_F(WaterRendering, FrameIsNotBlankNorUniformAndShowsWaterAndSky) {
 
 TEST_F(WaterRendering, SplashesAreDrawnOnlyWhenThereAreAny) {
     Scene scene(160, 90, 1);
-    const Image without = scene.render({});
+    // From higher up the drops lie over the water, not over the bright haze of the horizon.
+    const Camera high = defaultCamera(scene.grid, kDomain, 0.5, 160.0 / 90.0, 40.0, 28.0);
+    const Image without = scene.render({}, 0.0, &high);
     EXPECT_EQ(scene.lastSplashes, 0u);
-    const Image with = scene.render(fixedSplashes());
+    const Image with = scene.render(fixedSplashes(), 0.0, &high);
     EXPECT_EQ(scene.lastSplashes, 40u);
     const ImageDifference d = compareImages(without, with);
     EXPECT_GT(d.maxAbs, 40);   // bright droplets over the water
@@ -176,6 +179,96 @@ TEST_F(WaterRendering, MultisamplingSmoothsButDoesNotChangeThePicture) {
     EXPECT_GT(d.maxAbs, 0); // edges differ
 }
 
+double luma(const Image& im, int x, int y) {
+    const std::uint8_t* p = im.pixel(x, y);
+    return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2];
+}
+
+TEST_F(WaterRendering, TheFloorIsDrawnAroundTheBlockAndCanBeTurnedOff) {
+    // The default camera sees the floor in front of the block in the bottom corners: sand
+    // (red above blue); without the floor the sky's dark blue-grey ground is there instead.
+    Scene scene(160, 90, 1);
+    scene.sky.cloudCover = 0.0;
+    const Image with = scene.render({});
+    scene.shading.floor.enabled = false;
+    const Image without = scene.render({});
+    for (int x : {2, 157}) {
+        const std::uint8_t* a = with.pixel(x, 87);
+        EXPECT_GT(a[0], a[2] + 10) << x << ": " << int(a[0]) << " " << int(a[2]);
+        const std::uint8_t* b = without.pixel(x, 87);
+        EXPECT_LT(b[0], b[2]) << x << ": " << int(b[0]) << " " << int(b[2]);
+    }
+    // The water in the middle is the same with and without it.
+    EXPECT_EQ(with.pixel(80, 45)[1], without.pixel(80, 45)[1]);
+}
+
+/// A camera on the floor's far side looking level towards azimuth `azimuthDegrees`.
+Camera levelCamera(double azimuthDegrees, double pitchDegrees) {
+    const double a = azimuthDegrees * std::numbers::pi / 180.0;
+    const double p = pitchDegrees * std::numbers::pi / 180.0;
+    Camera c;
+    c.position = {2.0, 1.5, 1.6};
+    c.target = {2.0 + std::cos(a) * std::cos(p), 1.5 + std::sin(p),
+                1.6 + std::sin(a) * std::cos(p)};
+    c.fovYDegrees = 60.0;
+    c.nearPlane = 0.05;
+    c.farPlane = 500.0;
+    return c;
+}
+
+TEST_F(WaterRendering, SkyIsBrighterAtTheHorizonThanHigherUp) {
+    // Looking level away from the sun: rows just above the horizon (the middle of the picture)
+    // are brighter than the top row (30 degrees up), and the top row is blue.
+    Scene scene(160, 90, 1);
+    scene.sky.cloudCover = 0.0;
+    const Camera cam = levelCamera(scene.sky.sunAzimuthDegrees + 180.0, 0.0);
+    const Image im = scene.render({}, 0.0, &cam);
+    double top = 0.0, nearHorizon = 0.0;
+    for (int x = 0; x < 160; ++x) {
+        top += luma(im, x, 0);
+        nearHorizon += luma(im, x, 42);
+        const std::uint8_t* p = im.pixel(x, 0);
+        EXPECT_GT(p[2], p[0] + 20) << x;
+    }
+    EXPECT_GT(nearHorizon, top + 160 * 20.0);
+}
+
+TEST_F(WaterRendering, TheBrightestSkyPixelIsTheSunAndFollowsItsDirection) {
+    Scene scene(160, 90, 1);
+    scene.sky.cloudCover = 0.0;
+    scene.sky.sunElevationDegrees = 12.0;
+    scene.sky.sunGlow = 0.0; // the disc alone at the brightest value
+    const double base = scene.sky.sunAzimuthDegrees;
+    const Camera cam = levelCamera(base, 10.0);
+    const Mat4 vp = multiply(projectionMatrix(cam, 160.0 / 90.0), viewMatrix(cam));
+    for (double offset : {-12.0, 0.0, 12.0}) {
+        scene.sky.sunAzimuthDegrees = base + offset;
+        const Image im = scene.render({}, 0.0, &cam);
+        // The disc saturates: the centre of the pixels at the brightest value.
+        double best = -1.0;
+        for (int y = 0; y < 90; ++y)
+            for (int x = 0; x < 160; ++x)
+                best = std::max(best, luma(im, x, y));
+        double sx = 0.0, sy = 0.0, count = 0.0;
+        for (int y = 0; y < 90; ++y)
+            for (int x = 0; x < 160; ++x)
+                if (luma(im, x, y) >= best - 0.5) {
+                    sx += x + 0.5;
+                    sy += y + 0.5;
+                    count += 1.0;
+                }
+        const double bx = sx / count, by = sy / count;
+        // Where the sun direction projects: the brightest pixel lies on the disc.
+        const Vec3 s = sunDirection(scene.sky);
+        double q[4];
+        for (int r = 0; r < 4; ++r)
+            q[r] = vp[r] * s[0] + vp[4 + r] * s[1] + vp[8 + r] * s[2]; // a direction: w = 0
+        const double px = (q[0] / q[3] * 0.5 + 0.5) * 160.0, py = (0.5 - q[1] / q[3] * 0.5) * 90.0;
+        EXPECT_NEAR(bx, px, 2.0) << offset;
+        EXPECT_NEAR(by, py, 2.0) << offset;
+    }
+}
+
 TEST_F(WaterRendering, BadParametersThrow) {
     const Grid grid = testGrid();
     SkyParams sky;
@@ -189,6 +282,12 @@ TEST_F(WaterRendering, BadParametersThrow) {
     EXPECT_THROW(WaterRenderer(grid, kDomain, s, faces, sunDirection(sky)), std::invalid_argument);
     s = ShadingParams{};
     s.refractiveIndex = 0.5;
+    EXPECT_THROW(WaterRenderer(grid, kDomain, s, faces, sunDirection(sky)), std::invalid_argument);
+    s = ShadingParams{};
+    s.floor.tileSize = 0.0;
+    EXPECT_THROW(WaterRenderer(grid, kDomain, s, faces, sunDirection(sky)), std::invalid_argument);
+    s = ShadingParams{};
+    s.floor.hazeDistance = -1.0;
     EXPECT_THROW(WaterRenderer(grid, kDomain, s, faces, sunDirection(sky)), std::invalid_argument);
     CubeFaces uneven = faces;
     uneven[3] = Image(8, 8);

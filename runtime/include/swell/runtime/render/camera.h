@@ -26,15 +26,20 @@ struct Camera {
     void validate() const;
 };
 
+/// The default camera's height above the horizon for the surging and ripple waves: low enough
+/// that the horizon shows behind the block at the default 40 degree field of view.
+inline constexpr double kDefaultCameraElevationDegrees = 16.0;
+
 /// A three-quarter view of the whole base mesh: the eye looks across the propagation
-/// direction (x) from the far z side, slightly against the waves, `elevationDegrees` (28 by
-/// default; swell-play uses more for the whirlpool, whose spirals show best from above) above
-/// the horizon, at the nearest distance where the box of the mesh (x and z extent, from the bed to
-/// halfway between `waterLevel` and the domain's top) fills at most 92% of the picture at
-/// `aspect` (width / height), with the box centred in the picture. Clip planes follow from
-/// the distance.
+/// direction (x) from the far z side, slightly against the waves, `elevationDegrees` above the
+/// horizon (swell-play uses more for the whirlpool, whose spirals show best from above), at
+/// the nearest distance where the box of the mesh (x and z extent, from the bed to halfway
+/// between `waterLevel` and the domain's top) fills at most 92% of the picture at `aspect`
+/// (width / height), with the box centred in the picture. Clip planes follow from the
+/// distance.
 Camera defaultCamera(const Grid& grid, const cache::Domain& domain, double waterLevel,
-                     double aspect, double fovYDegrees = 40.0, double elevationDegrees = 28.0);
+                     double aspect, double fovYDegrees = 40.0,
+                     double elevationDegrees = kDefaultCameraElevationDegrees);
 
 /// Right-handed view matrix (camera looks down -z, y up).
 Mat4 viewMatrix(const Camera& camera);

@@ -16,9 +16,11 @@ namespace swell::runtime {
 struct SkyParams {
     double sunAzimuthDegrees = 300.0;     ///< sun direction around y: 0 = +x, 90 = +z, degrees
     double sunElevationDegrees = 32.0;    ///< sun height above the horizon, degrees (-90, 90)
-    Vec3 zenithColour{0.20, 0.42, 0.78};  ///< sky straight up, linear RGB 0..1
-    Vec3 horizonColour{0.78, 0.86, 0.94}; ///< sky at the horizon, linear RGB 0..1
-    Vec3 groundColour{0.10, 0.17, 0.22};  ///< below the horizon, linear RGB 0..1
+    Vec3 zenithColour{0.09, 0.26, 0.62};  ///< sky straight up, linear RGB 0..1
+    Vec3 horizonColour{0.80, 0.86, 0.93}; ///< sky at the horizon (haze), linear RGB 0..1
+    Vec3 groundColour{0.07, 0.12, 0.16};  ///< below the horizon, linear RGB 0..1
+    double sunRadiusDegrees = 1.2;        ///< angular radius of the sun disc, (0, 10] degrees
+    double sunGlow = 1.0;                 ///< strength of the glow around the sun, 0..4
     double cloudCover = 0.45;             ///< 0: clear sky .. 1: overcast
     std::uint64_t cloudSeed = 3;          ///< seed of the cloud pattern
     int faceSize = 256;                   ///< cube-face edge in texels

@@ -20,6 +20,19 @@
 
 namespace swell::runtime {
 
+/// The floor the water block stands on (shaders/sky.frag): an endless plane of square stone
+/// tiles at the bed height (domain yMin) with the bed's colour (ShadingParams::bedColour), lit
+/// by the sun and the sky like the bed seen through the water, shadowed by the block, fading
+/// into the horizon with distance. Drawn with the sky, once per camera.
+struct FloorParams {
+    bool enabled = true;        ///< draw the floor (false: the sky's ground below the horizon)
+    double tileSize = 0.25;     ///< edge of a tile, metres (> 0)
+    double tileContrast = 0.18; ///< brightness spread between tiles, 0..1
+    double hazeDistance = 30.0; ///< distance over which the floor fades into the horizon, m
+    /// Throws std::invalid_argument naming the field.
+    void validate() const;
+};
+
 struct ShadingParams {
     int width = 1280; ///< image width, pixels
     int height = 720; ///< image height, pixels
@@ -36,6 +49,7 @@ struct ShadingParams {
     bool sides = true;                  ///< draw the block's four sides down to the bed
     /// Cube-map mip level of the reflections (fixed: no derivatives, fast on llvmpipe).
     double reflectionLod = 1.0;
+    FloorParams floor; ///< the floor around and under the block
 
     /// Throws std::invalid_argument naming the field.
     void validate() const;
@@ -82,7 +96,7 @@ public:
     std::size_t lastCulledSplashCount() const { return m_lastCulled; }
 
 private:
-    void renderBackground(const Camera& camera, const Mat4& invViewProj);
+    void renderBackground(const Camera& camera, const Mat4& invViewProj, GlName heightBuffer);
     void updateMeshOrder(const Vec3& eye);
     void stamp(const GlQuery& query) const;
     MeshLayout meshLayout() const;
