@@ -15,8 +15,7 @@ struct Outcome {
     std::string err;
 };
 
-template <class Line, class Parse>
-Outcome parse(std::vector<std::string> args, Parse p) {
+template <class Line, class Parse> Outcome parse(std::vector<std::string> args, Parse p) {
     std::vector<const char*> argv;
     for (const std::string& a : args)
         argv.push_back(a.c_str());
@@ -27,7 +26,8 @@ Outcome parse(std::vector<std::string> args, Parse p) {
 }
 
 /// Refused: a non-zero status and one line starting with the program's name.
-inline void expectRefused(const Outcome& o, const std::string& program, const std::string& mention) {
+inline void expectRefused(const Outcome& o, const std::string& program,
+                          const std::string& mention) {
     ASSERT_TRUE(o.rc.has_value()) << mention;
     EXPECT_NE(*o.rc, 0);
     EXPECT_EQ(o.err.rfind(program + ": ", 0), 0u) << o.err;
