@@ -32,12 +32,9 @@ namespace {
 
 using namespace swell::runtime;
 
-double median(std::vector<double> v) {
-    if (v.empty())
-        return NAN;
-    std::sort(v.begin(), v.end());
-    const std::size_t k = v.size() / 2;
-    return v.size() % 2 == 1 ? v[k] : 0.5 * (v[k - 1] + v[k]);
+/// Every series measured has at least one value (the guards below).
+double median(const std::vector<double>& v) {
+    return percentile(v, 0.5);
 }
 
 double largest(const std::vector<double>& v) {

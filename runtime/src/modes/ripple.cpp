@@ -1,5 +1,7 @@
 #include "swell/runtime/modes/ripple.h"
 
+#include "../smoothstep.h"
+
 #include "swell/runtime/error.h"
 
 #define GL_GLEXT_PROTOTYPES
@@ -34,11 +36,6 @@ void periodicTap(double c, int cells, int& i0, int& i1, double& f) {
     i0 = std::min(static_cast<int>(std::floor(fc)), cells - 1);
     i1 = i0 + 1 == cells ? 0 : i0 + 1;
     f = fc - i0;
-}
-
-double smoothstep(double e0, double e1, double x) {
-    const double t = std::clamp((x - e0) / (e1 - e0), 0.0, 1.0);
-    return t * t * (3.0 - 2.0 * t);
 }
 
 void checkSamplers(const ModeParams& mode, std::span<const SliceSampler> samplers) {

@@ -1,5 +1,7 @@
 #include "swell/runtime/modes/whirlpool.h"
 
+#include "../smoothstep.h"
+
 #include "swell/runtime/error.h"
 
 #define GL_GLEXT_PROTOTYPES
@@ -57,11 +59,6 @@ double hatIntegral(double x) {
     if (x < 1.0)
         return 1.0 - 0.5 * (1.0 - x) * (1.0 - x);
     return 1.0;
-}
-
-double smoothstep(double e0, double e1, double x) {
-    const double t = std::clamp((x - e0) / (e1 - e0), 0.0, 1.0);
-    return t * t * (3.0 - 2.0 * t);
 }
 
 } // namespace

@@ -5,9 +5,8 @@
 
 #include "swell/runtime/replay/fidelity.h"
 
-#include "gl_fixture.h"
 #include "hashing.h"
-#include "synthetic_frames.h"
+#include "synthetic_suite.h"
 
 #define GL_GLEXT_PROTOTYPES
 #include <GL/glcorearb.h>
@@ -20,18 +19,7 @@
 namespace swell::runtime {
 namespace {
 
-class ModeReplayTest : public swell::test::GlSuite {
-protected:
-    static void SetUpTestSuite() {
-        GlSuite::SetUpTestSuite();
-        s_frames = std::make_unique<FrameSet>(test::syntheticSet(260, 320, 21));
-    }
-    static void TearDownTestSuite() {
-        s_frames.reset();
-        GlSuite::TearDownTestSuite();
-    }
-    static inline std::unique_ptr<FrameSet> s_frames;
-};
+class ModeReplayTest : public test::SyntheticGlSuite {};
 
 /// Largest |GPU - CPU| over the cells; fails on a non-finite GPU cell.
 double worstError(const HeightField& g, const HeightField& r) {

@@ -4,8 +4,7 @@
 
 #include "swell/runtime/replay/picture_measures.h"
 
-#include "gl_fixture.h"
-#include "synthetic_frames.h"
+#include "synthetic_suite.h"
 
 #include <gtest/gtest.h>
 
@@ -16,18 +15,7 @@
 namespace swell::runtime {
 namespace {
 
-class WhirlpoolTest : public swell::test::GlSuite {
-protected:
-    static void SetUpTestSuite() {
-        GlSuite::SetUpTestSuite();
-        s_frames = std::make_unique<FrameSet>(test::syntheticSet(260, 320, 21));
-    }
-    static void TearDownTestSuite() {
-        s_frames.reset();
-        GlSuite::TearDownTestSuite();
-    }
-    static inline std::unique_ptr<FrameSet> s_frames;
-};
+class WhirlpoolTest : public test::SyntheticGlSuite {};
 
 ReplayParams whirlpoolParams(bool paper) {
     ReplayParams p =
