@@ -199,7 +199,7 @@ public:
             measures.push_back({fmt::format("crease_ratio_{}", k), median(creases[k]), -INFINITY,
                                 1.25,
                                 "|second difference| across a rotated direction's field end / "
-                                "elsewhere"});
+                                "3-8 cells beside it"});
         }
         if (!spriteCounts.empty()) {
             measures.push_back({"sprites", median(spriteCounts), -INFINITY, INFINITY,
