@@ -3,7 +3,9 @@
 //     S = sum_p G_x(p) h_p,  W = sum_p G_x(p),  G_x = exp(-(u_p - (n + 1/2))^2 / (2 sigma^2))
 // over the frame's surface particles whose x bin (floor of u_p, u in cells) is n - 1, n or
 // n + 1: the [3 dx) part of the cut-off window. Heights are relative to a reference level.
-// A column with no particle in its window stores (fallback, 0): the mean height of the
+// Each column stores (h, W) with h = S / W, the column's height, so that reconstruct.comp blends
+// two frames' columns without a division. A column with no particle in its window stores
+// (fallback, 0): the mean height of the
 // particles in the nearest non-empty bins at distance d >= 2 (both sides when tied), or the
 // empty-frame height when the frame has no surface particle.
 layout(local_size_x = 64) in;
@@ -11,7 +13,7 @@ layout(local_size_x = 64) in;
 layout(std430, binding = 0) readonly buffer Particles { vec2 particles[]; };  // (u, h - ref)
 layout(std430, binding = 1) readonly buffer Bins { uint binStart[]; };        // per slot: N + 3
 // Columns are grouped by four for reconstruct.comp: for each slot and quad q = n / 4, one vec4 of
-// S (or the fallback) then one vec4 of W; a float index ((slot * Nq + q) * 2 + c) * 4 + n % 4.
+// h = S / W (or the fallback) then one vec4 of W; a float index ((slot * Nq + q) * 2 + c) * 4 + n % 4.
 layout(std430, binding = 2) writeonly buffer Columns { float columns[]; };
 
 uniform int u_N;             // columns
@@ -53,7 +55,7 @@ void main() {
     }
     int base = ((slot * u_Nq + n / 4) * 2) * 4 + n % 4;
     if (W > 0.0) {
-        columns[base] = S;
+        columns[base] = S / W;
         columns[base + 4] = W;
         return;
     }

@@ -41,33 +41,29 @@ void main() {
     for (int i = 0; i < row.y; ++i) {
         float gz = weights[m * u_rowStride + i];             // eq. (7): z factor of G
         int slot = slices[row.x + i].y;
-        vec4 cs = vec4(u_missing);
+        vec4 ch = vec4(u_missing);                           // column heights S / W (or fallback)
         vec4 cw = vec4(0.0);
         if (slot >= 0) {
-            cs = columns[(slot * u_Nq + q) * 2];
+            ch = columns[(slot * u_Nq + q) * 2];
             cw = columns[(slot * u_Nq + q) * 2 + 1];
         }
         vec2 b = blend[row.x + i];
         if (b.y > 0.0) {
             // Between two stored frames: blendColumns (cpu_reconstruction.cpp) of the two
-            // profiles, h = mix(h_a, h_b, w), W = mix(W_a, W_b, w), stored as (h W, W).
-            int slot2 = int(b.y > 0.0 ? b.x : -1.0);
-            vec4 cs2 = vec4(u_missing);
+            // profiles, h = mix(h_a, h_b, w), W = mix(W_a, W_b, w).
+            int slot2 = int(b.x);
+            vec4 ch2 = vec4(u_missing);
             vec4 cw2 = vec4(0.0);
             if (slot2 >= 0) {
-                cs2 = columns[(slot2 * u_Nq + q) * 2];
+                ch2 = columns[(slot2 * u_Nq + q) * 2];
                 cw2 = columns[(slot2 * u_Nq + q) * 2 + 1];
             }
-            vec4 ha = mix(cs, cs / cw, greaterThan(cw, vec4(0.0)));
-            vec4 hb = mix(cs2, cs2 / cw2, greaterThan(cw2, vec4(0.0)));
-            vec4 hm = mix(ha, hb, b.y);
+            ch = mix(ch, ch2, b.y);
             cw = mix(cw, cw2, b.y);
-            cs = mix(hm, hm * cw, greaterThan(cw, vec4(0.0)));
         }
-        vec4 has = vec4(greaterThan(cw, vec4(0.0)));          // (fallback, 0) when W = 0
-        S += gz * has * cs;
+        S += gz * cw * ch;                                   // sum of G h over the particles
         W += gz * cw;
-        F += gz * (1.0 - has) * cs;
+        F += gz * (1.0 - vec4(greaterThan(cw, vec4(0.0)))) * ch; // fallbacks where W = 0
         G += gz;
     }
     vec4 h = mix(F / G, S / W, greaterThan(W, vec4(0.0)));

@@ -223,7 +223,7 @@ GpuWhirlpool::GpuWhirlpool(const FrameSet& frames, const ReplayParams& params,
     }
     m_cells = makeStorageBuffer(cells.size() * sizeof(GpuCell), cells.data());
 
-    // Profiles from the column pass, once: p = S / W, or the fallback S when W = 0
+    // Profiles from the column pass, once: its h = S / W, or the fallback when W = 0
     // (column_pass.comp's layout), stored per column centre k as (p(k), p(min(k + 1, N - 1)),
     // C(k) split into a float and the float of its remainder), C the profile's integral.
     const std::size_t slots = m_replay.slotCount();
@@ -237,9 +237,7 @@ GpuWhirlpool::GpuWhirlpool(const FrameSet& frames, const ReplayParams& params,
         const std::size_t base =
             ((slot * static_cast<std::size_t>(Nq) + static_cast<std::size_t>(n / 4)) * 2) * 4 +
             static_cast<std::size_t>(n % 4);
-        const float S = columns[base];
-        const float W = columns[base + 4];
-        return W > 0.0f ? S / W : S;
+        return columns[base];
     };
     std::vector<double> prof(static_cast<std::size_t>(N)), C(static_cast<std::size_t>(N));
     for (std::size_t slot = 0; slot < slots; ++slot) {
@@ -264,15 +262,30 @@ GpuWhirlpool::GpuWhirlpool(const FrameSet& frames, const ReplayParams& params,
             static_cast<double>(maxBlock) / 1e6));
     }
     m_profiles = makeStorageBuffer(pairs.size() * sizeof(float), pairs.data());
-    m_uploadedBytes =
-        m_replay.uploadedBytes() + cells.size() * sizeof(GpuCell) + pairs.size() * sizeof(float);
+    // spiral_prefix.comp's two tables: rows j = 0 .. J of N dvec2, (C, p) and (T, P).
+    const std::size_t tableBytes = static_cast<std::size_t>(g.sliceCount() + 1) *
+                                   static_cast<std::size_t>(N) * 2 * sizeof(double);
+    if (static_cast<GLint64>(tableBytes) > maxBlock) {
+        throw RuntimeError(fmt::format(
+            "the whirlpool needs a {:.0f} MB table of the spirals' integrals, above this "
+            "driver's {:.0f} MB shader-storage limit: lower --res or --slices",
+            static_cast<double>(tableBytes) / 1e6, static_cast<double>(maxBlock) / 1e6));
+    }
+    m_along = makeStorageBuffer(tableBytes, nullptr);
+    m_across = makeStorageBuffer(tableBytes, nullptr);
+    m_uploadedBytes = m_replay.uploadedBytes() + cells.size() * sizeof(GpuCell) +
+                      pairs.size() * sizeof(float) + 2 * tableBytes;
+    m_prefix = makeEmbeddedProgram("spiral_prefix.comp");
+    const GLuint pp = m_prefix.get();
+    glProgramUniform1i(pp, uniformLocation(m_prefix, "u_N"), N);
+    glProgramUniform1i(pp, uniformLocation(m_prefix, "u_J"), g.sliceCount());
+    glProgramUniform1f(pp, uniformLocation(m_prefix, "u_missing"), m_replay.missingHeight());
     m_mapping = makeEmbeddedProgram("spiral_mapping.comp");
     const GLuint mp = m_mapping.get();
     glProgramUniform1i(mp, uniformLocation(m_mapping, "u_cells"), N * M);
     glProgramUniform1i(mp, uniformLocation(m_mapping, "u_N"), N);
     glProgramUniform1i(mp, uniformLocation(m_mapping, "u_J"), g.sliceCount());
     glProgramUniform1f(mp, uniformLocation(m_mapping, "u_reference"), m_replay.referenceHeight());
-    glProgramUniform1f(mp, uniformLocation(m_mapping, "u_missing"), m_replay.missingHeight());
     m_spinLocation = uniformLocation(m_mapping, "u_spin");
     for (GlQuery& q : m_queries)
         q = makeTimestampQuery();
@@ -295,6 +308,11 @@ void GpuWhirlpool::update(double tau) {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, m_cells.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, m_out.buffer());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, m_replay.blendBuffer());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, m_along.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, m_across.get());
+    glUseProgram(m_prefix.get());
+    glDispatchCompute(static_cast<GLuint>((grid().cellsX + 63) / 64), 1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     glUseProgram(m_mapping.get());
     const long long cells = static_cast<long long>(grid().cellsX) * grid().cellsZ;
     glDispatchCompute(static_cast<GLuint>((cells + kGroup - 1) / kGroup), 1, 1);

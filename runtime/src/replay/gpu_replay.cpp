@@ -150,7 +150,7 @@ GpuReplay::GpuReplay(const FrameSet& frames, const ReplayParams& params,
     }
     const int Nq = (N + 3) / 4; // columns in quads of four (column_pass.comp)
     std::vector<float> zeros(S * static_cast<std::size_t>(Nq) * 8, 0.0f);
-    auto at = [Nq](std::size_t slot, int n, int c) { // float index of S (c = 0) or W (c = 1)
+    auto at = [Nq](std::size_t slot, int n, int c) { // float index of h (c = 0) or W (c = 1)
         return ((slot * static_cast<std::size_t>(Nq) + static_cast<std::size_t>(n / 4)) * 2 +
                 static_cast<std::size_t>(c)) *
                    4 +
@@ -197,10 +197,14 @@ GpuReplay::GpuReplay(const FrameSet& frames, const ReplayParams& params,
             const auto sb = static_cast<std::size_t>(heldSlot(e.b));
             const std::size_t slot = m_heldFrames + b;
             for (int n = 0; n < N; ++n) {
-                const ColumnSum c =
-                    blendColumns({columns[at(sa, n, 0)], columns[at(sa, n, 1)]},
-                                 {columns[at(sb, n, 0)], columns[at(sb, n, 1)]}, e.alpha);
-                columns[at(slot, n, 0)] = static_cast<float>(c.S);
+                // The buffer holds (h, W); blendColumns takes (h W, W), or (h, 0) when W = 0.
+                auto sum = [&](std::size_t s, int k) {
+                    const double h = columns[at(s, k, 0)];
+                    const double W = columns[at(s, k, 1)];
+                    return W > 0.0 ? ColumnSum{h * W, W} : ColumnSum{h, 0.0};
+                };
+                const ColumnSum c = blendColumns(sum(sa, n), sum(sb, n), e.alpha);
+                columns[at(slot, n, 0)] = static_cast<float>(c.height());
                 columns[at(slot, n, 1)] = static_cast<float>(c.W);
             }
         }

@@ -8,7 +8,7 @@ struct StageTimes {
     double sliceLookupMs = 0.0; ///< eq. (5)-(6), every slice set (slice_lookup.comp)
     double reconstructMs = 0.0; ///< eq. (7) (surging, each ripple direction; not whirlpool)
     double synthesisMs = 0.0;   ///< eq. (8), ripple with a synthesis pass
-    double spiralMs = 0.0;      ///< spiral mapping, whirlpool
+    double spiralMs = 0.0;      ///< spiral prefix sums and mapping, whirlpool
     double skyMs = 0.0;         ///< render: environment background
     double waterMs = 0.0;       ///< render: height-field mesh and sides
     double splashMs = 0.0;      ///< render: point sprites (0 when no splash pass ran)

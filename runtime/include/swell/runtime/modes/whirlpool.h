@@ -117,8 +117,10 @@ private:
 };
 
 /// The whirlpool on the GPU: GpuReplay's column pass (once, turned into per-frame profiles
-/// once) and slice lookup (per frame), then spiral_mapping.comp instead of the surging
-/// reconstruction (which it never runs).
+/// once) and slice lookup (per frame), then spiral_prefix.comp (the spirals' integrals, double)
+/// and spiral_mapping.comp (each cell's footprint box mean from four of them, O(1) per cell)
+/// instead of the surging reconstruction (which it never runs). CpuWhirlpool sums the
+/// footprint's spirals one by one, so the comparison also checks the integrals' algebra.
 class GpuWhirlpool {
 public:
     GpuWhirlpool(const FrameSet& frames, const ReplayParams& params,
@@ -146,9 +148,12 @@ private:
     GpuReplay m_replay;
     SpiralGeometry m_geometry;
     HeightOutput m_out;
-    GlProgram m_mapping;
-    GlBuffer m_cells;    ///< per cell (n0, beta, s at spin 0)
-    GlBuffer m_profiles; ///< per held frame and column (p(n), p(min(n + 1, N - 1)))
+    GlProgram m_prefix;  ///< spiral_prefix.comp
+    GlProgram m_mapping; ///< spiral_mapping.comp
+    GlBuffer m_cells;    ///< per cell (v, wu, s at spin 0, w, funnel depth)
+    GlBuffer m_profiles; ///< per held frame and column (p(k), p(min(k + 1, N - 1)), C(k))
+    GlBuffer m_along;    ///< per frame, (C, p) of each spiral (spiral_prefix.comp)
+    GlBuffer m_across;   ///< per frame, their integrals across the spirals (T, P)
     int m_spinLocation = -1;
     bool m_timing = false;
     bool m_timed = false;
