@@ -182,7 +182,8 @@ json pressureFiguresJson(std::span<const PressurePoint> series) {
 }
 
 /// The far wall's pressure at Buchner's sensor P1 against the experiment and Marrone et al.'s
-/// delta-SPH (buchner2002.h, docs/validation.md 7.51), in t sqrt(g / H) and p / (rho g H).
+/// delta-SPH (buchner2002.h; docs/validation.md, Far-wall pressure), in t sqrt(g / H) and
+/// p / (rho g H).
 json farWallPressure(std::span<const PressurePoint> p1, double low, double high,
                      std::size_t particles) {
     json out = pressureFiguresJson(p1);
@@ -244,9 +245,9 @@ json lobovsky(const Scene& scene, double tEnd, const std::string& csv) {
     if (run.outcome == kStable) {
         const double tLo = 0.0;
         const double tHi = std::min(1.5, tEnd);
-        // Issue 14's "first impact and run-up": until the far wall's water lands on the gauge
-        // nearest it in the record (docs/validation.md 7.49). The level that says so is half the
-        // experiment's column, not the scene's: the window is the record's whatever H a scene has.
+        // The first impact and run-up: until the far wall's water lands on the gauge nearest it
+        // in the record (lobovskyRunUpEnd). The level that says so is half the experiment's
+        // column, not the scene's: the window is the record's whatever H a scene has.
         const double recordH = lobovskyH300Geometry().columnHeight;
         const double landsRecord = lobovskyRunUpEnd(gauges, recordH);
         const double tRunUp = std::min(landsRecord, tEnd);
@@ -432,12 +433,12 @@ json regularWave(const Scene& scene, double from, double to, const std::string& 
         commonErrors.push_back(c.heightsCommonWindow[g] / c.theory.height - 1.0);
     }
     out["height_errors"] = errors;
-    // Each height error's standard error from its record's fluctuations (7.56), of theory's H.
+    // Each height error's standard error from its record's fluctuations, of theory's H.
     json standardErrors = json::array();
     for (double se : c.heightStandardErrors)
         standardErrors.push_back(finiteOrNull(se / c.theory.height));
     out["height_errors_standard_error"] = standardErrors;
-    // Every gauge in the common window, as the check read it before 2026-12-04 (7.39).
+    // Every gauge's height error fitted in the common window instead of its own.
     out["height_errors_common_window"] = commonErrors;
     out["wavelength_theory"] = c.theory.wavelength;
     out["wavelength"] = c.wavelength;
@@ -466,7 +467,7 @@ json regularWave(const Scene& scene, double from, double to, const std::string& 
     // windows: 1 - (1 - lost) / (1 - lost by theory's record).
     out["decay_total_fit_against_theory_record"] =
         1.0 - (1.0 - c.decayOverSpan) / (1.0 - lin.decayOverSpan);
-    // Their standard errors (7.56): linear theory's record has no fluctuations of its own.
+    // Their standard errors, from the record's fluctuations: linear theory's record has none.
     out["decay_total_fit_standard_error"] = finiteOrNull(c.decayOverSpanStandardError);
     out["decay_total_fit_against_theory_record_standard_error"] =
         finiteOrNull(c.decayOverSpanStandardError / (1.0 - lin.decayOverSpan));
@@ -662,9 +663,9 @@ using Figures = std::vector<std::pair<std::string, double>>;
 /// A check as an ensemble: members with seeds 1..n and the water jittered (by the scene's
 /// geometry.jitter, or 1e-6 l0), the same flow up to a perturbation far below the resolution.
 /// Where the flow amplifies small differences (a breaking jet, a wave train over several
-/// wavelengths) one record is one draw, and the spread of the members' figures is how far it
-/// can be trusted (docs/validation.md 7.2, 7.13). `run` runs one member; `figures` reads the
-/// figures of a stable member's report, the same names in the same order for every member.
+/// wavelengths) one record is one draw, and the spread of the members' figures is how far it can be
+/// trusted. `run` runs one member; `figures` reads the figures of a stable member's report, the
+/// same names in the same order for every member.
 json ensemble(Scene scene, int n, const std::function<json(const Scene&)>& run,
               const std::function<Figures(const json&)>& figures) {
     if (!(scene.geometry.jitter > 0.0))

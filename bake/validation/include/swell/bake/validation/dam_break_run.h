@@ -1,8 +1,8 @@
 #pragma once
-// The Martin & Moyce (1952) dam break as a run (docs/validation.md 2): the scene's first water
-// rectangle, a column of width a, collapses, and after every step the surge front is read. One
-// run, as swell-validate dam-break reports it and as the CI-resolution tests
-// (tests/bake/validation_test.cpp) bound it. No I/O.
+// The Martin & Moyce (1952) dam break as a run (docs/validation.md, Dam break): the scene's first
+// water rectangle, a column of width a, collapses, and after every step the surge front is read.
+// One run, as swell-validate dam-break reports it and as the CI-resolution tests
+// (tests/bake/validation/validation_test.cpp) bound it. No I/O.
 
 #include <cstddef>
 #include <string>

@@ -1,9 +1,9 @@
 #pragma once
-// The Lobovsky et al. (2014) dam break as a run (docs/validation.md 7.2): the scene's column
-// collapses, and after every step the water level is read at the gauges H1..H4 and the pressure
-// on the far wall at Buchner's sensor P1 (buchner2002.h, docs/validation.md 7.51). One run, as
-// swell-validate lobovsky reports it and as the CI-resolution test (tests/bake/validation_test.cpp)
-// bounds it. No I/O.
+// The Lobovsky et al. (2014) dam break as a run (docs/validation.md, Lobovsky et al. (2014) dam
+// break): the scene's column collapses, and after every step the water level is read at the
+// gauges H1..H4 and the pressure on the far wall at Buchner's sensor P1 (buchner2002.h;
+// docs/validation.md, Far-wall pressure). One run, as swell-validate lobovsky reports it and as
+// the CI-resolution test (tests/bake/validation/validation_test.cpp) bounds it. No I/O.
 
 #include <cstddef>
 #include <string>

@@ -36,12 +36,12 @@ struct WaveWindow {
 /// Throws SceneError when the scene has no sinusoidal piston, no tank or fewer than two gauges.
 WaveWindow regularWaveWindow(const Scene& scene);
 
-/// Each gauge's own window (docs/validation.md 7.39), in the order of scene.output.gauges: the
-/// rule of WaveWindow applied to that gauge alone. It opens one period after the fully grown
-/// wave passed that gauge and closes when the far wall's reflection reaches it, or at the end
-/// of the run. A gauge nearer the piston is reached earlier and reflected later, so its window
-/// holds more periods; the farthest gauge's own window is regularWaveWindow's. Throws like
-/// regularWaveWindow.
+/// Each gauge's own window (docs/validation.md, Progressive waves), in the order of
+/// scene.output.gauges: the rule of WaveWindow applied to that gauge alone. It opens one period
+/// after the fully grown wave passed that gauge and closes when the far wall's reflection reaches
+/// it, or at the end of the run. A gauge nearer the piston is reached earlier and reflected later,
+/// so its window holds more periods; the farthest gauge's own window is regularWaveWindow's. Throws
+/// like regularWaveWindow.
 std::vector<WaveWindow> regularWaveGaugeWindows(const Scene& scene);
 
 /// Wave height and length measured at the gauges against linear theory.
@@ -67,15 +67,15 @@ struct RegularWaveCheck {
     double decayPerWavelength = 0.0;
     /// Height lost between the first and the last gauge along the same least-squares line:
     /// 1 - exp(b (x_last - x_first)), over 3 L in the shipped wave scenes. It reads every gauge,
-    /// so one gauge's short window moves it less than the two-gauge ratio below; the headline
-    /// "lost over 3 L" of docs/validation.md since 7.40.
+    /// so one gauge's short window moves it less than the two-gauge ratio below; the "lost
+    /// over 3 L" of docs/validation.md, Progressive waves.
     double decayOverSpan = 0.0;
     /// 1 - H(last gauge) / H(first gauge), gauges in order of x.
     double decayTotal = 0.0;
     /// Each height's standard error from its record's own fluctuations in its own window, 2 x
     /// harmonicAmplitudeStandardError (m), in the order of `heights`; NaN for a window it cannot
     /// read (fewer than kStandardErrorMinSamples or unevenly spaced samples). One record's figure
-    /// differs from another record's of the same wave by about this much (docs/validation.md 7.56).
+    /// differs from another record's of the same wave by about this much.
     std::vector<double> heightStandardErrors;
     /// The standard error of decayOverSpan, with the gauges' errors taken as independent: the
     /// line's slope b has the variance sum (x - mean x)^2 (se_H / H)^2 / (sum (x - mean x)^2)^2,

@@ -1,6 +1,6 @@
 #pragma once
 // A solitary wave shoaling on a plane beach until it breaks, against the experiment of Grilli
-// et al. (1994) (grilli1994.h; docs/validation.md 7.44). A piston's solitary stroke (Goring
+// et al. (1994) (grilli1994.h; docs/validation.md, Shoaling). A piston's solitary stroke (Goring
 // 1978) of height H / h0 = 0.2 runs over a flat bed onto a 1:34.7 slope (geometry.bed); six
 // gauges at the experiment's places record it: g0 on the flat bed, the incident wave, and
 // g1-g9 on the slope, where the wave steepens and grows to 0.34 h0 in 0.25 h0 of water and

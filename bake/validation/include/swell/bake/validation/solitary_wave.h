@@ -1,14 +1,14 @@
 #pragma once
-// A solitary wave along a flat bed against theory (docs/validation.md 7.31). A piston's single
-// stroke (Goring 1978, piston.kind "solitary") makes a wave of height H in still water of depth
-// h that, in theory, travels without changing: its celerity c = sqrt(g (h + A)) for a crest A
-// above still water (Rayleigh 1876; Laitone's second order differs by 0.13 % at A / h = 0.2),
-// its shape eta = A sech^2(k (x - c t)), k = sqrt(3 A / (4 h^3)) (Boussinesq 1872), and its
-// height kept but for the laminar friction of the bed (Keulegan 1948: of the order of 1 % over
-// 20 h at laboratory scale). Gauges along the tank record it; each record's incident crest
-// says how fast the wave runs, how much height it loses and whether it keeps its width: a
-// nonlinear wave, not periodic, that no setting of the solver was chosen on. runSolitaryWave is the
-// run swell-validate solitary-wave reports and the CI-resolution test bounds. No I/O.
+// A solitary wave along a flat bed against theory (docs/validation.md, Solitary wave). A piston's
+// single stroke (Goring 1978, piston.kind "solitary") makes a wave of height H in still water of
+// depth h that, in theory, travels without changing: its celerity c = sqrt(g (h + A)) for a crest A
+// above still water (Rayleigh 1876; Laitone's second order differs by 0.13 % at A / h = 0.2), its
+// shape eta = A sech^2(k (x - c t)), k = sqrt(3 A / (4 h^3)) (Boussinesq 1872), and its height kept
+// but for the laminar friction of the bed (Keulegan 1948: of the order of 1 % over 20 h at
+// laboratory scale). Gauges along the tank record it; each record's incident crest says how fast
+// the wave runs, how much height it loses and whether it keeps its width: a nonlinear wave, not
+// periodic, that no setting of the solver was chosen on. runSolitaryWave is the run swell-validate
+// solitary-wave reports and the CI-resolution test bounds. No I/O.
 
 #include <cstddef>
 #include <span>

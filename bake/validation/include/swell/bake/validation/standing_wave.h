@@ -1,13 +1,13 @@
 #pragma once
-// A standing wave in a closed tank against linear theory (docs/validation.md 7.15). Water at
-// rest whose surface is one cosine, y = h + A cos(k (x - x0)), k = pi / length for the tank's
-// first mode, sloshes at the linear frequency omega^2 = g k tanh(k h) (Lamb 1932,
-// Hydrodynamics, 6th ed., arts. 227-228) and, with water's viscosity, keeps its amplitude: the
-// viscous decay rate of a free-surface wave, 2 nu k^2 (Lamb art. 348), and the wall and bed
-// boundary layers take well under 1 % per period at laboratory scale. So the record of the
-// surface at a wall measures a scheme's dispersion (the period) and its numerical damping (the
-// decay per period) on a flow no setting of the solver was tuned on. runStandingWave is the run
-// swell-validate standing-wave reports and the CI-resolution test bounds. No I/O.
+// A standing wave in a closed tank against linear theory (docs/validation.md, Standing wave). Water
+// at rest whose surface is one cosine, y = h + A cos(k (x - x0)), k = pi / length for the tank's
+// first mode, sloshes at the linear frequency omega^2 = g k tanh(k h) (Lamb 1932, Hydrodynamics,
+// 6th ed., arts. 227-228) and, with water's viscosity, keeps its amplitude: the viscous decay rate
+// of a free-surface wave, 2 nu k^2 (Lamb art. 348), and the wall and bed boundary layers take well
+// under 1 % per period at laboratory scale. So the record of the surface at a wall measures a
+// scheme's dispersion (the period) and its numerical damping (the decay per period) on a flow no
+// setting of the solver was tuned on. runStandingWave is the run swell-validate standing-wave
+// reports and the CI-resolution test bounds. No I/O.
 
 #include <cstddef>
 #include <span>

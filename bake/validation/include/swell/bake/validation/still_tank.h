@@ -1,8 +1,8 @@
 #pragma once
-// Still-tank hydrostatics (docs/validation.md sections 3 and 7): a tank of water at rest run
-// for a number of steps; after a settling time, the bed pressure against rho g H and how much
-// the water still moves. One run, measured as swell-validate still-tank reports it and as the
-// CI-resolution tests (tests/bake/validation_test.cpp) bound it. No I/O.
+// Still-tank hydrostatics (docs/validation.md, Still tank): a tank of water at rest run for a
+// number of steps; after a settling time, the bed pressure against rho g H and how much the water
+// still moves. One run, measured as swell-validate still-tank reports it and as the CI-resolution
+// tests (tests/bake/validation/validation_test.cpp) bound it. No I/O.
 
 #include <cstddef>
 #include <functional>
@@ -14,7 +14,7 @@
 namespace swell::bake::validation {
 
 /// The water particle that was the fastest when the largest speed after settling was reached:
-/// where the remaining motion sits (docs/validation.md 7.14).
+/// where the remaining motion sits.
 struct FastestParticle {
     std::size_t index = 0;
     double time = 0.0;               ///< end of the step (s)
@@ -41,19 +41,19 @@ struct StillTankReport {
     double rhoGH = 0.0;              ///< rho g H (Pa)
     double bottomPressureRatio = 0.0;
     /// Largest |u| any water particle carries at the end of a step after settling (m/s): the
-    /// velocity the next step starts from and a bake writes (docs/validation.md 7.24).
+    /// velocity the next step starts from and a bake writes.
     double maxSpeed = 0.0;
     double maxSpeedOverSqrtGH = 0.0; ///< the same / sqrt(g H)
     /// Largest |u| after settling right after a step's pressure correction, before the shift
-    /// and its damping (StepStats::maxSpeed, the speed the Courant number reads): the still
-    /// tank's figure until 2026-12-03. Never below maxSpeed with the default scheme.
+    /// and its damping (StepStats::maxSpeed, the speed the Courant number reads). Never below
+    /// maxSpeed with the default scheme.
     double maxSpeedBeforeShift = 0.0;
     double maxSpeedBeforeShiftOverSqrtGH = 0.0; ///< the same / sqrt(g H)
     double meanSpeedOverSqrtGH = 0.0;
     /// Each water particle's displacement over consecutive windows of kDriftWindow, divided by
     /// the window (max over particles and windows) / sqrt(g H): how fast the water moves, to
     /// set beside the largest |u| (a particle the shifting keeps in place has the one but not
-    /// the other; docs/validation.md 7.5).
+    /// the other).
     double maxDriftSpeedOverSqrtGH = 0.0;
     double maxExcursionOverL0 = 0.0; ///< farthest a water particle got from its settled place
     std::size_t escaped = 0;         ///< water particles outside the tank at the end

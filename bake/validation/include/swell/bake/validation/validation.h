@@ -92,12 +92,12 @@ std::optional<double> firstTimeAbove(std::span<const LevelPoint> series, double 
 /// The gauge nearest the far wall (the largest x). Throws std::invalid_argument for no gauges.
 std::size_t lobovskyFarGauge(std::span<const LevelGauge> gauges);
 
-/// Where "the first impact and run-up" (issue 14's window for the Lobovsky levels) ends: the
-/// water the far wall throws back lands on the gauge nearest that wall, read as the first record
-/// sample there above half the column's height H (H4 at 1.093 s in the H = 300 mm records;
-/// docs/validation.md 7.49). Until then the gauges see the collapse, the surge, the impact and
-/// the run-up only. Throws std::invalid_argument for no gauges or a far record that never
-/// rises above H / 2.
+/// Where "the first impact and run-up", a window for the Lobovsky levels, ends: the water the far
+/// wall throws back lands on the gauge nearest that wall, read as the first record sample there
+/// above half the column's height H (H4 at 1.093 s in the H = 300 mm records; docs/validation.md,
+/// Lobovsky et al. (2014) dam break). Until then the gauges see the collapse, the surge, the impact
+/// and the run-up only. Throws std::invalid_argument for no gauges or a far record that never rises
+/// above H / 2.
 double lobovskyRunUpEnd(std::span<const LevelGauge> gauges, double H);
 
 /// The Lobovsky et al. (2014) gauge records as CSV text, "gauge,series,x,t,h" (x, t, h in m
@@ -118,12 +118,12 @@ struct HarmonicFit {
 };
 HarmonicFit fitHarmonic(std::span<const double> t, std::span<const double> v, double omega);
 
-/// The standard error of fitHarmonic's amplitude, from the record's own fluctuations about the
-/// wave (docs/validation.md 7.56). The record v(t), sampled at an even step dt, is fitted with
-/// the mean and the first kStandardErrorHarmonics harmonics of omega, the mean and the first
+/// The standard error of fitHarmonic's amplitude, from the record's own fluctuations about the wave
+/// (docs/validation.md, Progressive waves). The record v(t), sampled at an even step dt, is fitted
+/// with the mean and the first kStandardErrorHarmonics harmonics of omega, the mean and the first
 /// harmonic's amplitude each drifting linearly across the record (a growing wave front is the
-/// wave's, not a fluctuation). The residual's autocovariance C_k over lags up to one period,
-/// under a triangular lag window, gives its spectral density at omega,
+/// wave's, not a fluctuation). The residual's autocovariance C_k over lags up to one period, under
+/// a triangular lag window, gives its spectral density at omega,
 /// S = C_0 + 2 sum_k (1 - k / (K + 1)) C_k cos(omega k dt) (the Bartlett estimate, never
 /// negative). The fit took the band around omega out of the residual, so S is divided by what
 /// the same estimate reads, per unit of density, from the residual of white noise (exact, from
@@ -162,7 +162,7 @@ std::pair<double, double> parabolaTop(std::span<const double> t, std::span<const
 
 /// One figure over an ensemble of runs (swell-validate --ensemble): members that differ only
 /// by a jitter of the water far below the resolution, so their spread is how far one record
-/// of a flow that amplifies small differences can be trusted (docs/validation.md 7.2, 7.13).
+/// of a flow that amplifies small differences can be trusted.
 struct Spread {
     double mean = 0.0;
     double sd = 0.0; ///< sample standard deviation (n - 1); 0 for one member

@@ -1,9 +1,9 @@
 #pragma once
 // A wall-pressure series against the far-wall records of the dam break (buchner2002.h,
-// docs/validation.md 7.51), in t sqrt(g / H) and p / (rho g H): the impact, the second peak that
-// the run-up's collapse makes, and the mean error. MPS pressures are noisy from step to step,
-// so every series, simulated or recorded, goes through the same moving average first. Pure
-// functions.
+// docs/validation.md, Far-wall pressure), in t sqrt(g / H) and p / (rho g H): the impact, the
+// second peak that the run-up's collapse makes, and the mean error. MPS pressures are noisy from
+// step to step, so every series, simulated or recorded, goes through the same moving average first.
+// Pure functions.
 
 #include <optional>
 #include <span>

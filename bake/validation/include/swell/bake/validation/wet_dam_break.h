@@ -1,15 +1,15 @@
 #pragma once
 // A dam that breaks onto a wet bed, against Stoker's solution of the shallow-water equations
-// (docs/validation.md 7.43). Still water of depth h0 behind a gate at x0 and a thin layer of
-// depth h1 in front of it: when the gate goes, a rarefaction runs back into the reservoir and
-// a bore runs forward over the layer. Stoker (1957, "Water Waves", Sec. 10.8) solves the
-// shallow-water equations for this: the depth is self-similar in (x - x0) / t, the bore's speed
+// (docs/validation.md, Dam break onto a wet bed). Still water of depth h0 behind a gate at x0 and a
+// thin layer of depth h1 in front of it: when the gate goes, a rarefaction runs back into the
+// reservoir and a bore runs forward over the layer. Stoker (1957, "Water Waves", Sec. 10.8) solves
+// the shallow-water equations for this: the depth is self-similar in (x - x0) / t, the bore's speed
 // and the depth behind it follow from mass and momentum across it (Rankine-Hugoniot) and the
-// Riemann invariant through the fan. No solver setting was chosen on this flow: a held-out
-// case for the whole water column in motion, where the dry dam break tests a thin front. The
-// theory is the long-wave limit, so records are compared once the flow is long against its
-// depth (kStokerFromTimes). runWetDamBreak is the run swell-validate wet-dam-break reports and
-// the CI-resolution test bounds. No I/O.
+// Riemann invariant through the fan. No solver setting was chosen on this flow: a held-out case for
+// the whole water column in motion, where the dry dam break tests a thin front. The theory is the
+// long-wave limit, so records are compared once the flow is long against its depth
+// (kStokerFromTimes). runWetDamBreak is the run swell-validate wet-dam-break reports and the
+// CI-resolution test bounds. No I/O.
 
 #include <cstddef>
 #include <span>
