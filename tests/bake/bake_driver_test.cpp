@@ -201,8 +201,8 @@ TEST_F(BakeDriver, DivergingBakeNamesStepTimeParticleAndLeavesNoCache) {
 }
 
 // Every shipped scene passes the bake's own checks (frames a whole number of steps apart, a
-// step count in range), not only the loader's: scenes/lobovsky.json stored a frame every
-// 0.01 s at dt = 0.8 ms until 2026-12-02, which swell-validate read but swell-bake refused.
+// step count in range), not only the loader's: a scene that stores a frame every 0.01 s at
+// dt = 0.8 ms loads, and swell-validate runs it, but swell-bake refuses it.
 TEST(BakeDriverScenes, EveryShippedSceneIsBakeable) {
     int scenes = 0;
     for (const fs::directory_entry& e : fs::directory_iterator(kScenes)) {
@@ -379,10 +379,9 @@ TEST_F(BakeDriver, CancelledBakeWithCheckpointsSavesOneAndResumes) {
     EXPECT_FALSE(fs::exists(checkpointPath(opt.output)));
 }
 
-// Resume across an upgrade (issue 17): a checkpoint written by one build (program version
-// "1.0") is resumed by another ("2.0") with another thread count (the scene is below 4096
-// particles, so threads do not change its numbers); the cache equals the new build's
-// uninterrupted bake byte for byte.
+// Resume across an upgrade: a checkpoint written by one build (program version "1.0") is resumed by
+// another ("2.0") with another thread count (the scene is below 4096 particles, so threads do not
+// change its numbers); the cache equals the new build's uninterrupted bake byte for byte.
 TEST_F(BakeDriver, ResumeWorksAcrossARebuildWithTheSameNumerics) {
     const Scene scene = smallSurging(0.6);
     BakeOptions old;
@@ -555,7 +554,7 @@ TEST_F(BakeDriver, SummaryReportsConservationOfCountVolumeAndEnergy) {
 
 // The demo's surging scene breaks (paper Sec. 3.3.1: "breaking, merging and collision"): the
 // default scheme's bake keeps splash particles in its frames (measured 1.39 per frame with
-// numerics 5, 1.57 with 4; the non-breaking scene before issue 14 kept 0.24) and no water
+// numerics 5, against 0.24 for a version of the scene whose waves did not break) and no water
 // leaves the tank.
 TEST_F(BakeDriver, SurgingSmallBreaksWithSplashesAndKeepsItsWater) {
     const Scene scene = loadScene(kScenes / "surging_small.json");

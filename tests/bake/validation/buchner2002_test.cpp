@@ -1,5 +1,6 @@
 // The far-wall pressure records of Buchner (2002) and Marrone et al. (2011) (buchner2002.h):
-// the stored rows are the source's, in order, and say what docs/validation.md 7.51 reads.
+// the stored rows are the source's, in order, and say what docs/validation.md, Far-wall
+// pressure, reads.
 #include <algorithm>
 #include <cstddef>
 

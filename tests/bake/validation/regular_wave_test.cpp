@@ -166,12 +166,12 @@ TEST(RegularWave, HeightLostOverTheSpanReadsEveryGauge) {
     EXPECT_LT(c.decayOverSpan, c.decayTotal);
 }
 
-// The standard errors of the heights and of the height lost over the span (docs/validation.md
-// 7.56): zero on a record without fluctuations, NaN on one whose samples are uneven, and on records
-// of the same undamped wave with red noise added at every gauge (1.2 mm, correlation time 0.1 s,
-// each gauge its own series), the spread over 200 records of the loss along the line and of the
-// first gauge's height is what one record predicts, within 20 % (the prediction reads 0.82 and 0.92
-// of it: a little low where a gauge's window is short).
+// The standard errors of the heights and of the height lost over the span: zero on a record without
+// fluctuations, NaN on one whose samples are uneven, and on records of the same undamped wave with
+// red noise added at every gauge (1.2 mm, correlation time 0.1 s, each gauge its own series), the
+// spread over 200 records of the loss along the line and of the first gauge's height is what one
+// record predicts, within 20 % (the prediction reads 0.82 and 0.92 of it: a little low where a
+// gauge's window is short).
 TEST(RegularWave, DecayStandardErrorPredictsTheSpreadOverNoisyRecords) {
     const Scene scene = loadScene(kScenes / "progressive_wave.json");
     const WaveWindow w = regularWaveWindow(scene);
@@ -212,7 +212,7 @@ TEST(RegularWave, DecayStandardErrorPredictsTheSpreadOverNoisyRecords) {
     EXPECT_NEAR(predictedFirst / spreadOf(first).sd, 1.0, 0.2);
 }
 
-// Each gauge's own window (docs/validation.md 7.39): WaveWindow's rule for that gauge alone.
+// Each gauge's own window: WaveWindow's rule for that gauge alone.
 // The grown wave reaches a nearer gauge earlier and the far wall's reflection reaches it
 // later, so its window holds the farthest gauge's, which is the common window.
 TEST(RegularWave, EachGaugesWindowOpensAfterItsOwnArrivalAndClosesBeforeItsOwnReflection) {

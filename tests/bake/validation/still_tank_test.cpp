@@ -69,8 +69,8 @@ TEST(StillTank, MeasuresAfterSettlingAndNamesTheFastestWaterParticle) {
 TEST(StillTank, TheMaximumSpeedIsTheStateAtTheEndOfAStep) {
     // The damping against the shift (solver.shift_damping) takes part of a surface particle's
     // velocity after the pressure correction, where the step's statistics read it. The report's
-    // maximum is what the particles carry at the end of the step (docs/validation.md 7.24): with
-    // the damping it reads less than the statistics in this run, without it the same.
+    // maximum is what the particles carry at the end of the step: with the damping it reads less
+    // than the statistics in this run, without it the same.
     const StillTankReport damped = runStillTank(smallTank(), 1.0, 3000);
     EXPECT_EQ(damped.outcome, "stable");
     EXPECT_GT(damped.maxSpeed, 0.0);

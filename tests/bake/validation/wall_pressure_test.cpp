@@ -82,7 +82,8 @@ TEST(WallPressure, RecordsComeOutAsSeriesAndCsv) {
     EXPECT_DOUBLE_EQ(exp.front().p, buchnerP1Records().front().experiment);
     const std::vector<PressurePoint> d = buchnerP1Series(&FarWallPressureSample::deltaSph320);
     EXPECT_DOUBLE_EQ(d.back().p, buchnerP1Records().back().deltaSph320);
-    // The references' figures (docs/validation.md 7.51): delta-SPH's collapse comes later.
+    // The references' figures (docs/validation.md, Far-wall pressure): delta-SPH's collapse comes
+    // later.
     const PressureFigures e = pressureFigures(exp);
     const PressureFigures s = pressureFigures(d);
     ASSERT_TRUE(e.peakTime && s.peakTime && e.impactTime && s.impactTime);

@@ -1,7 +1,7 @@
-// Replay stress (docs/validation.md, section 6): swell-play bench at the extremes of its parameters
-// and on degenerate caches. Every case must either give a finite result that matches the
-// double-precision CPU reference (exit 0) or stop with one clear stderr line (exit 1); never NaN,
-// never a crash. tools/stress runs the slower extremes (4096 x 4096 cells) besides these.
+// Replay stress (docs/validation.md, Stability stress suite): swell-play bench at the extremes of
+// its parameters and on degenerate caches. Every case must either give a finite result that matches
+// the double-precision CPU reference (exit 0) or stop with one clear stderr line (exit 1); never
+// NaN, never a crash. tools/stress runs the slower extremes (4096 x 4096 cells) besides these.
 #include "swell/cache/writer.h"
 
 #include "app_runner.h"
