@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Peak memory of swell on long caches and large bakes (issue 17; docs/BENCHMARKS.md).
+"""Peak memory of swell on long caches and large bakes (docs/BENCHMARKS.md).
 
 Replays synthetic caches of 1,000, 10,000 and 100,000 frames (400 surface and 4 splash particles
 per frame) with `swell-play bench`, `render`, `heights` and the C API (`swell-capi-bench`, whose

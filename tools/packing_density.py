@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """How much area a hexagonal packing needs to reach the square lattice's number density n0,
-per number-density kernel and radius (docs/validation.md 7.3, the still tank's bed pressure).
+per number-density kernel and radius (docs/validation.md, Lattice constants; the still tank's
+bed pressure).
 
 MPS takes n0 from a square lattice of spacing l0. Water that the flow and the shifting reorder
 towards a hexagonal packing is held at n = n0 by the density relaxation; where the hexagonal

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """What Goring's stroke makes of a solitary wave with no numerical damping: the reference for
-the height the solitary-wave check loses (docs/validation.md 7.41).
+the height the solitary-wave check loses (docs/validation.md, Solitary wave).
 
 Goring (1978) moves the piston so that the water in front of it is Boussinesq's first-order
 wave, eta = H sech^2(k (x - c t)) with k = sqrt(3 H / (4 h^3)) and depth-mean velocity

@@ -1,14 +1,15 @@
 #!/usr/bin/python3
-"""Stability stress suite (docs/validation.md, section 6). Bake sweeps over dt, particle spacing, piston stroke and
-period (up to and past breaking), inflow speed and long runs (100,000 steps of the small still
-tank and surging scenes); replay at extreme parameters and on degenerate caches.
+"""Stability stress suite (docs/validation.md, Stability stress suite and fuzzing). Bake sweeps
+over dt, particle spacing, piston stroke and period (up to and past breaking), inflow speed and
+long runs (100,000 steps of the small still tank and surging scenes); replay at extreme parameters
+and on degenerate caches.
 
 Every bake must end either stable (cache verified, no NaN, conservation figures reported) or
 stopped by the divergence detector with a clear message and no cache; every replay must give a
 finite result that matches the CPU reference or one clear error line. A timeout is a hang.
 Writes out/stress/*.csv and the outcome table in docs/validation.md; exits 1 on any failure.
 --only fuzz (not part of the default run) builds the libFuzzer targets of tests/fuzz in
-build-fuzz/ and runs each for --fuzz-seconds (docs/validation.md section 6a)."""
+build-fuzz/ and runs each for --fuzz-seconds."""
 
 import argparse
 import json
@@ -177,7 +178,7 @@ def run_replay(case, timeout, log):
     return row
 
 
-# ---------------------------------------------------------------- fuzz (issue 17)
+# ---------------------------------------------------------------- fuzz
 FUZZ_BUILD = os.path.join(bl.ROOT, "build-fuzz")
 FUZZ_SRC = os.path.join(bl.ROOT, "tests", "fuzz")
 FUZZ_TARGETS = ["scene", "checkpoint", "options"]
@@ -429,7 +430,7 @@ def docs(bake_rows, replay_rows, m, long_steps):
     bl.replace_section(DOC, "stress", "\n".join(t))
 
 
-# ---------------------------------------------------------------- durability (issue 17)
+# ---------------------------------------------------------------- durability
 # Self-contained: durability_section() runs it and writes its own table (section "durability"
 # of docs/validation.md). Lock trials between two real swell-bake processes, ENOSPC and EIO at
 # every write site (SWELL_FAULT_INJECT, cache/include/swell/cache/checked_write.h), and resume

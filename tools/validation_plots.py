@@ -1,18 +1,18 @@
 #!/usr/bin/env python3
-"""Plots of the bake against the experiments it is validated on (docs/validation.md 7.2):
+"""Plots of the bake against the experiments it is validated on (docs/validation.md):
 the dam-break surge front against Martin & Moyce (1952), raw and on the experiment's time
 origin, the Lobovsky et al. (2014) water levels at gauges H1..H4, a solitary wave's records
-at five gauges against the stroke's wave under the Serre-Green-Naghdi equations (7.31, 7.41;
-tools/sgn_solitary.py), a dam breaking onto a wet bed against Stoker's shallow-water solution
-(7.43) and a solitary wave shoaling up a beach against Grilli et al. (1994)'s gauges (7.44), each
-at several resolutions, from swell-validate runs of the shipped scenes.
+at five gauges against the stroke's wave under the Serre-Green-Naghdi equations
+(tools/sgn_solitary.py), a dam breaking onto a wet bed against Stoker's shallow-water solution
+and a solitary wave shoaling up a beach against Grilli et al. (1994)'s gauges, each at several
+resolutions, from swell-validate runs of the shipped scenes.
 
     /usr/bin/python3 tools/validation_plots.py [--bin build/bin] [--out out/validation]
         [--threads N] [--quick]
         [--only dam-break|lobovsky|solitary-wave|wet-dam-break|shoaling]...
 
 Writes OUT/dam_break_front.png, OUT/lobovsky_gauges.png, OUT/lobovsky_p1.png (the same runs'
-far-wall pressure against Buchner (2002) and Marrone et al. (2011), 7.51), OUT/solitary_wave.png,
+far-wall pressure against Buchner (2002) and Marrone et al. (2011)), OUT/solitary_wave.png,
 OUT/wet_dam_break.png, OUT/shoaling.png and OUT/validation_plots.json (each run's command, its
 swell-validate JSON, the commit). --quick runs the CI resolutions only (a/20, H/15, h/10, h0/20
 to 1.2 s, h0/10; about a minute and a half) instead of a/20, a/50, a/80, H/15, H/30, H/60, h/10,
@@ -97,7 +97,7 @@ def run(binary, threads, kind, label, scene, sets, out):
     cmd += [kind, str(ROOT / "scenes" / scene), "--csv", str(series)]
     if with_records:
         cmd += ["--records", str(records)]
-    pressure = out / f"{kind}_pressure_records.csv"  # the far wall's sensor P1 (7.51)
+    pressure = out / f"{kind}_pressure_records.csv"  # the far wall's sensor P1
     if kind == "lobovsky":
         cmd += ["--pressure-records", str(pressure)]
     p = subprocess.run(cmd, capture_output=True, text=True)
@@ -218,7 +218,8 @@ def moving_average(t, p, half_width):
 
 def plot_far_wall_pressure(runs, path):
     """The far wall's pressure at Buchner's sensor P1 against the experiment and Marrone et
-    al. (2011)'s delta-SPH (docs/validation.md 7.51), every series smoothed the same way."""
+    al. (2011)'s delta-SPH (docs/validation.md, Far-wall pressure), every series smoothed the
+    same way."""
     refs = {}
     for r in runs[0]["pressure_records"]:
         s = refs.setdefault(r["series"], ([], []))

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Kept regular-wave records fitted again, each gauge over its own window and over the common
-one: the table and plot of docs/validation.md 7.39.
+one: the table and plot of docs/validation.md, Progressive waves.
 
 Each line of RUNS names one kept record (`swell-validate regular-wave SCENE --keep DIR`):
 
@@ -12,11 +12,11 @@ was baked with, so the fit reads the same scene. Each record is fitted with `swe
 --json [--set KEY=VALUE ...] regular-wave SCENE --probes DIR/<name>.probes.csv` (nothing is
 baked) and the table gives, per group and per window, the height error at the first gauge,
 the worst gauge and the height lost over the gauges (1 - H(last) / H(first), and along the
-least-squares line of ln H through all gauges, 7.40), and, in each gauge's own window, that
-line's loss against linear theory's record of the same piston in the same tank, as mean +- sd
-(range), and that loss's standard error as each record reads it from its own fluctuations
-(7.56), as mean (range): where the records are members of one ensemble, what one record
-predicts for their sd. The plot draws linear theory's record too.
+least-squares line of ln H through all gauges), and, in each gauge's own window, that line's
+loss against linear theory's record of the same piston in the same tank, as mean +- sd (range),
+and that loss's standard error as each record reads it from its own fluctuations, as mean
+(range): where the records are members of one ensemble, what one record predicts for their sd.
+The plot draws linear theory's record too.
 
     /usr/bin/python3 tools/wave_windows.py RUNS [--plot PNG] [--periods X]
         [--validate build/bin/swell-validate]
@@ -70,7 +70,7 @@ def refit(validate, run):
 def fitted_loss(x, errors):
     """1 - exp(b (max x - min x)), b the least-squares slope of ln H against x over all gauges
     (H / H_Biesel = 1 + error): the height lost across the gauges along the line through them,
-    swell-validate's decay_total_fit (docs/validation.md 7.40)."""
+    swell-validate's decay_total_fit."""
     b = statistics.linear_regression(x, [math.log(1.0 + e) for e in errors]).slope
     return 1.0 - math.exp(b * (max(x) - min(x)))
 
@@ -96,9 +96,9 @@ def spread(values):
 
 def own_window_figure(report, window, key):
     """A figure swell-validate reads over each gauge's own window only: the loss along the line
-    against linear theory's record of the same piston in the same tank (AGAINST_THEORY, 7.40),
-    or its standard error from the record's own fluctuations (AGAINST_THEORY +
-    "_standard_error", 7.56). None for the common window or a report without it."""
+    against linear theory's record of the same piston in the same tank (AGAINST_THEORY), or its
+    standard error from the record's own fluctuations (AGAINST_THEORY + "_standard_error"). None
+    for the common window or a report without it."""
     if window != "own":
         return None
     return report.get(key)
@@ -236,7 +236,7 @@ def plot(groups, path):
     handles, labels = axs[0][0].get_legend_handles_labels()
     fig.legend(handles, labels, loc="lower center", ncol=2, fontsize=8)
     fig.suptitle("Regular waves: height at each gauge over each gauge's own window and over the\n"
-                 "common window (docs/validation.md 7.39); grey: the 5 % target", fontsize=10)
+                 "common window; grey: the 5 % target", fontsize=10)
     fig.tight_layout(rect=(0, 0.1, 1, 1))
     fig.savefig(path, dpi=80)
 

@@ -125,12 +125,12 @@ class Validate(unittest.TestCase):
         # The experiment's own scatter rides along where a gauge has a second series, in the table.
         self.assertAlmostEqual(row["H2_experiment_scatter_over_H"], 0.0515)
         self.assertIsNone(row["H1_experiment_scatter_over_H"])
-        # The first impact and run-up (docs/validation.md 7.49): its worst gauge with a spread,
-        # and when the water lands on the far gauge.
+        # The first impact and run-up: its worst gauge with a spread, and when the water lands on
+        # the far gauge.
         self.assertAlmostEqual(row["run_up_worst_mean_abs_error_over_H"], 0.02)
         self.assertIn("run_up_worst_mean_abs_error_over_H_sd", row)
         self.assertAlmostEqual(row["far_gauge_landing_s"], 0.95)
-        # The far wall's pressure (7.51): the collapse's time and the error, with spreads.
+        # The far wall's pressure: the collapse's time and the error, with spreads.
         self.assertAlmostEqual(row["p1_collapse_t"], 6.05)
         self.assertIn("p1_collapse_t_sd", row)
         self.assertAlmostEqual(row["p1_mean_abs_error_delta_sph"], 0.04)
@@ -171,8 +171,9 @@ class Validate(unittest.TestCase):
         self.assertNotIn("run_up_worst -", bake.lobovsky_text([row]))
 
     def test_regular_wave_rows_say_which_window_the_heights_were_read_over(self):
-        # Since 2026-12-04 swell-validate reports gauge_windows and reads each gauge's height over
-        # its own window; a stored row from before has no H_window and reads as "common".
+        # swell-validate reports gauge_windows and reads each gauge's height over its own window
+        # ("own"); a stored row without H_window, from a report without gauge_windows, reads as
+        # "common".
         j = {"outcome": "stable", "kh": 1.0, "gauges": [0.5, 0.8], "window": [7.6, 9.7],
              "heights": [0.029], "height_errors": [-0.01], "height_theory": 0.0294,
              "gauge_windows": [[3.6, 9.7], [7.6, 9.7]], "decay_total": 0.04, "decay_total_fit": 0.0217}

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Concurrent use (issue 17): eight `swell-play bench` processes at once and a bake beside them.
+"""Concurrent use: eight `swell-play bench` processes at once and a bake beside them.
 
 Every bench must get a GL context, finish, and match the double-precision CPU reference within
 1e-4 of the water depth (bench's max_rel_error); the bake must finish with a valid cache. On the

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""tools/packing_density.py: the lattice sums that docs/validation.md 7.3 quotes.
+"""tools/packing_density.py: the lattice sums that docs/validation.md, Lattice constants, quotes.
 
 The surface row's asymmetry is checked against the closed form that tests/bake/kernel_test.cpp
 pins for the solver's latticeConstants().flatSurfaceAsymmetry (re = 2.1 l0), so the tool and the

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
-"""tools/sgn_solitary.py: the SGN reference that docs/validation.md 7.41 quotes for the
-solitary-wave check.
+"""tools/sgn_solitary.py: the SGN reference that docs/validation.md, Solitary wave, quotes for
+the solitary-wave check.
 
 The solver is checked against the SGN equations' own exact solitary wave, which must travel
 unchanged at sqrt(g (h + a)); a mistyped term of the equations changes its height or speed.

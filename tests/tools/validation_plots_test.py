@@ -77,9 +77,9 @@ class ValidationPlots(unittest.TestCase):
                                          out / "lobovsky_pressure_records.csv")
 
     def check_far_wall_pressure(self, result, series_csv, records_csv):
-        # Sensor P1 (docs/validation.md 7.51), recomputed from the CSVs: every series through
-        # the same moving average (half width 0.05 in t sqrt(g/H)); the run-up's collapse is the
-        # largest smoothed value in [5, 7]; the impact the first one above 0.3.
+        # Sensor P1 (docs/validation.md, Far-wall pressure), recomputed from the CSVs: every series
+        # through the same moving average (half width 0.05 in t sqrt(g/H)); the run-up's collapse is
+        # the largest smoothed value in [5, 7]; the impact the first one above 0.3.
         sys.path.insert(0, str(ROOT / "tools"))
         import validation_plots  # noqa: E402
 
@@ -115,7 +115,7 @@ class ValidationPlots(unittest.TestCase):
                         p1["delta_sph_320"]["second_peak_time"])
 
     def check_lobovsky_run_up(self, result, series_csv, records_csv):
-        # The first impact and run-up (docs/validation.md 7.49), recomputed here from the CSVs:
+        # The first impact and run-up of the Lobovsky levels, recomputed here from the CSVs:
         # the window ends at the far gauge's (H4's) first record sample above H/2, and each
         # gauge's error is the mean |h_sim - h_record| / H over the record samples in it, the
         # run's level interpolated linearly at each record time.
@@ -194,8 +194,8 @@ class ValidationPlots(unittest.TestCase):
         self.assertIn("solver.courant_limit 0.15", lines[0])
 
     def test_an_ensemble_reports_each_member_and_the_spread_of_its_figures(self):
-        # swell-validate --ensemble (docs/validation.md 7.13): members with seeds 1..N, the
-        # water jittered by 1e-6 l0; each figure's mean, sd and range over the members.
+        # swell-validate --ensemble: members with seeds 1..N, the water jittered by 1e-6 l0; each
+        # figure's mean, sd and range over the members.
         scene = str(ROOT / "scenes" / "lobovsky_small.json")
         p = subprocess.run([str(BIN / "swell-validate"), "--json", "--threads", "1", "lobovsky",
                             scene, "--until", "0.3", "--ensemble", "3"],

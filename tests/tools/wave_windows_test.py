@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """tools/wave_windows.py: the runs file, the figures per window and the table of
-docs/validation.md 7.39, on made-up reports (the fit itself is swell-validate's, tested in
-tests/bake/regular_wave_test.cpp).
+docs/validation.md, Progressive waves, on made-up reports (the fit itself is swell-validate's,
+tested in tests/bake/validation/regular_wave_test.cpp).
 
     /usr/bin/python3 tests/tools/wave_windows_test.py
 """
