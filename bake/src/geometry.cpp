@@ -8,8 +8,8 @@
 
 #include <fmt/format.h>
 
-#include "split_mix64.h"
 #include "swell/bake/error.h"
+#include "swell/split_mix64.h"
 
 namespace swell::bake {
 namespace {
@@ -375,12 +375,12 @@ long bedExtensionCells(const GeometryParams& g) {
 }
 
 void jitterWater(Particles& particles, double amplitude, std::uint64_t seed) {
-    std::uint64_t state = seed;
+    SplitMix64 rng(seed);
     for (std::size_t i = 0; i < particles.size(); ++i) {
         if (particles.kind[i] != ParticleKind::Water)
             continue;
-        particles.x[i] += uniform(state, -amplitude, amplitude);
-        particles.y[i] += uniform(state, -amplitude, amplitude);
+        particles.x[i] += rng.uniform(-amplitude, amplitude);
+        particles.y[i] += rng.uniform(-amplitude, amplitude);
     }
 }
 

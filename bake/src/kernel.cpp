@@ -13,7 +13,6 @@ LatticeConstants latticeConstants(double spacing, double re) {
     double sumW = 0.0;
     double sumR2W = 0.0;
     double halfSumY = 0.0; // sum of y w over the lower half lattice (y <= 0)
-    double sumX2HL = 0.0;  // sum of x^2 re / r^3 (higher-order Laplacian)
     for (int j = -reach; j <= reach; ++j) {
         for (int i = -reach; i <= reach; ++i) {
             if (i == 0 && j == 0)
@@ -24,13 +23,11 @@ LatticeConstants latticeConstants(double spacing, double re) {
             sumR2W += r * r * w; // K&O 1996 Laplacian model: lambda = sum r^2 w / sum w
             if (j <= 0)
                 halfSumY += spacing * j * w;
-            if (r < re)
-                sumX2HL += spacing * spacing * i * i * re / (r * r * r);
         }
     }
     if (!(sumW > 0.0))
         return {};
-    return {sumW, sumR2W / sumW, std::abs(halfSumY) / (sumW * spacing), 2.0 / sumX2HL};
+    return {sumW, sumR2W / sumW, std::abs(halfSumY) / (sumW * spacing)};
 }
 
 } // namespace swell::bake

@@ -2,7 +2,7 @@
 // (eqs. (1)-(4)), in the order MpsSolver::step() takes it:
 //   1. explicit prediction: viscosity (Laplacian model) and gravity, u* = u + dt (nu lap u + g)
 //      and r* = r + dt u* (the explicit part of eq. (2)); then the textbook collision model;
-//   2. particle number density n* at r* and the free-surface test n* < beta n0 (eq. (3));
+//   2. particle number density n* at r* and the free-surface test n* < T_s n0 (eq. (3));
 //   3. the pressure Poisson equation (PPE) for the particles inside, solved by
 //      pressure_solver.h;
 //   4. the pressure gradient correction u = u* - dt/rho grad p, r = r* + dt (u - u*).
@@ -137,10 +137,6 @@ std::string_view toString(SourceTerm s) {
     return s == SourceTerm::Relaxed ? "relaxed" : "mixed";
 }
 
-std::string_view toString(ClosePairsRegion r) {
-    return r == ClosePairsRegion::Everywhere ? "everywhere" : "bulk";
-}
-
 MpsSolver::MpsSolver(const PhysicsParams& physics, const SolverParams& solver, Particles particles,
                      double spacing, const Box& domain)
     : m_phys(physics), m_par(solver), m_p(std::move(particles)), m_l0(spacing), m_domain(domain) {
@@ -156,7 +152,7 @@ MpsSolver::MpsSolver(const PhysicsParams& physics, const SolverParams& solver, P
     require(m_phys.density > 0.0, "density must be positive");
     require(m_phys.kinematicViscosity >= 0.0, "viscosity must not be negative");
     require(time.dt > 0.0, "dt must be positive");
-    require(model.reDensity > 1.0 && model.reLaplacian > 1.0 && effectiveReRelaxation(model) > 1.0,
+    require(model.reDensity > 1.0 && model.reLaplacian > 1.0,
             "kernel radii must exceed one spacing");
     require(ppe.tolerance > 0.0 && ppe.maxIterations > 0,
             "PPE tolerance and iterations must be positive");
@@ -176,28 +172,23 @@ MpsSolver::MpsSolver(const PhysicsParams& physics, const SolverParams& solver, P
     m_reN = model.reDensity * m_l0;
     m_reL = model.reLaplacian * m_l0;
     m_collide = model.collisionDistance * m_l0;
-    m_reR = effectiveReRelaxation(model) * m_l0;
     m_reP = model.rePacking * m_l0;
-    m_reList = std::max({m_reN, m_reL, m_collide, m_reR, m_reP}) + lists.skin * m_l0;
+    m_reList = std::max({m_reN, m_reL, m_collide, m_reP}) + lists.skin * m_l0;
     // The number-density kernel (density, gradient, p_min) and the collisions reach only
     // re_N: they scan a short sub-list, half as long as the full one at the textbook radii.
     m_reShort = std::min(m_reList, std::max(m_reN, m_collide) + lists.skin * m_l0);
     m_latN = latticeConstants(m_l0, m_reN);
     m_latL = latticeConstants(m_l0, m_reL);
-    m_latR = latticeConstants(m_l0, m_reR);
     if (m_reP > 0.0)
         m_latP = latticeConstants(m_l0, m_reP);
-    // Khayyer & Gotoh (2010) higher-order Laplacian, normalized on the lattice (kernel.h).
-    m_hlScale = m_latL.higherOrderLaplacian / m_phys.density;
     m_grid.configure(m_domain, m_reList, n, lists.maxNeighbors);
 
     for (auto* v : {&m_xs, &m_ys, &m_xStar, &m_yStar, &m_uStar, &m_vStar, &m_uC, &m_vC, &m_divU,
-                    &m_fx, &m_fy, &m_fNorm, &m_shiftX, &m_shiftY, &m_nRelax, &m_nPack}) {
+                    &m_fx, &m_fy, &m_fNorm, &m_shiftX, &m_shiftY, &m_nPack}) {
         v->assign(n, 0.0);
     }
     m_surface.assign(n, 0);
     m_layer.assign(n, 0);
-    m_nearWall.assign(n, 0);
     m_row.assign(n, -1);
     m_rowParticle.assign(n, 0);
     // One PPE row per particle at most, each with room for a full neighbour list + diagonal.
@@ -257,11 +248,6 @@ void MpsSolver::relocateWater(std::size_t i, double x, double y, double vx, doub
     m_p.vx[i] = vx;
     m_p.vy[i] = vy;
     m_xs[i] = std::numeric_limits<double>::quiet_NaN(); // forces a neighbour rebuild next step
-}
-
-std::vector<std::uint32_t> MpsSolver::ppeRowParticles() const {
-    return {m_rowParticle.begin(),
-            m_rowParticle.begin() + static_cast<std::ptrdiff_t>(m_ppe.matrix().rows)};
 }
 
 Eigen::Map<const Eigen::SparseMatrix<double, Eigen::RowMajor, int>> MpsSolver::ppeMatrix() const {
@@ -498,76 +484,41 @@ void MpsSolver::numberDensityAndSurface() {
     const double asymmetric = model.distributionThreshold * m_latN.flatSurfaceAsymmetry;
     const double fScale = 1.0 / (m_latN.n0 * m_l0);
     const bool shifting = model.shifting > 0.0;
-    // solver.shift_close_pairs g: the shift's sums from the pairs closer than l0 only, with the
-    // MPS weight on l0, times g (docs/validation.md 7.47).
-    const double closeGain = model.shiftClosePairs;
-    const bool closePairs = closeGain > 0.0;
-    // shift_close_pairs_region "bulk": both sums are taken, and the close pairs' kept only
-    // where the neighbourhood is full and all water (docs/validation.md 7.48).
-    const bool bulkOnly = closePairs && model.shiftClosePairsRegion == ClosePairsRegion::Bulk;
-    const bool defaultSums = !closePairs || bulkOnly;
-    const double l02 = m_l0 * m_l0;
-    // With a relaxation kernel of its own (re_relaxation) or a packing kernel (re_packing),
-    // their sums take the full list, which reaches them; the short list is its sub-list in the
-    // same order, so the re_N sums below see the same neighbours in the same order either way.
-    const bool ownR = m_reR != m_reN;
+    // With a packing kernel (re_packing) its sum takes the full list, which reaches it; the
+    // short list is its sub-list in the same order, so the re_N sums below see the same
+    // neighbours in the same order either way.
     const bool packing = m_reP > 0.0;
-    const bool wide = ownR || packing;
-    const double reR2 = m_reR * m_reR;
     const double reP2 = m_reP * m_reP;
-    const double scan2 = std::max({reN2, ownR ? reR2 : 0.0, reP2});
-    // |f| is read by the distribution test, the packing factor's choice of full neighbourhoods,
-    // the truncated neighbourhoods' density target, and the surface particles' shift: taken
-    // once here, in parallel.
-    const bool norm = distribution || packing || shifting || model.truncatedDensity > 0.0;
-    // Which particles have a wall particle within kWallReach: only where the damping against
-    // the shift takes a gain of its own there (shiftParticles).
-    const bool wallReach =
-        shifting && model.shiftDamping && model.shiftDampingWallGain != model.shiftDampingGain;
-    const double wall2 = kWallReach * kWallReach * m_l0 * m_l0;
+    const double scan2 = std::max(reN2, reP2);
+    // |f| is read by the distribution test, the packing factor's choice of full neighbourhoods
+    // and the surface particles' shift: taken once here, in parallel.
+    const bool norm = distribution || packing || shifting;
     std::size_t surface = 0;
 #pragma omp parallel for schedule(static, kParticleChunk) reduction(+ : surface) if (n >= kParallelMin)
     for (std::size_t i = 0; i < n; ++i) {
         double s = 0.0;
         double div = 0.0;
         double fx = 0.0, fy = 0.0;
-        double cx = 0.0, cy = 0.0; // the default's sums (defaultSums)
-        double kx = 0.0, ky = 0.0; // the close pairs' sums (closePairs)
-        bool boundary = false;     // bulkOnly: a wall or dummy particle on the density kernel
-        double sR = 0.0;
+        double cx = 0.0, cy = 0.0; // concentration gradient sums (shiftParticles)
         double sP = 0.0;
-        bool nearWall = false;
         const bool shiftSums = shifting && !isFixed(m_p.kind[i]); // fixed particles never shift
         forNeighbours(
-            wide ? m_grid.neighbors(i) : m_grid.shortNeighbors(i), m_xStar, m_yStar, i, scan2,
+            packing ? m_grid.neighbors(i) : m_grid.shortNeighbors(i), m_xStar, m_yStar, i, scan2,
             [&](std::uint32_t j, double dx, double dy, double r2) {
-                if (wide) {
-                    if (ownR && r2 < reR2)
-                        sR += mpsWeight(std::sqrt(r2), m_reR);
-                    if (packing && r2 < reP2)
+                if (packing) {
+                    if (r2 < reP2)
                         sP += mpsWeight(std::sqrt(r2), m_reP);
                     if (r2 >= reN2)
                         return;
                 }
-                if (wallReach && r2 < wall2 && m_p.kind[j] == ParticleKind::Wall)
-                    nearWall = true;
                 const double r = std::sqrt(r2);
                 const double w = mpsWeight(r, m_reN);
                 s += w;       // K&O 1996 particle number density n* = sum_j w(|r*_j - r*_i|)
                 fx += dx * w; // neighbour distribution (Khayyer, Gotoh & Shao 2009)
                 fy += dy * w;
                 if (shiftSums && r2 > 0.0) { // concentration gradient sums (shiftParticles)
-                    if (defaultSums) {
-                        cx += dx * w / r2;
-                        cy += dy * w / r2;
-                    }
-                    if (closePairs && r2 < l02) { // shift_close_pairs: pairs closer than l0
-                        const double f = closeGain * mpsWeight(r, m_l0) / r2;
-                        kx += dx * f;
-                        ky += dy * f;
-                    }
-                    if (bulkOnly)
-                        boundary = boundary || m_p.kind[j] != ParticleKind::Water;
+                    cx += dx * w / r2;
+                    cy += dy * w / r2;
                 }
                 if (mixed && m_p.kind[j] != ParticleKind::Dummy) {
                     // Divergence model: d/n0 sum (u_j - u_i).(r_j - r_i) / r^2 w
@@ -576,18 +527,16 @@ void MpsSolver::numberDensityAndSurface() {
                 }
             });
         m_p.n[i] = s;
-        m_nRelax[i] = ownR ? sR : s;
         m_nPack[i] = sP;
         m_divU[i] = coefD * div;
         m_fx[i] = fx * fScale;
         m_fy[i] = fy * fScale;
         m_fNorm[i] = norm ? std::hypot(m_fx[i], m_fy[i]) : 0.0;
-        m_nearWall[i] = nearWall ? 1 : 0;
         if (m_p.kind[i] == ParticleKind::Dummy) {
             m_surface[i] = kNotInPpe;
         } else {
             // Paper eq. (3), the K&O 1996 free-surface condition: free surface where
-            // n* < beta n0, p = 0 there; the distribution test also asks for a one-sided
+            // n* < T_s n0, p = 0 there; the distribution test also asks for a one-sided
             // neighbourhood unless the particle is sparse.
             bool free = s < threshold;
             bool oneSided = false;
@@ -598,16 +547,12 @@ void MpsSolver::numberDensityAndSurface() {
             }
             m_surface[i] = free ? 1 : 0;
             // The surface layer for eq. (4): the free surface and, with the distribution
-            // test, every one-sided neighbourhood (a crest compressed above beta n0 too).
+            // test, every one-sided neighbourhood (a crest compressed above T_s n0 too).
             m_layer[i] = distribution && (free || oneSided) ? 1 : 0;
             surface += m_surface[i];
         }
-        // The close pairs' sums where they act: everywhere, or in the bulk only.
-        const bool close =
-            closePairs &&
-            !(bulkOnly && (m_surface[i] != 0 || m_fNorm[i] > kBulkNeighbourhood || boundary));
-        m_shiftX[i] = close ? kx : cx;
-        m_shiftY[i] = close ? ky : cy;
+        m_shiftX[i] = cx;
+        m_shiftY[i] = cy;
     }
     m_stats.surfaceParticles = surface;
     m_packing = packing ? measurePacking() : 1.0;
@@ -629,12 +574,12 @@ double MpsSolver::measurePacking() const {
         if (m_p.kind[i] != ParticleKind::Water || m_surface[i] != 0 || m_layer[i] != 0 ||
             m_fNorm[i] >= kFullNeighbourhood)
             continue;
-        sumR += m_nRelax[i];
+        sumR += m_p.n[i];
         sumP += m_nPack[i];
     }
     if (sumR <= 0.0 || sumP <= 0.0)
         return 1.0; // no full neighbourhood (a spray of particles): aim at n0
-    return (sumR / m_latR.n0) / (sumP / m_latP.n0);
+    return (sumR / m_latN.n0) / (sumP / m_latP.n0);
 }
 
 void MpsSolver::assemblePressureEquation(double dt) {
@@ -671,15 +616,10 @@ void MpsSolver::assemblePressureEquation(double dt) {
     // the artificial compressibility C (textbook code) makes the system strictly diagonally
     // dominant, hence symmetric positive definite.
     const double a = 2.0 * kDim / (m_latL.n0 * m_latL.lambda) / m_phys.density;
-    const bool higher = m_par.model.higherOrderLaplacian;
-    const double minR = 0.5 * m_l0; // HL: the r^-3 weight is capped below half a spacing
     const double compress = m_par.pressure.compressibility / (dt * dt);
-    // gamma per step, or, with reference_step set, per reference_step scaled to this step's
-    // dt, so the relaxation acts at one rate per second whatever the step (coefficientScale).
-    const double gamma = m_par.pressure.relaxation * coefficientScale(m_par.time, dt);
-    const double n0 = m_latR.n0;
+    const double gamma = m_par.pressure.relaxation; // per step, as the textbook code has it
+    const double n0 = m_latN.n0;
     const double target = n0 * m_packing;
-    const double truncated = m_par.model.truncatedDensity;
     const bool mixed = m_par.pressure.sourceTerm == SourceTerm::Mixed;
     std::vector<double>& b = m_ppe.rhs();
     std::vector<double>& x = m_ppe.solution();
@@ -694,9 +634,7 @@ void MpsSolver::assemblePressureEquation(double dt) {
                       [&](std::uint32_t j, double, double, double r2) {
                           if (m_surface[j] == kNotInPpe)
                               return;
-                          const double c = higher ? m_hlScale * m_reL /
-                                                        std::pow(std::max(std::sqrt(r2), minR), 3)
-                                                  : a * mpsWeight(std::sqrt(r2), m_reL);
+                          const double c = a * mpsWeight(std::sqrt(r2), m_reL);
                           diagValue += c;
                           const int cj = m_row[j];
                           if (cj < 0)
@@ -715,17 +653,10 @@ void MpsSolver::assemblePressureEquation(double dt) {
         A.val[static_cast<std::size_t>(diag)] = diagValue;
         A.diagPos[static_cast<std::size_t>(r)] = diag;
         // K&O 1996 PPE source, relaxed (textbook): gamma / dt^2 (n* - n0) / n0. Mixed
-        // (Tanaka & Masunaga 2010): - div(u*) / dt + gamma / dt^2 (n* - n0) / n0. n* and n0
-        // on the relaxation's kernel (re_relaxation; re_density unless set).
-        // With re_packing the target is n0 P (measurePacking), the density of water that
-        // keeps its starting volume in the packing it has now.
-        // With truncated_density a water particle whose neighbourhood the surface truncates
-        // aims at n0 P (1 - k |f|), what such a neighbourhood can reach (ModelParams).
-        const double aim =
-            truncated > 0.0 && m_p.kind[i] == ParticleKind::Water && m_fNorm[i] > kFullNeighbourhood
-                ? target * (1.0 - truncated * m_fNorm[i])
-                : target;
-        double rhs = gamma / (dt * dt) * (m_nRelax[i] - aim) / n0;
+        // (Tanaka & Masunaga 2010): - div(u*) / dt + gamma / dt^2 (n* - n0) / n0, n* and n0
+        // on the number-density kernel. With re_packing the target is n0 P (measurePacking),
+        // the density of water that keeps its starting volume in the packing it has now.
+        double rhs = gamma / (dt * dt) * (m_p.n[i] - target) / n0;
         if (mixed)
             rhs -= m_divU[i] / dt;
         b[static_cast<std::size_t>(r)] = rhs;
@@ -850,16 +781,10 @@ void MpsSolver::shiftParticles(double dt) {
     // Free-surface particles move only along the surface (the normal is minus their
     // neighbour distribution), so shifting neither lifts nor sinks the surface.
     const std::size_t n = m_p.size();
-    // C per step, or, with reference_step set, per reference_step scaled to this step's dt: a
-    // diffusion of C l0^2 / reference_step per second whatever the step (coefficientScale).
-    const double c = m_par.model.shifting * coefficientScale(m_par.time, dt);
+    const double c = m_par.model.shifting; // per step, as the relaxation
     const double d = c * m_l0 * m_l0 * 2.0 * kDim / m_latN.n0;
     const double maxShift = 0.2 * m_l0;
-    // With shifting_velocity every particle's shift is kept until all velocity gradients are
-    // taken; without it each particle moves at once.
-    const bool follow = m_par.model.shiftingVelocity;
     const bool damp = m_par.model.shiftDamping;
-    const double band = m_par.model.shiftDeadBand * m_l0; // solver.shift_dead_band, per step
 #pragma omp parallel for schedule(static, kParticleChunk) if (n >= kParallelMin)
     for (std::size_t i = 0; i < n; ++i) {
         if (isFixed(m_p.kind[i]))
@@ -876,12 +801,6 @@ void MpsSolver::shiftParticles(double dt) {
             } else {
                 sx = sy = 0.0;
             }
-        } else if (band > 0.0) {
-            // The dead band: the shift less band, 0 where it is shorter (docs/validation.md 7.45).
-            const double s = std::hypot(sx, sy);
-            const double keep = s > band ? 1.0 - band / s : 0.0;
-            sx *= keep;
-            sy *= keep;
         }
         const double len = std::hypot(sx, sy);
         if (len > maxShift) {
@@ -890,51 +809,8 @@ void MpsSolver::shiftParticles(double dt) {
         }
         if (damp && surface)
             dampAgainstShift(i, sx, sy, std::min(len, maxShift), dt);
-        if (follow) {
-            m_shiftX[i] = sx; // the pair sums are used up: the shift itself from here on
-            m_shiftY[i] = sy;
-        } else {
-            m_p.x[i] += sx;
-            m_p.y[i] += sy;
-        }
-    }
-    if (!follow)
-        return;
-    // The velocity field at the shifted place: u_i += (dr_i . grad) u_i, with the MPS
-    // gradient grad u_i = d/n0 sum_j (u_j - u_i) (r_j - r_i) / r^2 w (Xu et al. 2009,
-    // Lind et al. 2012), taken before any particle moves.
-    const double coefG = kDim / m_latN.n0;
-    const double reN2 = m_reN * m_reN;
-#pragma omp parallel for schedule(static, kParticleChunk) if (n >= kParallelMin)
-    for (std::size_t i = 0; i < n; ++i) {
-        m_uC[i] = m_p.vx[i];
-        m_vC[i] = m_p.vy[i];
-        if (isFixed(m_p.kind[i]))
-            continue;
-        double uxx = 0.0, uxy = 0.0, vyx = 0.0, vyy = 0.0; // d u / d x, d u / d y, ...
-        forNeighbours(m_grid.shortNeighbors(i), m_p.x, m_p.y, i, reN2,
-                      [&](std::uint32_t j, double dx, double dy, double r2) {
-                          if (m_p.kind[j] == ParticleKind::Dummy || r2 <= 0.0)
-                              return;
-                          const double f = mpsWeight(std::sqrt(r2), m_reN) / r2;
-                          const double du = m_p.vx[j] - m_p.vx[i];
-                          const double dv = m_p.vy[j] - m_p.vy[i];
-                          uxx += f * du * dx;
-                          uxy += f * du * dy;
-                          vyx += f * dv * dx;
-                          vyy += f * dv * dy;
-                      });
-        m_uC[i] += coefG * (m_shiftX[i] * uxx + m_shiftY[i] * uxy);
-        m_vC[i] += coefG * (m_shiftX[i] * vyx + m_shiftY[i] * vyy);
-    }
-#pragma omp parallel for schedule(static, kParticleChunk) if (n >= kParallelMin)
-    for (std::size_t i = 0; i < n; ++i) {
-        if (isFixed(m_p.kind[i]))
-            continue;
-        m_p.x[i] += m_shiftX[i];
-        m_p.y[i] += m_shiftY[i];
-        m_p.vx[i] = m_uC[i];
-        m_p.vy[i] = m_vC[i];
+        m_p.x[i] += sx;
+        m_p.y[i] += sy;
     }
 }
 
@@ -944,7 +820,7 @@ void MpsSolver::dampAgainstShift(std::size_t i, double sx, double sy, double len
     // particle along it steadily: the shift then moves it back every step and its velocity
     // grows to a value that moves it nowhere. u_s = u . s/|s| < 0 is its velocity against the
     // shift, |s| / (|u_s| dt) the part of that motion the shift cancels, and rho = min(1,
-    // g |s| / (|u_s| dt)) with g = shift_damping_gain (shift_damping_wall_gain next to a wall);
+    // g |s| / (|u_s| dt)) with g = shift_damping_gain;
     // u_s -> u_s (1 - rho^3) takes all of it from a particle the shift holds in place (or, at
     // g = 2, undoes at least half of) and almost none from one the shift barely slows (a
     // surge's front, a wave's crest).
@@ -954,8 +830,7 @@ void MpsSolver::dampAgainstShift(std::size_t i, double sx, double sy, double len
     const double against = -(m_p.vx[i] * ex + m_p.vy[i] * ey); // -u_s
     if (!(against > 0.0))
         return;
-    const double gain =
-        m_nearWall[i] != 0 ? m_par.model.shiftDampingWallGain : m_par.model.shiftDampingGain;
+    const double gain = m_par.model.shiftDampingGain;
     const double rho = std::min(1.0, gain * len / (against * dt));
     const double take = against * rho * rho * rho;
     m_p.vx[i] += take * ex;

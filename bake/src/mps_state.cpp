@@ -87,11 +87,10 @@ void MpsSolver::removeWater(std::span<const std::size_t> indices) {
     // Work arrays of one step: only their length follows.
     const std::size_t k = m_p.size();
     for (auto* v : {&m_xStar, &m_yStar, &m_uStar, &m_vStar, &m_uC, &m_vC, &m_divU, &m_fx, &m_fy,
-                    &m_fNorm, &m_shiftX, &m_shiftY, &m_nRelax, &m_nPack}) {
+                    &m_fNorm, &m_shiftX, &m_shiftY, &m_nPack}) {
         v->resize(k);
     }
     m_row.resize(k);
-    m_nearWall.resize(k);
 
     // The neighbour lists name particles by index: build them again from the positions of the
     // last build (the Verlet reference stays). Where a particle was moved since (its NaN

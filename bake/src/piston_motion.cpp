@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "split_mix64.h"
+#include "swell/split_mix64.h"
 
 namespace swell::bake {
 namespace {
@@ -107,10 +107,10 @@ PistonMotion::PistonMotion(const PistonParams& p, double endTime) : m_params(p) 
     // Every cycle is drawn up front: a bounded count (the shortest period over the run).
     require(endTime / p.periodMin <= static_cast<double>(kMaxPistonCycles), "period_min",
             "too short for the run: end_time / period_min exceeds 1,000,000 cycles");
-    std::uint64_t state = p.seed;
+    SplitMix64 rng(p.seed);
     for (double t = 0.0; t <= endTime;) {
-        const double period = uniform(state, p.periodMin, p.periodMax);
-        const double stroke = uniform(state, p.strokeMin, p.strokeMax);
+        const double period = rng.uniform(p.periodMin, p.periodMax);
+        const double stroke = rng.uniform(p.strokeMin, p.strokeMax);
         m_cycles.push_back({t, period, stroke});
         t += period;
     }

@@ -226,6 +226,33 @@ void readWater(Section& parent, GeometryParams& g) {
     }
 }
 
+/// Keys that scene records written by earlier versions carry at one fixed value. They are
+/// accepted at that value, so those records and their checkpoints still load; any other value
+/// names a scheme this solver no longer has.
+void readRecordedConstants(Section& s, const ModelParams& m) {
+    const auto fixed = [&](const char* k, double value, const char* why) {
+        const double x = s.number(k, value, -kInf, kInf);
+        if (x != value) {
+            throw SceneError(s.key(k), fmt::format("{:g} is not supported: the only value is "
+                                                   "{:g} ({}); leave the key out",
+                                                   x, value, why));
+        }
+    };
+    fixed("reference_step", 0.0, "gamma and C act per step");
+    fixed("re_relaxation", m.reDensity,
+          "the density relaxation uses the density radius, solver.re_density");
+    const auto off = [&](const char* k, const char* why) {
+        if (s.boolean(k, false)) {
+            throw SceneError(s.key(k),
+                             fmt::format("true is not supported: the only value is false ({}); "
+                                         "leave the key out",
+                                         why));
+        }
+    };
+    off("shifting_velocity", "the shifting moves positions only");
+    off("higher_order_laplacian", "the Laplacian is eq. (4)'s");
+}
+
 } // namespace
 
 double expectedSpeed(const Scene& scene) {
@@ -307,13 +334,10 @@ Scene parseScene(const json& j) {
         t.courantTarget = s.number("courant_target", t.courantTarget, 0.0, 1.0, true);
         t.courantLimit = s.number("courant_limit", t.courantLimit, 0.0, 2.0, true);
         t.substepCourant = s.number("substep_courant", t.substepCourant, 0.0, 1.0);
-        t.referenceStep = s.number("reference_step", t.referenceStep, 0.0, kInf, false, " (s)");
         run.expectedSpeed =
             s.number("expected_speed", run.expectedSpeed, 0.0, kInf, false, " (m/s)");
         m.reDensity = s.number("re_density", m.reDensity, 1.0, 10.0, true, " (l0)");
         m.reLaplacian = s.number("re_laplacian", m.reLaplacian, 1.0, 10.0, true, " (l0)");
-        m.reRelaxation =
-            s.number("re_relaxation", effectiveReRelaxation(m), 1.0, 10.0, true, " (l0)");
         m.rePacking = s.number("re_packing", m.rePacking, 0.0, 10.0, false, " (l0)");
         if (m.rePacking > 0.0 && m.rePacking <= 1.0) {
             throw SceneError(
@@ -335,18 +359,9 @@ Scene parseScene(const json& j) {
         m.distributionThreshold =
             s.number("distribution_threshold", m.distributionThreshold, 0.0, 10.0, false);
         m.shifting = s.number("shifting", m.shifting, 0.0, 1.0, false);
-        m.shiftingVelocity = s.boolean("shifting_velocity", m.shiftingVelocity);
         m.shiftDamping = s.boolean("shift_damping", m.shiftDamping);
         m.shiftDampingGain = s.number("shift_damping_gain", m.shiftDampingGain, 0.0, 10.0, true);
-        m.shiftDampingWallGain =
-            s.number("shift_damping_wall_gain", m.shiftDampingWallGain, 0.0, 10.0, true);
-        m.truncatedDensity = s.number("truncated_density", m.truncatedDensity, 0.0, 1.0, false);
-        m.shiftDeadBand = s.number("shift_dead_band", m.shiftDeadBand, 0.0, 0.1, false, " (l0)");
-        m.shiftClosePairs = s.number("shift_close_pairs", m.shiftClosePairs, 0.0, 10.0, false);
-        m.shiftClosePairsRegion =
-            s.enumeration("shift_close_pairs_region", m.shiftClosePairsRegion,
-                          {ClosePairsRegion::Everywhere, ClosePairsRegion::Bulk});
-        m.higherOrderLaplacian = s.boolean("higher_order_laplacian", m.higherOrderLaplacian);
+        readRecordedConstants(s, m);
         if (m.shifting > 0.0 && m.surfaceTest != SurfaceTest::Distribution) {
             throw SceneError("solver.shifting",
                              fmt::format("particle shifting (C = {:g}) needs solver.surface_test "
@@ -365,41 +380,6 @@ Scene parseScene(const json& j) {
                                  "or set this to false");
             }
             m.shiftDamping = false;
-        }
-        // A key that only changes the particle shifting is an error without it: `what` it does,
-        // and the value (`off`) that leaves it unset.
-        const auto needsShifting = [&](bool set, const char* key, const char* what,
-                                       const char* off) {
-            if (set && !(m.shifting > 0.0)) {
-                throw SceneError(fmt::format("solver.{}", key),
-                                 fmt::format("{}, and solver.shifting is 0: set a shifting "
-                                             "coefficient or leave this {}",
-                                             what, off));
-            }
-        };
-        needsShifting(m.shiftDeadBand > 0.0, "shift_dead_band",
-                      "is a dead band on the particle shifting", "0");
-        needsShifting(m.shiftClosePairs > 0.0, "shift_close_pairs",
-                      "takes the particle shifting's pair sums from close pairs", "0");
-        if (s.has("shift_close_pairs_region") && !(m.shiftClosePairs > 0.0)) {
-            throw SceneError("solver.shift_close_pairs_region",
-                             "says where solver.shift_close_pairs acts, and that is 0: set a "
-                             "close-pairs gain or leave this out");
-        }
-        needsShifting(m.shiftingVelocity, "shifting_velocity",
-                      "moves the velocity with the particle shifting", "false");
-        // gamma and C are per reference_step; a longer step multiplies them, and neither may
-        // act as more than 1 per step (their own ranges, so a step no longer than
-        // reference_step always passes).
-        const double scale = coefficientScale(t, t.dt);
-        if (std::max(e.relaxation, m.shifting) * scale > 1.0) {
-            throw SceneError(
-                "solver.dt",
-                fmt::format("{:g} s is {:g} times solver.reference_step ({:g} s), so the density "
-                            "relaxation ({:g}) and the shifting ({:g}) would act as {:g} and {:g} "
-                            "per step, above 1; take a smaller dt or a longer reference_step",
-                            t.dt, scale, t.referenceStep, e.relaxation, m.shifting,
-                            e.relaxation * scale, m.shifting * scale));
         }
         const bool corrected = s.boolean("gradient_correction", usesCorrectiveMatrix(m.gradient));
         const bool symmetric = s.boolean("symmetric_gradient", usesSymmetricPairs(m.gradient));
@@ -625,11 +605,11 @@ json toJson(const Scene& sc) {
           {"courant_target", s.time.courantTarget},
           {"courant_limit", s.time.courantLimit},
           {"substep_courant", s.time.substepCourant},
-          {"reference_step", s.time.referenceStep},
+          {"reference_step", 0.0}, // recorded constants: readRecordedConstants
           {"expected_speed", sc.run.expectedSpeed},
           {"re_density", s.model.reDensity},
           {"re_laplacian", s.model.reLaplacian},
-          {"re_relaxation", effectiveReRelaxation(s.model)},
+          {"re_relaxation", s.model.reDensity},
           {"re_packing", s.model.rePacking},
           {"surface_threshold", s.model.surfaceThreshold},
           {"relaxation", s.pressure.relaxation},
@@ -643,9 +623,9 @@ json toJson(const Scene& sc) {
           {"sparse_threshold", s.model.sparseThreshold},
           {"distribution_threshold", s.model.distributionThreshold},
           {"shifting", s.model.shifting},
-          {"shifting_velocity", s.model.shiftingVelocity},
+          {"shifting_velocity", false},
           {"shift_damping", s.model.shiftDamping},
-          {"higher_order_laplacian", s.model.higherOrderLaplacian},
+          {"higher_order_laplacian", false},
           {"preconditioner", std::string(toString(s.pressure.preconditioner))},
           {"ppe_tolerance", s.pressure.tolerance},
           {"ppe_max_iterations", s.pressure.maxIterations},
@@ -661,17 +641,6 @@ json toJson(const Scene& sc) {
     const ModelParams plain;
     if (s.model.shiftDampingGain != plain.shiftDampingGain)
         out["solver"]["shift_damping_gain"] = s.model.shiftDampingGain;
-    if (s.model.shiftDampingWallGain != plain.shiftDampingWallGain)
-        out["solver"]["shift_damping_wall_gain"] = s.model.shiftDampingWallGain;
-    if (s.model.truncatedDensity != plain.truncatedDensity)
-        out["solver"]["truncated_density"] = s.model.truncatedDensity;
-    if (s.model.shiftDeadBand != plain.shiftDeadBand)
-        out["solver"]["shift_dead_band"] = s.model.shiftDeadBand;
-    if (s.model.shiftClosePairs != plain.shiftClosePairs)
-        out["solver"]["shift_close_pairs"] = s.model.shiftClosePairs;
-    if (s.model.shiftClosePairsRegion != plain.shiftClosePairsRegion)
-        out["solver"]["shift_close_pairs_region"] =
-            std::string(toString(s.model.shiftClosePairsRegion));
     if (sc.piston) {
         const PistonParams& p = *sc.piston;
         out["piston"] = json{{"kind", std::string(toString(p.kind))},

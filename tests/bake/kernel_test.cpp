@@ -71,12 +71,3 @@ TEST(Kernel, FlatSurfaceAsymmetryMatchesTheHalfLatticeSum) {
     EXPECT_NEAR(c.flatSurfaceAsymmetry, (w1 + 2.0 * w2 + 2.0 * w4) / n0, 1e-12);
     EXPECT_NEAR(latticeConstants(0.5, 1.05).flatSurfaceAsymmetry, c.flatSurfaceAsymmetry, 1e-12);
 }
-
-// The higher-order Laplacian's normalization for re = 2.1 l0: sum x^2 re / r^3 over the
-// neighbours at 1 (two with x^2 = 1), sqrt 2 (four, x^2 = 1) and 2 (two, x^2 = 4), in l0.
-TEST(Kernel, HigherOrderLaplacianNormalizationMatchesTheLatticeSum) {
-    const double re = 2.1;
-    const double sum = 2.0 * re + 4.0 * re / std::pow(std::sqrt(2.0), 3) + 2.0 * 4.0 * re / 8.0;
-    EXPECT_NEAR(latticeConstants(1.0, re).higherOrderLaplacian, 2.0 / sum, 1e-12);
-    EXPECT_NEAR(latticeConstants(0.01, 0.021).higherOrderLaplacian, 2.0 / sum, 1e-12);
-}

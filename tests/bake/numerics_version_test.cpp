@@ -94,18 +94,6 @@ MpsState run(const json& j) {
     return solver.exportState();
 }
 
-/// An opt-in solver key: at 0 the guard scene's state is today's default, bit for bit; at
-/// `value`, the value its figures were measured with, it is the `pinned` digest, so those
-/// figures can be run again.
-void expectOffAtZeroAndPinnedAt(const char* key, double value, const char* pinned) {
-    json j = guardScene();
-    const std::string base = digest(run(j));
-    j["solver"][key] = 0.0;
-    EXPECT_EQ(digest(run(j)), base) << key;
-    j["solver"][key] = value;
-    EXPECT_EQ(digest(run(j)), pinned) << key;
-}
-
 } // namespace
 
 TEST(NumericsVersion, SolverOutputMatchesTheDigestRecordedForThisVersion) {
@@ -127,32 +115,4 @@ TEST(NumericsVersion, DigestSeesASmallChangeOfTheNumbers) {
     const std::string base = digest(run(j));
     j["physics"]["gravity"] = 9.81 * (1.0 + 1e-6);
     EXPECT_NE(digest(run(j)), base);
-}
-
-TEST(NumericsVersion, TheWallGainKeyGivesTheBitsItWasMeasuredWith) {
-    // solver.shift_damping_wall_gain 1.5 (opt-in, docs/validation.md 7.37) was measured as a
-    // candidate numerics 6; its state on the guard scene is pinned here so those figures can be
-    // run again.
-    json j = guardScene();
-    j["solver"]["shift_damping_wall_gain"] = 1.5;
-    EXPECT_EQ(digest(run(j)), "794d6d57f0d3b895");
-}
-
-TEST(NumericsVersion, TheDeadBandKeyChangesNoBitAtItsDefaultAndPinsItsOwn) {
-    // solver.shift_dead_band (opt-in, docs/validation.md 7.45), measured at 0.0005.
-    expectOffAtZeroAndPinnedAt("shift_dead_band", 0.0005, "1189c63ab3672ab6");
-}
-
-TEST(NumericsVersion, TheClosePairsKeyChangesNoBitAtItsDefaultAndPinsItsOwn) {
-    // solver.shift_close_pairs (opt-in, docs/validation.md 7.47), measured at 2.
-    expectOffAtZeroAndPinnedAt("shift_close_pairs", 2.0, "443ea5f87b1e3094");
-}
-
-TEST(NumericsVersion, TheBulkClosePairsGiveTheBitsTheyWereMeasuredWith) {
-    // solver.shift_close_pairs 2 in the bulk only (opt-in, docs/validation.md 7.48): pinned so
-    // those figures can be run again; it is another state than close pairs everywhere.
-    json j = guardScene();
-    j["solver"]["shift_close_pairs"] = 2.0;
-    j["solver"]["shift_close_pairs_region"] = "bulk";
-    EXPECT_EQ(digest(run(j)), "55a57d41b767b350");
 }

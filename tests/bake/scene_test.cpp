@@ -202,14 +202,12 @@ TEST(Scene, ToJsonRoundTrips) {
     json j = minimal();
     j["solver"]["preconditioner"] = "incomplete_cholesky";
     j["solver"]["gradient_correction"] = true;
-    j["solver"]["shifting_velocity"] = true;
     j["geometry"]["solids"] = json::array({{{"x0", 0.3}, {"y0", 0.0}, {"x1", 0.35}, {"y1", 0.05}}});
     const Scene a = parseScene(j);
     const Scene b = parseScene(toJson(a));
     EXPECT_EQ(toJson(a), toJson(b));
     EXPECT_EQ(b.solver.pressure.preconditioner, Preconditioner::IncompleteCholesky);
     EXPECT_TRUE(usesCorrectiveMatrix(b.solver.model.gradient));
-    EXPECT_TRUE(b.solver.model.shiftingVelocity);
     ASSERT_EQ(b.geometry.solids.size(), 1u);
 }
 
@@ -421,34 +419,61 @@ TEST(Scene, RippleScenesLoadAndRecyclingErrorsNameTheKey) {
     EXPECT_EQ(errorKey(j), "recycling");
 }
 
-TEST(Scene, ReferenceStepScalesTheRelaxationAndShiftingAndRejectsAStepTooLongForThem) {
-    json j = minimal();
-    const Scene byDefault = parseScene(j);
-    EXPECT_DOUBLE_EQ(byDefault.solver.time.referenceStep, 0.0); // per step
-    EXPECT_DOUBLE_EQ(toJson(byDefault)["solver"]["reference_step"].get<double>(), 0.0);
-    j["solver"]["reference_step"] = 0.0005;
-    const Scene set = parseScene(j);
-    EXPECT_DOUBLE_EQ(set.solver.time.referenceStep, 0.0005);
-    EXPECT_DOUBLE_EQ(toJson(set)["solver"]["reference_step"].get<double>(), 0.0005);
-    EXPECT_DOUBLE_EQ(coefficientScale(set.solver.time, 0.001), 2.0);
-    j["solver"]["reference_step"] = -0.001;
-    EXPECT_EQ(errorKey(j), "solver.reference_step");
-    j["solver"]["reference_step"] = "1 ms";
-    EXPECT_EQ(errorKey(j), "solver.reference_step");
-    // A step 60 times the reference would apply gamma = C = 0.02 as 1.2 per step. (A slow
-    // scene, so that the Courant check of dt at the expected speed passes.)
-    j["solver"]["reference_step"] = 0.001;
-    j["solver"]["expected_speed"] = 0.01;
-    j["solver"]["dt"] = 0.06;
-    EXPECT_EQ(errorKey(j), "solver.dt");
-    j["solver"]["dt"] = 0.05; // exactly 1 per step: allowed
-    EXPECT_EQ(errorKey(j), "<accepted>");
-    j["solver"]["dt"] = 0.06;
-    j["solver"]["reference_step"] = 0.0; // per step
-    EXPECT_EQ(errorKey(j), "<accepted>");
+TEST(Scene, RecordedConstantsLoadAtTheirOneValueAndNameThemselvesOtherwise) {
+    // Records of earlier versions carry reference_step, re_relaxation, shifting_velocity and
+    // higher_order_laplacian at one fixed value: the record reloads, and any other value is
+    // refused naming the key and the value it must have.
+    for (const char* scheme : {"swell", "textbook"}) {
+        json j = minimal();
+        j["solver"]["scheme"] = scheme;
+        const Scene byDefault = parseScene(j);
+        const json record = toJson(byDefault);
+        EXPECT_EQ(record["solver"]["reference_step"], 0.0) << scheme;
+        EXPECT_EQ(record["solver"]["re_relaxation"], byDefault.solver.model.reDensity) << scheme;
+        EXPECT_EQ(record["solver"]["shifting_velocity"], false) << scheme;
+        EXPECT_EQ(record["solver"]["higher_order_laplacian"], false) << scheme;
+        EXPECT_EQ(toJson(parseScene(record)), record) << scheme;
+    }
+    const auto refused = [](const char* key, const json& value, const char* wants) {
+        json j = minimal();
+        j["solver"][key] = value;
+        EXPECT_EQ(errorKey(j), std::string("solver.") + key) << value;
+        const std::string msg = errorMessage(j);
+        EXPECT_NE(msg.find(wants), std::string::npos) << msg;
+    };
+    refused("reference_step", 0.0005, "the only value is 0");
+    refused("reference_step", "1 ms", "must be a number");
+    refused("re_relaxation", 2.5, "the only value is 2.8");
+    refused("shifting_velocity", true, "the only value is false");
+    refused("higher_order_laplacian", true, "the only value is false");
+    refused("higher_order_laplacian", "yes", "must be true or false");
     json t = minimal();
     t["solver"]["scheme"] = "textbook";
-    EXPECT_DOUBLE_EQ(parseScene(t).solver.time.referenceStep, 0.0);
+    t["solver"]["re_relaxation"] = 2.1; // the textbook scheme's re_density
+    EXPECT_EQ(errorKey(t), "<accepted>");
+    for (const char* gone : {"truncated_density", "shift_dead_band", "shift_close_pairs",
+                             "shift_close_pairs_region", "shift_damping_wall_gain"}) {
+        json j = minimal();
+        j["solver"][gone] = 0.0;
+        EXPECT_EQ(errorKey(j), std::string("solver.") + gone);
+    }
+}
+
+TEST(Scene, SolverParamsDefaultIsTheSchemeAScenePicksWithoutOne) {
+    // SolverParams{} and a scene without solver.scheme agree on every setting (the swell
+    // scheme); schemeParams(Scheme::Textbook) is the reference scheme.
+    const Scene parsed = parseScene(minimal());
+    Scene plain = parsed;
+    plain.solver = SolverParams{};
+    plain.solver.time = parsed.solver.time; // minimal() sets dt and end_time
+    EXPECT_EQ(toJson(plain), toJson(parsed));
+    EXPECT_EQ(SolverParams{}.scheme, Scheme::Swell);
+    json t = minimal();
+    t["solver"]["scheme"] = "textbook";
+    const Scene textbook = parseScene(t);
+    plain.solver = schemeParams(Scheme::Textbook);
+    plain.solver.time = textbook.solver.time;
+    EXPECT_EQ(toJson(plain), toJson(textbook));
 }
 
 TEST(Scene, SchemeSetsTheModelAndKeysOverrideIt) {
@@ -463,7 +488,6 @@ TEST(Scene, SchemeSetsTheModelAndKeysOverrideIt) {
     EXPECT_DOUBLE_EQ(byDefault.solver.model.collisionDistance, 0.8);
     EXPECT_DOUBLE_EQ(byDefault.solver.model.restitution, 0.0);
     EXPECT_DOUBLE_EQ(byDefault.solver.model.reDensity, 2.8);
-    EXPECT_DOUBLE_EQ(effectiveReRelaxation(byDefault.solver.model), 2.8); // re_density's
     EXPECT_DOUBLE_EQ(toJson(byDefault)["solver"]["re_relaxation"].get<double>(), 2.8);
     EXPECT_DOUBLE_EQ(byDefault.solver.model.rePacking, 3.0);
     j["solver"]["scheme"] = "textbook";
@@ -476,19 +500,8 @@ TEST(Scene, SchemeSetsTheModelAndKeysOverrideIt) {
     EXPECT_DOUBLE_EQ(textbook.solver.model.collisionDistance, 0.5);
     EXPECT_DOUBLE_EQ(textbook.solver.model.restitution, 0.2);
     EXPECT_DOUBLE_EQ(textbook.solver.model.reDensity, 2.1);
-    // The textbook code has one number-density kernel: the relaxation follows re_density.
-    EXPECT_DOUBLE_EQ(effectiveReRelaxation(textbook.solver.model), 2.1);
     EXPECT_DOUBLE_EQ(toJson(textbook)["solver"]["re_relaxation"].get<double>(), 2.1);
     EXPECT_DOUBLE_EQ(textbook.solver.model.rePacking, 0.0);
-    {
-        json k = j;
-        k["solver"]["re_relaxation"] = 2.5;
-        EXPECT_DOUBLE_EQ(effectiveReRelaxation(parseScene(k).solver.model), 2.5);
-        k["solver"]["re_relaxation"] = 1.0; // must exceed one spacing
-        EXPECT_THROW((void)parseScene(k), SceneError);
-        k["solver"]["re_relaxation"] = "3";
-        EXPECT_THROW((void)parseScene(k), SceneError);
-    }
     {
         json k = j;
         EXPECT_DOUBLE_EQ(toJson(parseScene(k))["solver"]["re_packing"].get<double>(), 0.0);
@@ -530,14 +543,6 @@ TEST(Scene, UnknownSchemeAndUnsupportedCombinationsAreClearErrors) {
     EXPECT_NE(density.find("solver.shifting to 0"), std::string::npos) << density;
     j["solver"]["shifting"] = 0.0;
     EXPECT_EQ(errorKey(j), "<accepted>");
-    // The velocity follows a shift only where there is one.
-    j["solver"]["shifting_velocity"] = true;
-    EXPECT_EQ(errorKey(j), "solver.shifting_velocity");
-    j["solver"]["shifting"] = 0.02;
-    j["solver"]["surface_test"] = "distribution";
-    EXPECT_EQ(errorKey(j), "<accepted>");
-    j["solver"]["shifting_velocity"] = "yes";
-    EXPECT_EQ(errorKey(j), "solver.shifting_velocity");
 }
 
 TEST(Scene, ShiftDampingIsTheDefaultSchemesAndNeedsShifting) {
@@ -565,122 +570,24 @@ TEST(Scene, ShiftDampingIsTheDefaultSchemesAndNeedsShifting) {
     EXPECT_EQ(errorKey(j), "solver.shift_damping");
 }
 
-TEST(Scene, ShiftDampingGainAndTruncatedDensityAreOptInAndRangeChecked) {
-    // Neither scheme sets them (gain 1, k 0: numerics 5's results; docs/validation.md 7.26
-    // measured them on and did not adopt them). Both keys are range-checked, name themselves
-    // in the error and reload from the scene record.
+TEST(Scene, ShiftDampingGainIsOptInAndRangeChecked) {
+    // Neither scheme sets it (gain 1). It is range-checked, names itself in the error and
+    // reloads from the scene record.
     for (const char* scheme : {"swell", "textbook"}) {
         json j = minimal();
         j["solver"]["scheme"] = scheme;
-        const Scene s = parseScene(j);
-        EXPECT_EQ(s.solver.model.shiftDampingGain, 1.0) << scheme;
-        EXPECT_EQ(s.solver.model.truncatedDensity, 0.0) << scheme;
+        EXPECT_EQ(parseScene(j).solver.model.shiftDampingGain, 1.0) << scheme;
     }
     json j = minimal();
     j["solver"]["shift_damping_gain"] = 2.0;
-    j["solver"]["truncated_density"] = 0.5;
     const Scene calm = parseScene(j);
     EXPECT_EQ(calm.solver.model.shiftDampingGain, 2.0);
-    EXPECT_EQ(calm.solver.model.truncatedDensity, 0.5);
     EXPECT_EQ(toJson(calm)["solver"]["shift_damping_gain"], 2.0);
     EXPECT_EQ(toJson(parseScene(toJson(calm))), toJson(calm));
-    // At their defaults they are left out of the record, so it (and a checkpoint's
-    // fingerprint) is what the builds before these keys wrote.
-    const json plainRecord = toJson(parseScene(minimal()));
-    EXPECT_FALSE(plainRecord["solver"].contains("shift_damping_gain"));
-    EXPECT_FALSE(plainRecord["solver"].contains("truncated_density"));
+    // At its default it is left out of the record, so the record (and a checkpoint's
+    // fingerprint) is what the builds before this key wrote.
+    EXPECT_FALSE(toJson(parseScene(minimal()))["solver"].contains("shift_damping_gain"));
     expectSolverKeyRejects("shift_damping_gain", {0.0, -1.0, 10.5});
-    expectSolverKeyRejects("truncated_density", {-0.1, 1.5, "half"});
-}
-
-TEST(Scene, ShiftDampingWallGainIsOptInAndRangeChecked) {
-    // Neither scheme sets it (docs/validation.md 7.37 measured 1.5 and did not adopt it). It is
-    // range-checked, names itself in the error, reloads from the record, and at its default is
-    // left out of the record (so a checkpoint's fingerprint is what the builds before it wrote).
-    for (const char* scheme : {"swell", "textbook"}) {
-        json j = minimal();
-        j["solver"]["scheme"] = scheme;
-        EXPECT_EQ(parseScene(j).solver.model.shiftDampingWallGain, 1.0) << scheme;
-    }
-    EXPECT_FALSE(toJson(parseScene(minimal()))["solver"].contains("shift_damping_wall_gain"));
-    json j = minimal();
-    j["solver"]["shift_damping_wall_gain"] = 1.5;
-    const Scene walls = parseScene(j);
-    EXPECT_EQ(walls.solver.model.shiftDampingWallGain, 1.5);
-    EXPECT_EQ(toJson(walls)["solver"]["shift_damping_wall_gain"], 1.5);
-    EXPECT_EQ(toJson(parseScene(toJson(walls))), toJson(walls));
-    expectSolverKeyRejects("shift_damping_wall_gain", {0.0, -1.0, 10.5, "high"});
-}
-
-namespace {
-/// An opt-in solver key that acts on the particle shifting (ModelParams::*field): 0 in both
-/// schemes, left out of the record at 0, read, written and reloaded at `value`, each of `bad`
-/// refused naming it, and a nonzero `refused` refused without shifting to act on (the textbook
-/// scheme's shifting is 0).
-void expectOptInShiftingKey(const std::string& key, double ModelParams::*field, double value,
-                            std::initializer_list<json> bad, double refused) {
-    for (const char* scheme : {"swell", "textbook"}) {
-        json j = minimal();
-        j["solver"]["scheme"] = scheme;
-        EXPECT_EQ(parseScene(j).solver.model.*field, 0.0) << key << ", " << scheme;
-    }
-    EXPECT_FALSE(toJson(parseScene(minimal()))["solver"].contains(key));
-    json j = minimal();
-    j["solver"][key] = value;
-    const Scene set = parseScene(j);
-    EXPECT_EQ(set.solver.model.*field, value) << key;
-    EXPECT_EQ(toJson(set)["solver"][key], value) << key;
-    EXPECT_EQ(toJson(parseScene(toJson(set))), toJson(set)) << key;
-    expectSolverKeyRejects(key, bad);
-    json textbook = minimal();
-    textbook["solver"]["scheme"] = "textbook"; // shifting 0
-    textbook["solver"][key] = refused;
-    EXPECT_EQ(errorKey(textbook), "solver." + key);
-}
-} // namespace
-
-TEST(Scene, ShiftDeadBandIsOptInRangeCheckedAndNeedsShifting) {
-    // Neither scheme sets it (docs/validation.md 7.45 and 7.46 measured it on single records and
-    // on ensembles of every case, and did not adopt it).
-    expectOptInShiftingKey("shift_dead_band", &ModelParams::shiftDeadBand, 0.0005,
-                           {-0.001, 0.2, "wide"}, 0.001);
-}
-
-TEST(Scene, ShiftClosePairsIsOptInRangeCheckedAndNeedsShifting) {
-    // Neither scheme sets it (docs/validation.md 7.47 measured it on ensembles and did not adopt
-    // it).
-    expectOptInShiftingKey("shift_close_pairs", &ModelParams::shiftClosePairs, 2.0,
-                           {-1.0, 10.5, "near"}, 2.0);
-}
-
-TEST(Scene, ShiftClosePairsRegionIsNamedRecordedWhenSetAndNeedsTheGain) {
-    // "everywhere" in both schemes and left out of the record; "bulk" read, written and
-    // reloaded; an unknown name or a number refused naming the key; and the key without
-    // shift_close_pairs (0 in both schemes) refused, as it would act on nothing.
-    for (const char* scheme : {"swell", "textbook"}) {
-        json j = minimal();
-        j["solver"]["scheme"] = scheme;
-        EXPECT_EQ(parseScene(j).solver.model.shiftClosePairsRegion, ClosePairsRegion::Everywhere)
-            << scheme;
-    }
-    EXPECT_FALSE(toJson(parseScene(minimal()))["solver"].contains("shift_close_pairs_region"));
-    json j = minimal();
-    j["solver"]["shift_close_pairs"] = 2.0;
-    j["solver"]["shift_close_pairs_region"] = "bulk";
-    const Scene set = parseScene(j);
-    EXPECT_EQ(set.solver.model.shiftClosePairsRegion, ClosePairsRegion::Bulk);
-    EXPECT_EQ(toJson(set)["solver"]["shift_close_pairs_region"], "bulk");
-    EXPECT_EQ(toJson(parseScene(toJson(set))), toJson(set));
-    for (const json& bad : {json("deep"), json(1.0)}) {
-        json k = j;
-        k["solver"]["shift_close_pairs_region"] = bad;
-        EXPECT_EQ(errorKey(k), "solver.shift_close_pairs_region") << bad;
-    }
-    for (const char* region : {"bulk", "everywhere"}) {
-        json k = minimal();
-        k["solver"]["shift_close_pairs_region"] = region;
-        EXPECT_EQ(errorKey(k), "solver.shift_close_pairs_region") << region;
-    }
 }
 
 TEST(Scene, NumberBeyondADoubleIsASceneErrorNamingTheFile) {

@@ -8,7 +8,7 @@
 #include "swell/runtime/replay/frame_set.h"
 #include "swell/runtime/replay/replay_params.h"
 #include "swell/runtime/replay/slice_sampler.h"
-#include "swell/runtime/split_mix64.h"
+#include "swell/split_mix64.h"
 
 #include <cmath>
 #include <numbers>

@@ -2,6 +2,7 @@
 
 #include "swell/runtime/error.h"
 #include "swell/runtime/io/atomic_write.h"
+#include "swell/runtime/render/splash_system.h"
 
 #include <bit>
 #include <cstring>

@@ -2,7 +2,7 @@
 
 #include "../json_read.h"
 
-#include "swell/runtime/split_mix64.h"
+#include "swell/split_mix64.h"
 
 #include <algorithm>
 #include <cmath>

@@ -118,10 +118,6 @@ CpuRipple::CpuRipple(const FrameSet& frames, const ReplayParams& params, const R
     m_taps = rippleTaps(m_grid, ripple);
 }
 
-HeightField CpuRipple::directionHeights(int d, double tau) const {
-    return m_dirs.at(static_cast<std::size_t>(d))->heights(tau);
-}
-
 HeightField CpuRipple::heights(double tau) const {
     std::vector<HeightField> dir;
     for (const auto& r : m_dirs)

@@ -1,7 +1,7 @@
 #include "swell/runtime/render/sky_cubemap.h"
 
 #include "swell/runtime/error.h"
-#include "swell/runtime/split_mix64.h"
+#include "swell/split_mix64.h"
 
 #define GL_GLEXT_PROTOTYPES
 #include <GL/glcorearb.h>

@@ -1,6 +1,6 @@
 #include "swell/runtime/replay/fbm_noise.h"
 
-#include "swell/runtime/split_mix64.h"
+#include "swell/split_mix64.h"
 
 #include <fftw3.h>
 

@@ -1,5 +1,6 @@
 #include "swell/runtime/error.h"
 #include "swell/runtime/io/exporters.h"
+#include "swell/runtime/render/splash_system.h"
 
 #include "temp_dir.h"
 

@@ -1,7 +1,7 @@
 // The picture measures on fields and points with known answers.
 #include "swell/runtime/replay/picture_measures.h"
 
-#include "swell/runtime/split_mix64.h"
+#include "swell/split_mix64.h"
 
 #include <gtest/gtest.h>
 

@@ -18,10 +18,6 @@ struct LatticeConstants {
     /// flat top row of a half lattice (its upper neighbours missing); 0 inside a full lattice.
     /// The scale of the distribution free-surface test (mps_params.h, SurfaceTest).
     double flatSurfaceAsymmetry = 0.0;
-    /// Normalization k of the higher-order Laplacian of Khayyer & Gotoh (2010),
-    /// lap phi_i = k sum_j (phi_j - phi_i) re / r^3 (the 2D 3 re / r^3 up to its constant):
-    /// k = 2 / sum_j x_j^2 re / r^3, so a lattice gives lap x^2 = 2 exactly (dimensionless).
-    double higherOrderLaplacian = 0.0;
 };
 
 /// n0 and lambda for a particle of a full 2D square lattice of spacing `spacing` (m)

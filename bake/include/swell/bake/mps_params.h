@@ -39,7 +39,7 @@ enum class GradientModel {
     /// truncated (surface, wall) neighbourhoods.
     MinimumPressureCorrected,
     /// Symmetric pair term (p_i + p_j): momentum-conserving, always repulsive; damps the
-    /// still-tank churn but reads the bed pressure high (docs/validation.md section 3).
+    /// still-tank churn but reads the bed pressure high (docs/validation.md, "Still tank").
     Symmetric,
     /// Symmetric with the Khayyer & Gotoh corrective matrix.
     SymmetricCorrected,
@@ -65,12 +65,12 @@ constexpr GradientModel gradientModel(bool symmetric, bool corrected) {
 
 /// Free-surface test of the pressure solve (particles that pass get p = 0).
 enum class SurfaceTest {
-    /// Paper eq. (3), K&O 1996: n* < beta n0.
+    /// Paper eq. (3), K&O 1996: n* < T_s n0.
     Density,
-    /// n* < beta n0 and, unless the particle is sparse (n* < sparseThreshold n0), an
+    /// n* < T_s n0 and, unless the particle is sparse (n* < sparseThreshold n0), an
     /// asymmetric neighbourhood: |sum_j (r_j - r_i) w| / (n0 l0) above distributionThreshold
     /// times that of a flat lattice surface (Khayyer, Gotoh & Shao 2009's auxiliary
-    /// condition). Interior particles whose n* dips below beta n0 keep their pressure.
+    /// condition). Interior particles whose n* dips below T_s n0 keep their pressure.
     Distribution,
 };
 
@@ -87,29 +87,16 @@ enum class Scheme {
     Textbook,
     /// The default: the Khayyer & Gotoh (2011) corrected gradient (first-order consistent on
     /// truncated neighbourhoods: surface, walls); the neighbour-distribution free-surface
-    /// test, which keeps interior particles whose n* dips below beta n0 in the pressure solve
+    /// test, which keeps interior particles whose n* dips below T_s n0 in the pressure solve
     /// and finds the whole surface layer for the classification of eq. (4); the mixed source
     /// (Tanaka & Masunaga 2010) with gamma = 0.02 and particle shifting C = 0.02 (Lind et al.
     /// 2012), so the density noise of a disordered particle set is not turned into velocity;
     /// fully inelastic collisions from 0.8 l0; the number density, gradient, surface test,
-    /// shifting and collisions on a 2.8 l0 kernel (docs/validation.md section 7.5); the
-    /// density term aimed at n0 times the packing factor read on 3.0 l0 (section 7.8).
+    /// shifting and collisions on a 2.8 l0 kernel; the density term aimed at n0 times the
+    /// packing factor read on 3.0 l0.
     Swell,
 };
 std::string_view toString(Scheme s);
-
-/// Where solver.shift_close_pairs takes the shift's pair sums from close pairs.
-enum class ClosePairsRegion {
-    /// Every water particle (docs/validation.md 7.47).
-    Everywhere,
-    /// The bulk: water particles off the free surface whose neighbourhood on the density kernel
-    /// is full (|f| <= kBulkNeighbourhood) and holds no wall or dummy particle; the others
-    /// keep the default's sums (docs/validation.md 7.48). In the full neighbourhoods the
-    /// default's gap-filling is what broadens a long wave; under the surface it keeps a
-    /// standing wave's period, and next to the walls the bed's pressure reading rests on it.
-    Bulk,
-};
-std::string_view toString(ClosePairsRegion r);
 
 /// Time stepping.
 struct TimeStepParams {
@@ -119,29 +106,14 @@ struct TimeStepParams {
     /// Detector: a step (or sub-step) above this Courant number stops the run; also the
     /// load-time check of dt at the scene's expected speed (-). Above substepCourant, so that
     /// a flow speeding up is first taken in sub-steps and only stopped when a sub-step still
-    /// outruns it (with both at 0.5, the default until 2026-12-02, a step that would be split
+    /// outruns it (with both at 0.5, a step that would be split
     /// had already been stopped, and every splashing scene had to raise it).
     double courantLimit = 0.8;
     /// A step whose Courant number, max|u| of the previous step x dt / l0, is above this is
     /// taken as k = ceil(C / substepCourant) equal sub-steps (at most kMaxSubsteps), so a fast
     /// splash is followed in finer steps while frames stay evenly spaced; 0 turns it off (-).
     double substepCourant = 0.5;
-    /// The step (s) at which the density relaxation (PressureParams::relaxation, gamma) and
-    /// the particle shifting (ModelParams::shifting, C) are given. A step of dt applies
-    /// gamma dt / referenceStep and C dt / referenceStep (coefficientScale), so both act at
-    /// the same rate per second whatever the step: a halved dt, a sub-step, an adaptive step.
-    /// 0 (both schemes' default): per step, whatever its length, as the textbook code has it,
-    /// so halving dt doubles their rate per second. Measured (docs/validation.md 7.9): per
-    /// second, a still tank stays as calm at half its step (per step it churns), but the
-    /// dam-break error then grows with resolution (per step it holds).
-    double referenceStep = 0.0;
 };
-
-/// The factor on the per-step relaxation and shifting coefficients for a step of dt:
-/// dt / referenceStep, or 1 when referenceStep is 0 (per step). Exactly 1 at dt = referenceStep.
-constexpr double coefficientScale(const TimeStepParams& t, double dt) {
-    return t.referenceStep > 0.0 ? dt / t.referenceStep : 1.0;
-}
 
 /// Most sub-steps one step is split into (TimeStepParams::substepCourant); a flow that needs
 /// more is stopped by the detector's Courant limit.
@@ -151,9 +123,6 @@ inline constexpr int kMaxSubsteps = 64;
 struct ModelParams {
     double reDensity = 2.1;   ///< re for number density and gradient (l0): textbook code
     double reLaplacian = 3.1; ///< re for the Laplacian (viscosity, PPE) (l0): textbook code
-    /// re (l0) of the number density in the PPE source's density term, gamma / dt^2
-    /// (n - n0) / n0; 0: re_density, the textbook code's one number-density kernel.
-    double reRelaxation = 0.0;
     /// re (l0) of the kernel that reads how the particles are packed; 0 turns it off. When
     /// set, the density term aims at n0 P instead of n0, with one P for the whole particle set:
     /// the mean of n / n0 on the relaxation's kernel over the mean on this one, over the water
@@ -162,7 +131,7 @@ struct ModelParams {
     /// volume it started with when the flow reorders it, while every local density error is
     /// still read on the relaxation's kernel.
     double rePacking = 0.0;
-    double surfaceThreshold = 0.97; ///< beta: n* < beta n0 is free surface, p = 0 (eq. (3))
+    double surfaceThreshold = 0.97; ///< T_s: n* < T_s n0 is free surface, p = 0 (eq. (3)'s beta)
     double collisionDistance = 0.5; ///< pairs closer than this (l0) collide (textbook code)
     double restitution = 0.2;       ///< coefficient of restitution of collisions (-), textbook code
     GradientModel gradient = GradientModel::MinimumPressure; ///< pressure gradient model
@@ -174,89 +143,26 @@ struct ModelParams {
     /// -C l0^2 grad c (c the particle concentration, MPS gradient over re_N), only along the
     /// surface on free-surface particles (Lind et al. 2012); 0 turns shifting off.
     double shifting = 0.0;
-    /// With shifting: each water particle's velocity follows it to its shifted place by a
-    /// first-order Taylor step, u += (dr . grad) u, grad u the MPS gradient over re_N of its
-    /// neighbours' velocities (walls included, dummies not) (Xu et al. 2009; Lind et al. 2012
-    /// correct their variables so). false moves the particle and keeps its velocity.
-    bool shiftingVelocity = false;
     /// With shifting: the velocity a free-surface particle's shift undoes is taken from it.
     /// Its shift s runs along the surface; where its velocity along s, u_s = u . s/|s|, is
     /// negative (the shift moves it back against its own motion), rho = min(1, |s| /
     /// (|u_s| dt)) is the part of that motion the shift cancels, and u_s becomes
     /// u_s (1 - rho^3): a particle held in place keeps no velocity along the surface, one
-    /// that the shift barely slows keeps nearly all. Dissipative only: |u| never grows
-    /// (docs/validation.md 7.11).
+    /// that the shift barely slows keeps nearly all. Dissipative only: |u| never grows.
     bool shiftDamping = false;
     /// With shift_damping: the gain g on the part of the motion the shift cancels, rho =
     /// min(1, g |s| / (|u_s| dt)). At g = 1 (both schemes) the damping lets go as soon as the
     /// velocity carries a particle further per step than its shift; at g = 2 it takes all of
     /// it while the shift undoes at least half the motion, so a particle the wall's pressure
-    /// pushes against its shift is not released in bursts (docs/validation.md 7.26). A crest
+    /// pushes against its shift is not released in bursts. A crest
     /// or a surge front the shift slows by a tenth keeps 1 - (g/10)^3 of its motion.
     double shiftDampingGain = 1.0;
-    /// With shift_damping: the gain in place of shift_damping_gain for a free-surface particle
-    /// with a wall particle within kWallReach l0 (at r*). There the wall's pressure pushes the
-    /// top row along the surface against its shift, and at gain 1 the damping lets go of it in
-    /// bursts: the H/40 still tank's top row at a wall keeps 1-6 % of sqrt(gH) for as long as
-    /// it runs (docs/validation.md 7.36). At 1.5 all eight members settle below 1 % by 30 s,
-    /// while the open surface, where a gain of 1.5 costs the waves their height (7.32), keeps
-    /// shift_damping_gain; opt-in, not the default (7.37, 7.38). At shift_damping_gain it
-    /// changes no bit.
-    double shiftDampingWallGain = 1.0;
-    /// The density term of a water particle whose neighbourhood the free surface truncates
-    /// (neighbour distribution |f| above kFullNeighbourhood) aims at n0 P (1 - k |f|) instead
-    /// of n0 P: such a neighbourhood can never reach n0 (a flat lattice's second row reads
-    /// 0.939 n0 at |f| = 0.123 on 2.8 l0, i.e. k = 0.5; tools/packing_density.py), and asking
-    /// for n0 there drives the rows under the surface up against the shifting, a velocity that
-    /// moves them nowhere (docs/validation.md 7.3, 7.26). 0 (both schemes) turns it off.
-    double truncatedDensity = 0.0;
-    /// A dead band b (l0 per step) on the shift of water particles off the free surface: a
-    /// shift s becomes s (1 - b / |s|) where |s| > b and 0 below (a soft threshold), so the
-    /// large shifts that reorder disordered particles act and the small, steady ones a smooth
-    /// flow makes do not. Those are what lower and broaden a long wave's crest (a shoaling
-    /// solitary wave's, docs/validation.md 7.45). Free-surface particles' shift along the
-    /// surface is left as it is. 0 (both schemes) turns it off; opt-in, not the default: on
-    /// ensembles of every case it raises the beach's crests and moves none of issue 14's
-    /// targets closer, and the dam break's front no longer converges (7.45, 7.46).
-    double shiftDeadBand = 0.0;
-    /// The shift's pair sums from close pairs only, times g: where g > 0 each particle's
-    /// concentration gradient sums (r_j - r_i) / r^2 w over the neighbours closer than l0, with
-    /// the MPS weight on l0 (w = l0 / r - 1), instead of over the density kernel. A lattice's
-    /// spacing gives no shift, so a smooth flow's strained lattice is left where the flow put it
-    /// and only pairs pressed closer than l0 push apart. That keeps a long wave's shape (a
-    /// shoaling solitary wave's slope crests come closer to the experiment), but the still
-    /// tank's water moves five times as fast, a standing wave oscillates 12 % too fast and the
-    /// dam break's front no longer converges (docs/validation.md 7.47). 0 (both schemes)
-    /// turns it off; opt-in, not the default. shiftClosePairsRegion limits it to the bulk.
-    double shiftClosePairs = 0.0;
-    /// With shift_close_pairs: where its sums replace the default's. Everywhere; or in the
-    /// bulk only (ClosePairsRegion::Bulk), the default's sums on the free surface, in the rows
-    /// a surface truncates and next to walls (docs/validation.md 7.48).
-    ClosePairsRegion shiftClosePairsRegion = ClosePairsRegion::Everywhere;
-    /// Laplacian of the pressure Poisson equation: false, K&O 1996's 2d/(lambda n0) w(r);
-    /// true, the higher-order form of Khayyer & Gotoh (2010), pair weight re / r^3 (the
-    /// 2D 3 re / r^3 up to its constant), normalized so a lattice gives lap x^2 = 2 exactly.
-    bool higherOrderLaplacian = false;
 };
 
 /// A neighbour distribution |f| (numberDensityAndSurface, in units of n0 l0) below this is a
 /// full neighbourhood: under half of what a flat lattice's second row has on 2.8 l0 (0.123;
 /// tools/packing_density.py), so rows that a surface truncates are above it.
 inline constexpr double kFullNeighbourhood = 0.05;
-
-/// shift_close_pairs_region "bulk": a neighbour distribution |f| (n0 l0) at most this is a
-/// full neighbourhood (docs/validation.md 7.47, 7.48: the value measured there).
-inline constexpr double kBulkNeighbourhood = 0.02;
-
-/// shift_damping_wall_gain acts on free-surface particles with a wall particle closer than
-/// this many l0: the top row's particles next to a wall and one column out, not the open
-/// surface (docs/validation.md 7.37).
-inline constexpr double kWallReach = 2.0;
-
-/// The kernel radius (l0) the density relaxation uses: re_relaxation, or re_density when 0.
-constexpr double effectiveReRelaxation(const ModelParams& m) {
-    return m.reRelaxation > 0.0 ? m.reRelaxation : m.reDensity;
-}
 
 /// The pressure Poisson equation and its conjugate-gradient solve.
 struct PressureParams {
@@ -276,52 +182,67 @@ struct NeighborParams {
     int maxNeighbors = 96; ///< capacity of a neighbour list; more stops the run (clumping)
 };
 
+/// The swell scheme's model and pressure settings: the textbook scheme (the member defaults of
+/// ModelParams and PressureParams, Koshizuka & Oka 1996) with these changes.
+inline void applySwellScheme(ModelParams& m, PressureParams& q) {
+    m.gradient = GradientModel::MinimumPressureCorrected;
+    m.surfaceTest = SurfaceTest::Distribution;
+    // The mixed source projects u* to zero divergence and keeps only a small density
+    // relaxation, so density noise of a disordered particle set is not kicked into the
+    // velocity every step; shifting keeps the particle set ordered instead. Collisions
+    // from 0.8 l0, fully inelastic, keep dam-break impacts stable under that source.
+    q.sourceTerm = SourceTerm::Mixed;
+    q.relaxation = 0.02;
+    m.shifting = 0.02;
+    // A surface particle the shift holds against its own motion keeps no velocity along
+    // the surface: otherwise the still tank's top row carries speeds that move it nowhere
+    // (docs/validation.md, "Still tank").
+    m.shiftDamping = true;
+    // shiftDampingGain stays at 1: a higher gain makes the standing and travelling waves
+    // decay faster (docs/validation.md, "What was tried").
+    m.collisionDistance = 0.8;
+    m.restitution = 0.0;
+    // A wider number-density kernel than the textbook 2.1 l0: 2.8 l0 reaches the lattice
+    // shell at sqrt(5) l0 (not the one at sqrt(8) l0, as the Laplacian's 3.1 l0 does),
+    // and measured across every validation case it keeps progressive waves from decaying.
+    m.reDensity = 2.8;
+    // The packing factor read on 3.0 l0 (a hexagonal packing holds n0 in the square
+    // lattice's area there) keeps the still tank's volume with the density term on 2.8 l0.
+    m.rePacking = 3.0;
+}
+
+inline ModelParams swellModel() {
+    ModelParams m;
+    PressureParams q;
+    applySwellScheme(m, q);
+    return m;
+}
+
+inline PressureParams swellPressure() {
+    ModelParams m;
+    PressureParams q;
+    applySwellScheme(m, q);
+    return q;
+}
+
 /// Numerical settings of the semi-implicit MPS solver (scene section "solver",
-/// docs/scenes.md). The member defaults are Scheme::Textbook's; scenes start from
-/// schemeParams(Scheme::Swell) unless they name another scheme.
+/// docs/scenes.md). The defaults are the swell scheme's, as a scene's without a scheme key;
+/// schemeParams(Scheme::Textbook) gives the reference scheme.
 struct SolverParams {
-    Scheme scheme = Scheme::Textbook; ///< the named set the settings started from
+    Scheme scheme = Scheme::Swell; ///< the named set the settings started from
     TimeStepParams time;
-    ModelParams model;
-    PressureParams pressure;
+    ModelParams model = swellModel();
+    PressureParams pressure = swellPressure();
     NeighborParams neighbors;
 };
 
 /// The settings of a named scheme (everything else at its default).
 inline SolverParams schemeParams(Scheme scheme) {
     SolverParams p;
-    p.scheme = scheme;
-    if (scheme == Scheme::Swell) {
-        p.model.gradient = GradientModel::MinimumPressureCorrected;
-        p.model.surfaceTest = SurfaceTest::Distribution;
-        // The mixed source projects u* to zero divergence and keeps only a small density
-        // relaxation, so density noise of a disordered particle set is not kicked into the
-        // velocity every step; shifting keeps the particle set ordered instead. Collisions
-        // from 0.8 l0, fully inelastic, keep dam-break impacts stable under that source.
-        p.pressure.sourceTerm = SourceTerm::Mixed;
-        p.pressure.relaxation = 0.02;
-        p.model.shifting = 0.02;
-        // A surface particle the shift holds against its own motion keeps no velocity along
-        // the surface: otherwise the still tank's top row carries speeds that move it nowhere
-        // (docs/validation.md 7.11).
-        p.model.shiftDamping = true;
-        // shiftDampingGain, shiftDampingWallGain and truncatedDensity stay off: on the open
-        // surface they make the standing and travelling waves decay faster (7.26, 7.32); next
-        // to the walls only (wall gain 1.5) the H/40 still tank settles by 30 s, but the
-        // shipped wave's unjittered CI record reads 9.6 % low at 2.5 h (7.37), and unjittered
-        // variants -5.6 +- 4.3 % against numerics 5's -2.0 +- 1.0 % (7.38).
-        p.model.collisionDistance = 0.8;
-        p.model.restitution = 0.0;
-        // A wider number-density kernel than the textbook 2.1 l0: 2.8 l0 reaches the lattice
-        // shell at sqrt(5) l0 (not the one at sqrt(8) l0, as the Laplacian's 3.1 l0 does),
-        // and measured across every validation case it keeps progressive waves from decaying
-        // (docs/validation.md section 7.5).
-        p.model.reDensity = 2.8;
-        // reRelaxation stays at re_density: 3.0 l0 keeps the still tank's volume (a hexagonal
-        // packing holds n0 in the square lattice's area there) but costs the held-out waves
-        // (docs/validation.md section 7.7). The packing factor read on 3.0 l0 keeps that
-        // volume with the density term still on 2.8 l0 (section 7.8).
-        p.model.rePacking = 3.0;
+    if (scheme == Scheme::Textbook) {
+        p.scheme = Scheme::Textbook;
+        p.model = ModelParams{};
+        p.pressure = PressureParams{};
     }
     return p;
 }

@@ -87,8 +87,6 @@ public:
     const SolverParams& params() const { return m_par; }
     /// Lattice constants for re = reDensity (n0 used for density, gradient, surface test).
     const LatticeConstants& densityConstants() const { return m_latN; }
-    /// Lattice constants for re = reLaplacian (viscosity and PPE Laplacian).
-    const LatticeConstants& laplacianConstants() const { return m_latL; }
     /// The PPE matrix of the last step, -Laplacian/rho + compressibility/dt^2 (rows in
     /// neighbour-grid order), as an Eigen view of the solver's buffers (for tests).
     Eigen::Map<const Eigen::SparseMatrix<double, Eigen::RowMajor, int>> ppeMatrix() const;
@@ -96,8 +94,6 @@ public:
     Eigen::Map<const Eigen::VectorXd> ppeRhs() const;
     /// Solution of the last PPE before negative pressures were cut to 0 (for tests).
     Eigen::Map<const Eigen::VectorXd> ppeSolution() const;
-    /// Particle of each PPE row of the last step (for tests).
-    std::vector<std::uint32_t> ppeRowParticles() const;
     /// The packing factor P the last step's density term aimed at, n0 P (1 without
     /// re_packing; ModelParams::rePacking).
     double packingFactor() const { return m_packing; }
@@ -143,14 +139,11 @@ private:
     double m_l0;
     Box m_domain;
     LatticeConstants m_latN;
-    LatticeConstants m_latR; // re = effectiveReRelaxation (the PPE's density term)
     LatticeConstants m_latL;
     LatticeConstants m_latP; // re = rePacking (when set)
     double m_reN, m_reL, m_reList, m_reShort, m_collide;
-    double m_reR;           // the density relaxation's kernel radius (m)
     double m_reP;           // the packing kernel's radius (m), 0 when off
     double m_packing = 1.0; // P of the last step: the density term aims at n0 P
-    double m_hlScale = 0.0; // higher-order Laplacian: k / rho (times re / r^3 per pair)
     double m_time = 0.0;
     long m_step = 0;
     int m_substep = 0; // the sub-step being taken, 1-based, of m_stats.substeps (messages)
@@ -163,12 +156,10 @@ private:
     std::vector<double> m_divU;     // velocity divergence (mixed source term)
     std::vector<double> m_fx, m_fy; // neighbour distribution / (n0 l0) at r*
     std::vector<double> m_fNorm;    // its length |(m_fx, m_fy)|, where a test or shift reads it
-    std::vector<double> m_nRelax;   // number density at r* on m_reR (n* where m_reR = m_reN)
     std::vector<double> m_nPack;    // number density at r* on m_reP (when set)
     std::vector<double> m_shiftX, m_shiftY; // shifting: sum (r_j - r_i) / r^2 w at r*
     std::vector<std::uint8_t> m_surface;    // 1 free surface (p = 0), 0 inside, kNotInPpe
     std::vector<std::uint8_t> m_layer;      // 1 on the surface layer (classification)
-    std::vector<std::uint8_t> m_nearWall;   // 1: a wall particle within kWallReach at r*
     std::vector<std::int32_t> m_row;        // PPE row of each particle, -1 if none
     std::vector<std::uint32_t> m_rowParticle;
 

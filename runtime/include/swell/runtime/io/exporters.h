@@ -5,7 +5,6 @@
 // maps are written by height_png.h (16-bit PNG with a JSON scale) and height_exr.h (OpenEXR
 // height, normal and displacement maps), a folder of them by height_sequence.h.
 
-#include "swell/runtime/render/splash_system.h"
 #include "swell/runtime/replay/height_field.h"
 #include "swell/runtime/replay/replay_params.h"
 
@@ -16,6 +15,8 @@
 #include <vector>
 
 namespace swell::runtime {
+
+struct SplashSprite; // render/splash_system.h: the exporters write what the renderer draws
 
 /// The height field as a mesh: one vertex per cell centre (x = x0 + (n + 1/2) dx, y = h,
 /// z = (m + 1/2) dz; vertex m * N + n, as drawn by the renderer), two triangles per quad,

@@ -80,8 +80,6 @@ public:
     CpuRipple(const FrameSet& frames, const ReplayParams& params, const RippleParams& ripple,
               std::span<const SliceSampler> samplers);
     HeightField heights(double tau) const;
-    /// Direction d's own (unrotated) height field.
-    HeightField directionHeights(int d, double tau) const;
 
 private:
     Grid m_grid;

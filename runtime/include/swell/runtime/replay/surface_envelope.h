@@ -28,7 +28,6 @@ public:
     double xFirst() const { return m_x.front(); }
     double xLast() const { return m_x.back(); }
     const std::vector<double>& xs() const { return m_x; }
-    const std::vector<double>& ys() const { return m_y; }
 
 private:
     std::vector<double> m_x;

@@ -1,11 +1,11 @@
 #pragma once
-// The runtime's fixed random generator: SplitMix64 (Steele, Lea & Flood 2014), whose output
-// is defined by integer arithmetic alone, so a seed gives the same numbers on every machine
-// and compiler (std::normal_distribution does not).
-
+// swell's one random generator: SplitMix64 (Steele, Lea & Flood 2014), whose output is defined
+// by integer arithmetic alone, so a seed gives the same numbers on every machine and compiler
+// (std::normal_distribution does not). The bake draws its jitter and random piston from it, the
+// runtime its noise, splash and sky.
 #include <cstdint>
 
-namespace swell::runtime {
+namespace swell {
 
 class SplitMix64 {
 public:
@@ -20,6 +20,8 @@ public:
     }
     /// Uniform in [0, 1), 53 random bits.
     double uniform() { return static_cast<double>(next() >> 11) * 0x1.0p-53; }
+    /// Uniform in [lo, hi), from the same 53 bits.
+    double uniform(double lo, double hi) { return lo + (hi - lo) * uniform(); }
     /// Standard normal, approximately: the sum of 12 uniforms minus 6 (Irwin-Hall). Mean 0,
     /// variance 1, tails cut at +-6. Chosen over Box-Muller because it needs no libm call,
     /// so the bits do not depend on the C library's log/cos.
@@ -34,4 +36,4 @@ private:
     std::uint64_t m_state;
 };
 
-} // namespace swell::runtime
+} // namespace swell
