@@ -435,9 +435,9 @@ def schemes_text():
             "spacing and dt. Rows **%s**: the default scheme `swell` (the scenes set no scheme key): "
             "the Khayyer & Gotoh corrected pressure gradient, the neighbour-distribution "
             "free-surface test, the Tanaka & Masunaga mixed source (gamma 0.02) with particle "
-            "shifting (C 0.02) and inelastic collisions from 0.8 l0 (docs/validation.md 7.1). "
+            "shifting (C 0.02) and inelastic collisions from 0.8 l0 (docs/validation.md, Schemes). "
             "Rows **%s**: Koshizuka & Oka 1996 as the textbook code has it "
-            "(minimum-pressure gradient, density-only surface test; the default before issue 14), "
+            "(minimum-pressure gradient, density-only surface test), "
             "run with `%s`. One thread (`--threads 1`); cost = solver time / steps / all particles "
             "(water + wall + dummy), in µs per particle-step." % (
                 DEFAULT_SCHEME, textbook, " ".join(bl.sets(dict(SCHEMES)[textbook]))))
@@ -448,7 +448,7 @@ def members_text(n):
         return ("**Members.** One record per row, unjittered (`tools/bench --members N` runs each check "
                 "as an ensemble instead): where the flow amplifies small differences (the dam breaks "
                 "after the impact, the waves over several wavelengths, the still tank's settled state) "
-                "one record is one draw, good to the spread docs/validation.md 7.13 measures.")
+                "one record is one draw, good to the spread that an ensemble measures.")
     return ("**Members.** Each row is an ensemble of %d members (`tools/bench --members %d`: "
             "`swell-validate ... --ensemble %d`, seeds 1..%d, the water jittered by 1e-6 l0, the same "
             "flow up to a perturbation far below the resolution): each figure reads the members' mean "
@@ -490,8 +490,7 @@ def still_tank_text(rows):
             "[--set solver.scheme=textbook] still-tank scenes/%s --steps N --settle S`; H = %s m, "
             "dt = %g ms%s). Error = |bed pressure / rho g H - 1|, the bed pressure averaged over the "
             "middle half of the bed after the settling time; max speed = the largest |u| a water "
-            "particle carries at the end of a step after it (before 2026-12-03 these tables read it "
-            "before the shift's damping, docs/validation.md 7.24):" % (
+            "particle carries at the end of a step after it, after the shift's damping:" % (
                 TANK_SCENE, bl.fmt(H), 1e3 * dt, ", S = %s s" % bl.fmt(settle) if settle is not None else ""))
 
 
@@ -516,15 +515,13 @@ def regular_wave_text(note):
             "(**window s**: after the ramp and the wave's arrival at the farthest gauge, before "
             "reflections return); the heights over the window in **H window**: `own`, each gauge's "
             "own window from the grown wave's arrival at that gauge until the far wall's reflection "
-            "reaches it or the run ends (since 2026-12-04, docs/validation.md 7.39), or `common` "
-            "(rows measured before). The spacing sweep runs "
+            "reaches it or the run ends, or `common`, the common window. The spacing sweep runs "
             "`scenes/%s` (%s); the progressive-wave scenes (full run only) keep their own l0 and dt. "
             "**H error** = H / H_Biesel - 1 at the first gauge; **L error** = L / L_theory - 1 with L "
             "from the phase lag between the first two gauges, **L fit error** the same with L from the "
             "phase slope over all gauges; **decay / L** = the fractional height loss per wavelength "
             "from a fit ln H = a + b x over all gauges (positive: the wave decays), **lost over the gauges** "
-            "= 1 - exp(b (x_last - x_first)) along the same line (3 L in the progressive-wave scenes; "
-            "since 2026-12-04, docs/validation.md 7.40). Scenes: %s:" % (
+            "= 1 - exp(b (x_last - x_first)) along the same line (3 L in the progressive-wave scenes). Scenes: %s:" % (
                 WAVE_SCENE, rule, note or "-"))
 
 
@@ -606,7 +603,7 @@ def standing_wave_text():
             "g k tanh kh, 1.1818 s); **decay / period** = the fractional amplitude loss per period "
             "(linear theory: none at this scale); **first amplitude** = the first period's over the "
             "cosine's (about 1 for a clean first mode; the textbook scheme's surface churns and shows "
-            "no wave: its period is the noise's). docs/validation.md 7.15:" % scenes)
+            "no wave: its period is the noise's). docs/validation.md, Standing wave:" % scenes)
 
 
 def standing_wave_table(rows):
@@ -627,7 +624,7 @@ def solitary_wave_text():
             "sqrt(g (h + A)) - 1, A the crests' mean height (Rayleigh 1876); **first crest / H** at "
             "10 h; **lost over 20 h** = 1 - A(30 h) / A(10 h) (theory: about 1 %%, the bed's laminar "
             "friction); **width error** = the time a record stays above A / 2 over Boussinesq's "
-            "sech^2 for that A, - 1. docs/validation.md 7.31:" % scenes)
+            "sech^2 for that A, - 1. docs/validation.md, Solitary wave:" % scenes)
 
 
 def solitary_wave_table(rows):
@@ -648,7 +645,7 @@ def wet_dam_break_text():
             "solution from t = 5 sqrt(h0 / g) until a reflection could return. **Bore speed error** "
             "= the fitted speed of the bore's arrivals over Stoker's 0.939 m/s, - 1; **depth behind "
             "the bore** over his h2 = 0.0508 m, - 1; **worst gauge** = the largest mean |h - "
-            "h_Stoker| / h0. docs/validation.md 7.43:" % scenes)
+            "h_Stoker| / h0. docs/validation.md, Dam break onto a wet bed:" % scenes)
 
 
 def wet_dam_break_table(rows):
@@ -670,7 +667,7 @@ def shoaling_text():
             "**Incident crest** = g0's crest over the record's, - 1; **worst crest** = the slope "
             "gauge whose crest is furthest from the record's, its ratio - 1; **worst gauge** = the "
             "largest mean |eta - eta_record| / h0 over a record's span; **climb time** = the crest's "
-            "time from g1 to g9 over the record's, - 1. docs/validation.md 7.44:" % scenes)
+            "time from g1 to g9 over the record's, - 1. docs/validation.md, Solitary wave shoaling on a beach:" % scenes)
 
 
 def shoaling_table(rows):
