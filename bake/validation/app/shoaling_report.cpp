@@ -1,0 +1,66 @@
+// swell-validate shoaling: the run's elevations up the beach against Grilli et al. (1994).
+#include "case_reports.h"
+
+#include "report_figures.h"
+#include "report_files.h"
+
+#include "swell/bake/solver_run.h"
+#include "swell/bake/validation/shoaling.h"
+
+using namespace swell::bake::validation;
+using nlohmann::json;
+
+namespace swell::bake {
+
+json shoaling(const Scene& scene, const std::string& csv) {
+    const ShoalingReport r = runShoaling(scene);
+    json out{{"scene", scene.name},
+             {"l0", scene.geometry.particleSpacing},
+             {"depth", r.depth},
+             {"height", r.height},
+             {"height_over_depth", r.height / r.depth},
+             {"gravity", scene.physics.gravity},
+             {"toe", r.toe},
+             {"slope", r.slope},
+             {"still_window", {r.stillFrom, r.stillTo}},
+             {"gauges", r.gauges},
+             {"particles", r.particles},
+             {"water", r.water},
+             {"outcome", r.outcome}};
+    if (!csv.empty())
+        writeGaugeSeries(csv, r, "eta", r.gauges);
+    if (r.outcome == kStable) {
+        const ShoalingCheck& c = r.check;
+        json gauges = json::array();
+        for (const ShoalingGaugeError& g : c.gauges)
+            gauges.push_back({{"name", g.name},
+                              {"x", g.x},
+                              {"crest_over_h0", g.crest},
+                              {"crest_record_over_h0", g.crestRecord},
+                              {"crest_time", g.crestTime},
+                              {"crest_time_record", g.crestTimeRecord},
+                              {"amplification", g.amplification},
+                              {"amplification_record", g.amplificationRecord},
+                              {"mean_abs_error_over_h0", g.meanAbsError},
+                              {"mean_signed_error_over_h0", g.meanSignedError},
+                              {"rise", g.rise},
+                              {"rise_record", g.riseRecord},
+                              {"fall", g.fall},
+                              {"fall_record", g.fallRecord},
+                              {"energy_ratio", g.energyRatio},
+                              {"from", g.from},
+                              {"until", g.until},
+                              {"still_level", g.stillLevel}});
+        out["gauge_records"] = gauges;
+        out["clock_offset"] = c.clockOffset;
+        out["incident_crest_error"] = c.incidentCrestError;
+        out["crest_error_worst"] = c.crestErrorWorst;
+        out["amplification_error_worst"] = c.amplificationErrorWorst;
+        out["mean_abs_error_over_h0_worst"] = c.meanAbsErrorWorst;
+        out["travel_time_error"] = c.travelTimeError;
+    }
+    addRunCost(out, r, r.particles);
+    return out;
+}
+
+} // namespace swell::bake
