@@ -28,15 +28,17 @@ struct ShortRun {
     long steps;
 };
 
-void PrintTo(const ShortRun& r, std::ostream* os) { *os << r.scene; }
+void PrintTo(const ShortRun& r, std::ostream* os) {
+    *os << r.scene;
+}
 
 class ShortValidationRun : public testing::TestWithParam<ShortRun> {};
 
 } // namespace
 
 // `steps` steps of the case: the detector never stops it, no water particle is lost or passes the
-// front wall or the bed, and no particle moves faster than the scene's expected speed (the Courant check's
-// speed: twice the Ritter front speed of its deepest water, or the speed the scene names).
+// front wall or the bed, and no particle moves faster than the scene's expected speed (the Courant
+// check's speed: twice the Ritter front speed of its deepest water, or the speed the scene names).
 TEST_P(ShortValidationRun, StaysStableKeepsItsWaterAndItsSpeedBounded) {
     const ShortRun& run = GetParam();
     const Scene scene = loadScene(kScenes / run.scene, run.overrides);
@@ -44,8 +46,8 @@ TEST_P(ShortValidationRun, StaysStableKeepsItsWaterAndItsSpeedBounded) {
     const std::size_t water = solver.particles().count(ParticleKind::Water);
     ASSERT_GT(water, 0u);
     StepTotals totals;
-    const std::string outcome = runSteps(
-        solver, totals, [&](const MpsSolver& s) { return s.stepCount() >= run.steps; });
+    const std::string outcome =
+        runSteps(solver, totals, [&](const MpsSolver& s) { return s.stepCount() >= run.steps; });
     ASSERT_EQ(outcome, kStable);
     EXPECT_EQ(totals.steps, run.steps);
     const Particles& p = solver.particles();
@@ -65,16 +67,16 @@ TEST_P(ShortValidationRun, StaysStableKeepsItsWaterAndItsSpeedBounded) {
     EXPECT_LT(fastest, bound);
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    LongCases, ShortValidationRun,
-    testing::Values(ShortRun{"progressive_wave.json", {}, 300},
-                    ShortRun{"shoaling_small.json", {}, 300},
-                    ShortRun{"wet_dam_break_small.json", {}, 400},
-                    ShortRun{"solitary_wave_small.json", {}, 400},
-                    ShortRun{"still_tank_small.json", {"solver.dt=0.0005"}, 2000}),
-    [](const testing::TestParamInfo<ShortRun>& info) {
-        std::string name = info.param.scene;
-        name = name.substr(0, name.find('.'));
-        name.erase(std::remove(name.begin(), name.end(), '_'), name.end());
-        return name;
-    });
+INSTANTIATE_TEST_SUITE_P(LongCases, ShortValidationRun,
+                         testing::Values(ShortRun{"progressive_wave.json", {}, 300},
+                                         ShortRun{"shoaling_small.json", {}, 300},
+                                         ShortRun{"wet_dam_break_small.json", {}, 400},
+                                         ShortRun{"solitary_wave_small.json", {}, 400},
+                                         ShortRun{
+                                             "still_tank_small.json", {"solver.dt=0.0005"}, 2000}),
+                         [](const testing::TestParamInfo<ShortRun>& info) {
+                             std::string name = info.param.scene;
+                             name = name.substr(0, name.find('.'));
+                             name.erase(std::remove(name.begin(), name.end(), '_'), name.end());
+                             return name;
+                         });
