@@ -218,6 +218,11 @@ long frameIntervalSteps(const Scene& scene) {
     }
     const double ratio = scene.output.frameInterval / scene.solver.time.dt;
     const double k = std::round(ratio);
+    if (k > 1e9) { // the cache header stores it in 32 bits; the run itself is at most 1e9 steps
+        throw SceneError("output.frame_interval",
+                         fmt::format("{} s is {:.4g} steps of dt = {} s: must be at most 1e9 steps",
+                                     scene.output.frameInterval, k, scene.solver.time.dt));
+    }
     if (k < 1.0 || std::abs(ratio - k) > 1e-6 * k) {
         throw SceneError("output.frame_interval",
                          fmt::format("{} s is not a whole number of time steps dt = {} s",

@@ -14,6 +14,7 @@
 
 #include "swell/cache/byte_fields.h"
 #include "swell/cache/checked_write.h"
+#include "swell/cache/json_depth.h"
 
 namespace swell::bake {
 namespace {
@@ -340,8 +341,13 @@ void checkFingerprint(const fs::path& path, const std::string& stored, const std
     if (stored == current)
         return;
     using nlohmann::json;
-    const json a = json::parse(stored, nullptr, false);
-    const json b = json::parse(current, nullptr, false);
+    // A fingerprint nested deeper than any scene record is damaged: diff would recurse into it.
+    const auto parsed = [](const std::string& text) {
+        return cache::jsonDepthAcceptable(text) ? json::parse(text, nullptr, false)
+                                                : json(json::value_t::discarded);
+    };
+    const json a = parsed(stored);
+    const json b = parsed(current);
     std::string what = "its fingerprint differs";
     if (!a.is_discarded() && !b.is_discarded()) {
         const json patch = json::diff(a, b);

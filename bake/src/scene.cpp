@@ -1,7 +1,9 @@
 #include "swell/bake/scene.h"
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <fstream>
 #include <limits>
 #include <set>
@@ -11,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "swell/bake/error.h"
+#include "swell/cache/json_depth.h"
 
 namespace swell::bake {
 namespace {
@@ -534,6 +537,11 @@ Scene parseScene(const json& j) {
 }
 
 json parseSceneJson(std::string_view text, const std::string& source) {
+    if (!cache::jsonDepthAcceptable(text)) {
+        throw SceneError("", fmt::format("{} nests {} levels deep, more than the {} a scene may",
+                                         printable(source), cache::jsonNestingDepth(text),
+                                         cache::kMaxJsonDepth));
+    }
     try {
         return json::parse(text);
     } catch (const json::exception& e) { // syntax, and numbers beyond a double (out_of_range)
@@ -543,9 +551,16 @@ json parseSceneJson(std::string_view text, const std::string& source) {
 }
 
 Scene loadScene(const std::filesystem::path& path, const std::vector<std::string>& overrides) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec)) {
+        throw SceneError("", fmt::format("scene file {} is a directory, not a JSON file",
+                                         printable(path.string())));
+    }
     std::ifstream in(path);
-    if (!in)
-        throw SceneError("", fmt::format("cannot open scene file {}", printable(path.string())));
+    if (!in) {
+        throw SceneError("", fmt::format("cannot open scene file {}: {}", printable(path.string()),
+                                         std::strerror(errno)));
+    }
     std::stringstream buffer;
     buffer << in.rdbuf();
     json j = parseSceneJson(buffer.str(), path.string());
@@ -679,6 +694,12 @@ void applyOverride(json& j, const std::string& assignment) {
     }
     const std::string path = assignment.substr(0, eq);
     const std::string text = assignment.substr(eq + 1);
+    if (!cache::jsonDepthAcceptable(text)) {
+        throw SceneError(printable(path),
+                         fmt::format("override value nests {} levels deep, more than the {} a "
+                                     "scene may",
+                                     cache::jsonNestingDepth(text), cache::kMaxJsonDepth));
+    }
     json value;
     try {
         value = json::parse(text);

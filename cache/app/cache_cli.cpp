@@ -28,7 +28,15 @@ std::optional<int> parseCacheCommandLine(int argc, const char* const* argv, Cach
     verify->add_flag("--json", o.asJson, "print one JSON object");
     auto* dump = app.add_subcommand("dump", "Print one frame's particles as CSV");
     dump->add_option("CACHE", o.path, "cache file")->required();
-    dump->add_option("--frame", o.frameIndex, "frame index")->required();
+    dump->add_option("--frame", o.frameIndex, "frame index (0 first)")
+        ->required()
+        ->check(CLI::Validator(
+            [](std::string& text) {
+                return !text.empty() && text.find_first_not_of("0123456789") == std::string::npos
+                           ? std::string()
+                           : "Value " + text + " is not a frame index (0, 1, 2, ...)";
+            },
+            "INDEX"));
     auto* recode = app.add_subcommand(
         "recode",
         "Copy a cache with another encoding or filters (frames, header and metadata kept)");

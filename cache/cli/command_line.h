@@ -5,11 +5,13 @@
 
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 #include <ostream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 namespace swell::cli {
 
@@ -30,12 +32,58 @@ inline std::string oneLine(const std::string& message) {
     return out;
 }
 
+/// The edit distance between `a` and `b` (insertions, deletions, substitutions).
+inline std::size_t editDistance(const std::string& a, const std::string& b) {
+    std::vector<std::size_t> row(b.size() + 1);
+    for (std::size_t j = 0; j <= b.size(); ++j)
+        row[j] = j;
+    for (std::size_t i = 1; i <= a.size(); ++i) {
+        std::size_t diagonal = row[0];
+        row[0] = i;
+        for (std::size_t j = 1; j <= b.size(); ++j) {
+            const std::size_t up = row[j];
+            row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] != b[j - 1])});
+            diagonal = up;
+        }
+    }
+    return row[b.size()];
+}
+
+/// When `app` has subcommands and `word` (the first argument) is none of them: "unknown
+/// subcommand 'word'" and the nearest name ("did you mean 'render'?"), or the list of names.
+inline std::optional<std::string> unknownSubcommand(const CLI::App& app, const std::string& word) {
+    const auto subs = app.get_subcommands([](const CLI::App*) { return true; });
+    if (subs.empty() || word.empty() || word[0] == '-')
+        return std::nullopt;
+    std::string names, nearest;
+    std::size_t best = 3; // at most two edits away
+    for (const CLI::App* sub : subs) {
+        if (sub->check_name(word))
+            return std::nullopt;
+        names += (names.empty() ? "" : ", ") + sub->get_name();
+        const std::size_t d = editDistance(word, sub->get_name());
+        if (d < best) {
+            best = d;
+            nearest = sub->get_name();
+        }
+    }
+    std::string message = "unknown subcommand '" + oneLine(word) + "'";
+    return message + (nearest.empty() ? "; the subcommands are " + names
+                                      : "; did you mean '" + nearest + "'?");
+}
+
 /// Parses argv with `app`. Returns nullopt when the program should go on, else its exit status:
 /// 0 after --help (printed on `out`); after a bad command line one line "PROGRAM: problem (see
 /// --help)" on `err` and `badStatus`, or CLI11's own code for the error when badStatus is 0.
 inline std::optional<int> parse(CLI::App& app, int argc, const char* const* argv,
                                 const std::string& program, int badStatus, std::ostream& out,
                                 std::ostream& err) {
+    if (argc > 1) {
+        if (const auto unknown = unknownSubcommand(app, argv[1])) {
+            err << program << ": " << *unknown << " (see --help)\n";
+            return badStatus != 0 ? badStatus : static_cast<int>(CLI::ExitCodes::ExtrasError);
+        }
+    }
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

@@ -2,6 +2,7 @@
 
 #include "format.h"
 #include "swell/cache/error.h"
+#include "swell/cache/json_depth.h"
 #include "swell/cache/output_lock.h"
 
 #include <cerrno>
@@ -158,6 +159,10 @@ Reader::Reader(fs::path path) : m_path(std::move(path)) {
     h.compressionLevel = static_cast<int>(getField<std::uint32_t>(&head[kOffLevel]));
     h.seed = getField<std::uint64_t>(&head[kOffSeed]);
     h.metadataJson.assign(reinterpret_cast<const char*>(head.data() + kFixedHeaderSize), metaLen);
+    if (!jsonDepthAcceptable(h.metadataJson)) {
+        throw fail("header metadata nests " + std::to_string(jsonNestingDepth(h.metadataJson)) +
+                   " levels deep, more than the " + std::to_string(kMaxJsonDepth) + " allowed");
+    }
     if (!nlohmann::json::accept(h.metadataJson))
         throw fail("header metadata is not valid JSON");
 

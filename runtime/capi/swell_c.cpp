@@ -4,6 +4,7 @@
 #include "swell/swell.h"
 
 #include "swell/cache/error.h"
+#include "swell/cache/json_depth.h"
 #include "swell/cache/reader.h"
 #include "swell/runtime/error.h"
 #include "swell/runtime/playback.h"
@@ -94,8 +95,14 @@ ReplayMode modeOf(swell_mode mode) {
 PlaybackConfig configOf(const swell_replay_config& c) {
     swell::runtime::PlaybackChoice choice;
     choice.mode = modeOf(c.mode);
-    if (c.params_json != nullptr)
+    if (c.params_json != nullptr) {
+        if (!swell::cache::jsonDepthAcceptable(c.params_json)) {
+            throw std::invalid_argument(fmt::format(
+                "params_json: nests {} levels deep, more than the {} allowed",
+                swell::cache::jsonNestingDepth(c.params_json), swell::cache::kMaxJsonDepth));
+        }
         choice.named = nlohmann::json::parse(c.params_json);
+    }
     if (!choice.named.is_object())
         throw std::invalid_argument("params_json: expected a JSON object");
     choice.cellsX = c.cells_x;

@@ -226,6 +226,19 @@ TEST_F(BakeDriver, SceneErrorsOfABake) {
     } catch (const SceneError& e) {
         EXPECT_EQ(e.key(), "output.frame_interval");
     }
+    // Whole numbers of steps beyond the header's 32 bits, and far beyond a double's integers:
+    // refused naming the key, not wrapped to "every 1 steps".
+    for (const double interval : {2147483.6485 * 2.0, 4294967.296 * 2.0, 1e300}) {
+        j["output"]["frame_interval"] = interval;
+        try {
+            frameIntervalSteps(parseScene(j));
+            FAIL() << interval;
+        } catch (const SceneError& e) {
+            EXPECT_EQ(e.key(), "output.frame_interval");
+            EXPECT_NE(std::string(e.what()).find("at most 1e9 steps"), std::string::npos)
+                << e.what();
+        }
+    }
     j = toJson(smallSurging(1.0));
     j["solver"]["adaptive_dt"] = true;
     try {

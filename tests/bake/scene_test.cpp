@@ -1,5 +1,6 @@
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <functional>
 #include <initializer_list>
 #include <string>
@@ -606,6 +607,35 @@ TEST(Scene, NumberBeyondADoubleIsASceneErrorNamingTheFile) {
     }
 }
 
+TEST(Scene, NestingAMillionLevelsDeepIsRefusedNamingTheFileOrTheKey) {
+    // Printing such a value in a message would recurse once per level; it is refused before
+    // it is parsed, in a scene file and in a --set value.
+    const std::string deep = std::string(1000000, '[') + std::string(1000000, ']');
+    const swell::test::TempDir dir("swell_deep_scene_");
+    const auto tmp = dir / "deep.json";
+    {
+        std::ofstream f(tmp);
+        f << R"({"name": )" << deep << "}";
+    }
+    try {
+        (void)loadScene(tmp);
+        FAIL() << "a scene nested 1,000,001 levels deep was accepted";
+    } catch (const SceneError& e) {
+        EXPECT_NE(std::string(e.what()).find("deep.json nests 1000001 levels deep"),
+                  std::string::npos)
+            << e.what();
+    }
+    json j = minimal();
+    try {
+        applyOverride(j, "name=" + deep);
+        FAIL() << "a --set value nested 1,000,000 levels deep was accepted";
+    } catch (const SceneError& e) {
+        EXPECT_EQ(e.key(), "name");
+        EXPECT_NE(std::string(e.what()).find("nests 1000000 levels deep"), std::string::npos)
+            << e.what();
+    }
+}
+
 TEST(Scene, ErrorsStayOnOneLine) {
     const auto message = [](const std::function<void()>& f) {
         try {
@@ -624,7 +654,10 @@ TEST(Scene, ErrorsStayOnOneLine) {
         message([&] { applyOverride(k, std::string("name=\xff\xfe")); }); // not UTF-8
     EXPECT_NE(utf8.find("not valid UTF-8"), std::string::npos) << utf8;
     EXPECT_EQ(message([] { (void)loadScene("no\nsuch.json"); }),
-              "scene key '': cannot open scene file no\\x0asuch.json");
+              "cannot open scene file no\\x0asuch.json: No such file or directory");
+    const swell::test::TempDir dir("swell_scene_dir_");
+    EXPECT_EQ(message([&] { (void)loadScene(dir.path()); }),
+              "scene file " + dir.path().string() + " is a directory, not a JSON file");
 }
 
 TEST(Scene, BedProfileIsReadRoundTripsAndNamesItsPoints) {

@@ -18,6 +18,10 @@ grep -q '"splash_median":2.0' "$dir/info.json" || fail "info --json splash_media
 "$bin/swell-cache" info "$dir/dry.swell" | grep -q "^splash particles   mean 0.0, max 0, median 0; in 0 of 7 frames" ||
     fail "info splash line: $("$bin/swell-cache" info "$dir/dry.swell" | grep splash)"
 [[ $("$bin/swell-cache" dump "$dir/a.swell" --frame 19 | wc -l) -eq 53 ]] || fail "dump rows"
+# A negative frame is refused naming the option, not wrapped to 2^64 - 1.
+if out=$("$bin/swell-cache" dump "$dir/a.swell" --frame -1 2>&1); then fail "dump --frame -1 accepted"; fi
+grep -q -- "--frame" <<<"$out" || fail "dump --frame -1 message: $out"
+grep -q "18446744073709551615" <<<"$out" && fail "dump --frame -1 wrapped: $out"
 # synth caches carry the bake's "replay" block (water extent, steady start); info prints it.
 grep -q '"replay":{"particle_spacing":0.0816326530612244[0-9]*,"steady_reason":"synthetic travelling wave: steady from the start","steady_start_s":0.0,"still_water_level":0.5,"water_x_max":4.0,"water_x_min":0.0}' "$dir/info.json" ||
     fail "info --json replay block: $(grep -o '"replay":{[^}]*}' "$dir/info.json")"

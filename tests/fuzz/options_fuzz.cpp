@@ -92,7 +92,7 @@ template <class Load> void checkScene(Load load) {
     try {
         (void)load();
     } catch (const SceneError& e) {
-        swell::fuzz::requireClearError(e.what(), "scene key '");
+        swell::fuzz::requireClearError(e.what(), e.key().empty() ? "" : "scene key '");
     }
 }
 

@@ -38,7 +38,7 @@ void checkAccepted(const Scene& scene) {
         require(totalSteps(scene) >= 1, "no step to run");
         (void)sceneWarnings(scene);
     } catch (const SceneError& e) {
-        swell::fuzz::requireClearError(e.what(), "scene key '");
+        swell::fuzz::requireClearError(e.what(), e.key().empty() ? "" : "scene key '");
     }
     const GeneratedGeometry geo = generateGeometry(scene.geometry);
     require(geo.particles.size() <= kMaxParticles, "more particles than kMaxParticles");
@@ -62,7 +62,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         scene = parseScene(parseSceneJson(
             std::string_view(reinterpret_cast<const char*>(data), size), "fuzz.json"));
     } catch (const SceneError& e) {
-        swell::fuzz::requireClearError(e.what(), "scene key '");
+        swell::fuzz::requireClearError(e.what(), e.key().empty() ? "" : "scene key '");
         return 0;
     }
     checkAccepted(scene);

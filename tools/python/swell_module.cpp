@@ -8,6 +8,7 @@
 #include "swell/bake/error.h"
 #include "swell/bake/scene.h"
 #include "swell/cache/error.h"
+#include "swell/cache/json_depth.h"
 #include "swell/cache/reader.h"
 #include "swell/runtime/error.h"
 #include "swell/runtime/gl/egl_context.h"
@@ -38,8 +39,25 @@ py::object toPython(const json& j) {
 }
 
 /// Python dict / list / number -> json, through the json module.
+/// A value nested deeper than cache::kMaxJsonDepth is a ValueError naming its depth.
 json fromPython(const py::handle& o) {
-    return json::parse(py::module_::import("json").attr("dumps")(o).cast<std::string>());
+    std::string text;
+    try {
+        text = py::module_::import("json").attr("dumps")(o).cast<std::string>();
+    } catch (py::error_already_set& e) {
+        if (!e.matches(PyExc_RecursionError))
+            throw;
+        throw std::invalid_argument(fmt::format(
+            "a value nests deeper than Python's json module writes; at most {} levels are allowed",
+            cache::kMaxJsonDepth));
+    }
+    if (!cache::jsonDepthAcceptable(text)) {
+        throw std::invalid_argument(fmt::format("a value nests {} levels deep, more than the {} "
+                                                "allowed",
+                                                cache::jsonNestingDepth(text),
+                                                cache::kMaxJsonDepth));
+    }
+    return json::parse(text);
 }
 
 py::array_t<float> floats(const std::vector<float>& v, std::size_t columns) {

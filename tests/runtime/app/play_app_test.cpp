@@ -179,7 +179,9 @@ TEST_F(PlayApp, HeightsBeyondTheMemoryBudgetStreamInChunksWithTheSameHeights) {
 }
 
 TEST_F(PlayApp, BadInputGivesOneClearLineAndNonZeroExit) {
-    const std::array<std::pair<std::string, std::string>, 11> cases = {{
+    const std::array<std::pair<std::string, std::string>, 13> cases = {{
+        {"rendr " + cachePath(), "unknown subcommand 'rendr'; did you mean 'render'?"},
+        {"xyzzy", "unknown subcommand 'xyzzy'; the subcommands are "},
         {"bench " + cachePath() + " --mode tsunami", "--mode"},
         {"bench " + cachePath() + " --mode ripple --angles 0 30 --weights 1", "ripple.weights"},
         {"bench " + cachePath() + " --mode whirlpool --spiral-b 25", "whirlpool.growth"},
