@@ -4,6 +4,7 @@
 #include <atomic>
 #include <csignal>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <string>
@@ -134,6 +135,22 @@ int reportFailure(const std::exception& e, const std::string& scenePath,
     return code;
 }
 
+/// The output path's problems a bake would only meet at its end: an existing directory there,
+/// or a folder that does not exist. "" when it can be written (as far as can be told now).
+std::string outputPathProblem(const std::string& output) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    const fs::path path(output);
+    if (fs::is_directory(path, ec)) {
+        return fmt::format("-o {}: is a directory; give the cache's file name, e.g. {}", output,
+                           (path / "bake.swell").string());
+    }
+    const fs::path folder = path.has_parent_path() ? path.parent_path() : fs::path(".");
+    if (!fs::is_directory(folder, ec))
+        return fmt::format("-o {}: the folder {} does not exist", output, folder.string());
+    return std::string();
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
@@ -149,6 +166,10 @@ int main(int argc, char** argv) {
     std::signal(SIGINT, onSignal);
     std::signal(SIGTERM, onSignal);
 
+    if (const std::string problem = outputPathProblem(output); !problem.empty()) {
+        std::fprintf(stderr, "swell-bake: %s\n", problem.c_str());
+        return 4;
+    }
     ProgressReporter progress(quiet);
     try {
         const Scene scene = loadBakeScene(cl); // bake-specific scene errors before any warning

@@ -7,6 +7,7 @@
 
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 #include <time.h>
 
 static double now_ms(void) {
@@ -23,9 +24,18 @@ static int check(swell_status s, const char* what) {
     return 1;
 }
 
+static const char* const kUsage =
+    "usage: swell-capi-bench CACHE [CELLS [FRAMES [POINTS]]]\n"
+    "  Times the C API on CACHE: replay creation, frames per second at CELLS x CELLS (0: the\n"
+    "  replay's default grid) over FRAMES frames, and POINTS point queries per frame.\n";
+
 int main(int argc, char** argv) {
+    if (argc >= 2 && (strcmp(argv[1], "-h") == 0 || strcmp(argv[1], "--help") == 0)) {
+        fputs(kUsage, stdout);
+        return 0;
+    }
     if (argc < 2) {
-        fprintf(stderr, "usage: swell-capi-bench CACHE [CELLS [FRAMES [POINTS]]]\n");
+        fputs(kUsage, stderr);
         return 2;
     }
     const int cells = argc > 2 ? atoi(argv[2]) : 0;

@@ -114,7 +114,10 @@ TEST_F(SwellBakeApp, BadInputGivesOneLineAndNonZeroExit) {
         {small + " -o " + out + " --set nonsense", "section.key=value"},
         {small + " -o " + out + " --threads 0", "--threads"},
         {small + " -o " + out + " --checkpoint-every 0", "--checkpoint-every"},
-        {small + " -o /no/such/dir/x.swell", "/no/such/dir"},
+        {small + " -o /no/such/dir/x.swell", "the folder /no/such/dir does not exist"},
+        {small + " -o " + m_dir.string(), "is a directory; give the cache's file name"},
+        {small + " -o " + out + " --set output.frame_interval=2147483.6485", "at most 1e9 steps"},
+        {m_dir.string() + " -o " + out, "is a directory, not a JSON file"},
     };
     for (const Case& c : cases) {
         SCOPED_TRACE(c.args);
