@@ -89,38 +89,41 @@ Frame decodeFrame(const fs::path& path, const Header& h, const FrameInfo& e, std
     return decodeRecord(h, *rec, e.surfaceCount, e.splashCount);
 }
 
-} // namespace
+/// Makes the CacheError of the file being opened: "<path>: <what>".
+struct Failure {
+    const fs::path& path;
+    CacheError operator()(const std::string& what) const {
+        return CacheError(path.string() + ": " + what);
+    }
+};
 
-Reader::Reader(fs::path path) : m_path(std::move(path)) {
-    auto fail = [&](const std::string& what) { return CacheError(m_path.string() + ": " + what); };
-    if (const long pid = temporaryFileWriter(m_path); pid > 0) {
+/// Refuses the temporary file of a write that has not finished (output_lock.h).
+void rejectUnfinishedWrite(const fs::path& path, const Failure& fail) {
+    if (const long pid = temporaryFileWriter(path); pid > 0) {
         throw fail("a temporary file of an unfinished write by process " + std::to_string(pid) +
                    (processExists(pid) ? " (still running)"
                                        : " (no longer running: the next bake to that output "
                                          "removes it)") +
                    ", not a cache; a cache appears under its own name only when complete");
     }
-    auto file = std::make_shared<const File>(m_path);
-    const File& fd = *file;
-    if (fd.get() < 0)
-        throw fail(std::string("cannot open: ") + std::strerror(errno));
-    struct stat st {};
-    if (::fstat(fd.get(), &st) != 0 || !S_ISREG(st.st_mode))
-        throw fail("not a regular file");
-    m_fileSize = static_cast<std::uint64_t>(st.st_size);
+}
 
-    // --- fixed header
-    if (m_fileSize < kFixedHeaderSize)
-        throw fail("truncated: " + std::to_string(m_fileSize) + " bytes, shorter than the " +
+/// Reads the fixed header and its metadata and checks the magic, the format version (stored
+/// in `version`), the sizes and the header checksum. Returns the header's bytes, fixed part
+/// then metadata.
+std::vector<std::uint8_t> readHeaderBytes(int fd, std::uint64_t fileSize, std::uint32_t& version,
+                                          const Failure& fail) {
+    if (fileSize < kFixedHeaderSize)
+        throw fail("truncated: " + std::to_string(fileSize) + " bytes, shorter than the " +
                    std::to_string(kFixedHeaderSize) + "-byte header");
     std::vector<std::uint8_t> head(kFixedHeaderSize);
-    if (!readAt(fd.get(), head.data(), head.size(), 0))
+    if (!readAt(fd, head.data(), head.size(), 0))
         throw fail("cannot read the header");
     if (std::memcmp(head.data(), kMagic, sizeof kMagic) != 0)
         throw fail("not a swell cache (bad magic)");
-    m_version = getField<std::uint32_t>(&head[kOffVersion]);
-    if (m_version == 0 || m_version > kFormatVersion)
-        throw fail("format version " + std::to_string(m_version) +
+    version = getField<std::uint32_t>(&head[kOffVersion]);
+    if (version == 0 || version > kFormatVersion)
+        throw fail("format version " + std::to_string(version) +
                    " is not readable by this program (reads up to " +
                    std::to_string(kFormatVersion) + ")");
     const auto metaLen = getField<std::uint32_t>(&head[kOffMetadataLength]);
@@ -128,15 +131,20 @@ Reader::Reader(fs::path path) : m_path(std::move(path)) {
     if (metaLen > kMaxMetadataBytes || headerSize != kFixedHeaderSize + metaLen)
         throw fail("header damaged: metadata length " + std::to_string(metaLen) +
                    " disagrees with header size " + std::to_string(headerSize));
-    if (headerSize > m_fileSize)
+    if (headerSize > fileSize)
         throw fail("truncated inside the header metadata");
     head.resize(headerSize);
-    if (!readAt(fd.get(), head.data() + kFixedHeaderSize, metaLen, kFixedHeaderSize))
+    if (!readAt(fd, head.data() + kFixedHeaderSize, metaLen, kFixedHeaderSize))
         throw fail("cannot read the header metadata");
     if (headerChecksum(head) != getField<std::uint64_t>(&head[kOffHeaderChecksum]))
         throw fail("header checksum mismatch (header damaged, or the file was never finished)");
+    return head;
+}
 
-    Header& h = m_header;
+/// Decodes the header fields from its checked bytes (readHeaderBytes) and checks the encoding,
+/// the flags, the domain, dt, the frame interval and the metadata JSON.
+Header decodeHeader(const std::vector<std::uint8_t>& head, const Failure& fail) {
+    Header h;
     const auto enc = getField<std::uint32_t>(&head[kOffEncoding]);
     if (enc > static_cast<std::uint32_t>(Encoding::Quantized16))
         throw fail("unknown encoding " + std::to_string(enc));
@@ -158,73 +166,118 @@ Reader::Reader(fs::path path) : m_path(std::move(path)) {
         throw fail("header damaged: invalid dt or frame interval");
     h.compressionLevel = static_cast<int>(getField<std::uint32_t>(&head[kOffLevel]));
     h.seed = getField<std::uint64_t>(&head[kOffSeed]);
-    h.metadataJson.assign(reinterpret_cast<const char*>(head.data() + kFixedHeaderSize), metaLen);
+    h.metadataJson.assign(reinterpret_cast<const char*>(head.data() + kFixedHeaderSize),
+                          head.size() - kFixedHeaderSize);
     if (!jsonDepthAcceptable(h.metadataJson)) {
         throw fail("header metadata nests " + std::to_string(jsonNestingDepth(h.metadataJson)) +
                    " levels deep, more than the " + std::to_string(kMaxJsonDepth) + " allowed");
     }
     if (!nlohmann::json::accept(h.metadataJson))
         throw fail("header metadata is not valid JSON");
+    return h;
+}
 
-    // --- frame index (at the end: count * 40 bytes, then its checksum)
-    const auto count = getField<std::uint64_t>(&head[kOffFrameCount]);
-    const auto indexOffset = getField<std::uint64_t>(&head[kOffIndexOffset]);
-    if (indexOffset < headerSize || indexOffset > m_fileSize)
+/// Reads the frame index at `indexOffset` (count * 40 bytes, then its checksum), after
+/// checking that it lies between the header and the end of the file and ends the file;
+/// checks its checksum.
+std::vector<std::uint8_t> readIndexBytes(int fd, std::uint64_t fileSize, std::uint64_t headerSize,
+                                         std::uint64_t count, std::uint64_t indexOffset,
+                                         const Failure& fail) {
+    if (indexOffset < headerSize || indexOffset > fileSize)
         throw fail("index offset " + std::to_string(indexOffset) + " outside the file (" +
-                   std::to_string(m_fileSize) + " bytes)");
-    if (count > (m_fileSize - indexOffset) / kIndexEntrySize)
+                   std::to_string(fileSize) + " bytes)");
+    if (count > (fileSize - indexOffset) / kIndexEntrySize)
         throw fail("truncated: the index of " + std::to_string(count) +
                    " frames does not fit in the file");
     const std::uint64_t expectedSize = indexOffset + count * kIndexEntrySize + 8;
-    if (m_fileSize != expectedSize)
-        throw fail((m_fileSize < expectedSize ? "truncated: " : "trailing data: ") +
-                   std::to_string(m_fileSize) + " bytes, the header implies " +
+    if (fileSize != expectedSize)
+        throw fail((fileSize < expectedSize ? "truncated: " : "trailing data: ") +
+                   std::to_string(fileSize) + " bytes, the header implies " +
                    std::to_string(expectedSize));
     std::vector<std::uint8_t> index(count * kIndexEntrySize + 8);
-    if (!readAt(fd.get(), index.data(), index.size(), indexOffset))
+    if (!readAt(fd, index.data(), index.size(), indexOffset))
         throw fail("cannot read the frame index");
     if (checksum(index.data(), count * kIndexEntrySize) !=
         getField<std::uint64_t>(&index[count * kIndexEntrySize]))
         throw fail("frame index checksum mismatch (index damaged)");
+    return index;
+}
 
-    m_index.resize(count);
+/// Checks index entry `i` against its particle counts and the frame data, which runs from
+/// the end of the previous frame (`expectedOffset`) up to the index (`indexOffset`).
+void checkIndexEntry(const FrameInfo& e, std::size_t i, Encoding encoding,
+                     std::uint64_t expectedOffset, std::uint64_t indexOffset, const Failure& fail) {
+    auto bad = [&](const std::string& what) {
+        return fail("frame " + std::to_string(i) + ": " + what);
+    };
+    const std::uint64_t expectRaw = rawRecordSize(encoding, e.surfaceCount, e.splashCount);
+    if (e.rawSize != expectRaw)
+        throw bad("raw size " + std::to_string(e.rawSize) + " disagrees with " +
+                  std::to_string(e.surfaceCount) + " surface and " + std::to_string(e.splashCount) +
+                  " splash particles (" + std::to_string(expectRaw) + " bytes)");
+    if (e.rawSize > kMaxRawFrameBytes)
+        throw bad("raw size " + std::to_string(e.rawSize) +
+                  " bytes exceeds the 256 MiB frame limit");
+    if (e.compressedSize == 0 || e.compressedSize > ZSTD_compressBound(e.rawSize))
+        throw bad("compressed size " + std::to_string(e.compressedSize) +
+                  " impossible for raw size " + std::to_string(e.rawSize));
+    if (e.offset > indexOffset || e.compressedSize > indexOffset - e.offset)
+        throw bad("offset " + std::to_string(e.offset) + " + size " +
+                  std::to_string(e.compressedSize) + " extends past the frame data (ends at " +
+                  std::to_string(indexOffset) + ")");
+    if (e.offset < expectedOffset)
+        throw bad(i == 0 ? "starts inside the header" : "overlaps frame " + std::to_string(i - 1));
+    if (e.offset > expectedOffset)
+        throw bad("unaccounted gap of " + std::to_string(e.offset - expectedOffset) +
+                  " bytes before the frame");
+}
+
+/// Decodes the `count` entries of the frame index and checks that the frames tile the data
+/// between the header (`headerSize` bytes) and the index, in order, with no gaps.
+std::vector<FrameInfo> decodeIndex(const std::vector<std::uint8_t>& index, std::uint64_t count,
+                                   Encoding encoding, std::uint64_t headerSize,
+                                   std::uint64_t indexOffset, const Failure& fail) {
+    std::vector<FrameInfo> entries(count);
     std::uint64_t expectedOffset = headerSize;
     for (std::size_t i = 0; i < count; ++i) {
         const std::uint8_t* p = &index[i * kIndexEntrySize];
-        FrameInfo& e = m_index[i];
+        FrameInfo& e = entries[i];
         e = {getField<std::uint64_t>(p),      getField<std::uint64_t>(p + 8),
              getField<std::uint64_t>(p + 16), getField<std::uint32_t>(p + 24),
              getField<std::uint32_t>(p + 28), getField<std::uint64_t>(p + 32)};
-        auto bad = [&](const std::string& what) {
-            return fail("frame " + std::to_string(i) + ": " + what);
-        };
-        const std::uint64_t expectRaw = rawRecordSize(h.encoding, e.surfaceCount, e.splashCount);
-        if (e.rawSize != expectRaw)
-            throw bad("raw size " + std::to_string(e.rawSize) + " disagrees with " +
-                      std::to_string(e.surfaceCount) + " surface and " +
-                      std::to_string(e.splashCount) + " splash particles (" +
-                      std::to_string(expectRaw) + " bytes)");
-        if (e.rawSize > kMaxRawFrameBytes)
-            throw bad("raw size " + std::to_string(e.rawSize) +
-                      " bytes exceeds the 256 MiB frame limit");
-        if (e.compressedSize == 0 || e.compressedSize > ZSTD_compressBound(e.rawSize))
-            throw bad("compressed size " + std::to_string(e.compressedSize) +
-                      " impossible for raw size " + std::to_string(e.rawSize));
-        if (e.offset > indexOffset || e.compressedSize > indexOffset - e.offset)
-            throw bad("offset " + std::to_string(e.offset) + " + size " +
-                      std::to_string(e.compressedSize) + " extends past the frame data (ends at " +
-                      std::to_string(indexOffset) + ")");
-        if (e.offset < expectedOffset)
-            throw bad(i == 0 ? "starts inside the header"
-                             : "overlaps frame " + std::to_string(i - 1));
-        if (e.offset > expectedOffset)
-            throw bad("unaccounted gap of " + std::to_string(e.offset - expectedOffset) +
-                      " bytes before the frame");
+        checkIndexEntry(e, i, encoding, expectedOffset, indexOffset, fail);
         expectedOffset = e.offset + e.compressedSize;
     }
     if (expectedOffset != indexOffset)
         throw fail(std::to_string(indexOffset - expectedOffset) +
                    " unaccounted bytes between the last frame and the index");
+    return entries;
+}
+
+} // namespace
+
+Reader::Reader(fs::path path) : m_path(std::move(path)) {
+    const Failure fail{m_path};
+    rejectUnfinishedWrite(m_path, fail);
+    auto file = std::make_shared<const File>(m_path);
+    const File& fd = *file;
+    if (fd.get() < 0)
+        throw fail(std::string("cannot open: ") + std::strerror(errno));
+    struct stat st {};
+    if (::fstat(fd.get(), &st) != 0 || !S_ISREG(st.st_mode))
+        throw fail("not a regular file");
+    m_fileSize = static_cast<std::uint64_t>(st.st_size);
+
+    const std::vector<std::uint8_t> head = readHeaderBytes(fd.get(), m_fileSize, m_version, fail);
+    m_header = decodeHeader(head, fail);
+
+    // The frame index, at the end of the file.
+    const std::uint64_t headerSize = head.size();
+    const auto count = getField<std::uint64_t>(&head[kOffFrameCount]);
+    const auto indexOffset = getField<std::uint64_t>(&head[kOffIndexOffset]);
+    const std::vector<std::uint8_t> index =
+        readIndexBytes(fd.get(), m_fileSize, headerSize, count, indexOffset, fail);
+    m_index = decodeIndex(index, count, m_header.encoding, headerSize, indexOffset, fail);
     m_file = std::move(file);
 }
 

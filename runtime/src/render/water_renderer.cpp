@@ -90,9 +90,19 @@ WaterRenderer::WaterRenderer(const Grid& grid, const cache::Domain& domain,
     m_sky = makeCubemapTexture(sky);
     glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
 
+    createMeshBuffers();
+    createFramebuffers();
+    for (GlQuery& q : m_queries)
+        q = makeTimestampQuery();
+    setSurfaceUniforms();
+    setLightUniforms(sky);
+    checkGl("setting up the water renderer");
+}
+
+void WaterRenderer::createMeshBuffers() {
     // Triangles of the N x M vertex grid (vertex id m * N + n), reordered front to back for
     // each new eye point (updateMeshOrder).
-    const int N = grid.cellsX, M = grid.cellsZ;
+    const int N = m_grid.cellsX, M = m_grid.cellsZ;
     m_indexCount = static_cast<std::size_t>(N - 1) * static_cast<std::size_t>(M - 1) * 6;
     GLuint name = 0;
     glCreateBuffers(1, &name);
@@ -122,13 +132,15 @@ WaterRenderer::WaterRenderer(const Grid& grid, const cache::Domain& domain,
     glEnableVertexArrayAttrib(m_splashArray, 0);
     glVertexArrayAttribFormat(m_splashArray, 0, 4, GL_FLOAT, GL_FALSE, 0);
     glVertexArrayAttribBinding(m_splashArray, 0, 0);
+}
 
+void WaterRenderer::createFramebuffers() {
     // Offscreen framebuffers: multisampled colour + depth, resolved into a plain colour buffer.
     GLint maxSamples = 1;
     glGetIntegerv(GL_MAX_SAMPLES, &maxSamples);
-    m_samples = std::max(1, std::min(shading.samples, static_cast<int>(maxSamples)));
+    m_samples = std::max(1, std::min(m_shading.samples, static_cast<int>(maxSamples)));
     glCreateRenderbuffers(3, m_renderbuffers);
-    const int W = shading.width, H = shading.height;
+    const int W = m_shading.width, H = m_shading.height;
     glNamedRenderbufferStorageMultisample(m_renderbuffers[0], m_samples > 1 ? m_samples : 0,
                                           GL_SRGB8_ALPHA8, W, H);
     glNamedRenderbufferStorageMultisample(m_renderbuffers[1], m_samples > 1 ? m_samples : 0,
@@ -156,25 +168,27 @@ WaterRenderer::WaterRenderer(const Grid& grid, const cache::Domain& domain,
                             m_samples, status));
         }
     }
-    for (GlQuery& q : m_queries)
-        q = makeTimestampQuery();
+}
 
-    // Uniforms that do not change between frames.
+void WaterRenderer::setSurfaceUniforms() {
+    const ShadingParams& shading = m_shading;
+    const int N = m_grid.cellsX, M = m_grid.cellsZ;
     const float eta = static_cast<float>(1.0 / shading.refractiveIndex);
     const double r = (shading.refractiveIndex - 1.0) / (shading.refractiveIndex + 1.0);
     const auto f0 = static_cast<float>(r * r);
-    const float bedY = domain.yMin;
+    const float bedY = m_domain.yMin;
     for (GLuint p : {m_surfaceProgram.get(), m_skirtProgram.get()}) {
         glProgramUniform2i(p, kCells, N, M);
-        glProgramUniform2f(p, kOrigin, static_cast<float>(grid.x0 + 0.5 * grid.dx),
-                           static_cast<float>(0.5 * grid.dz));
-        glProgramUniform2f(p, kSpacing, static_cast<float>(grid.dx), static_cast<float>(grid.dz));
+        glProgramUniform2f(p, kOrigin, static_cast<float>(m_grid.x0 + 0.5 * m_grid.dx),
+                           static_cast<float>(0.5 * m_grid.dz));
+        glProgramUniform2f(p, kSpacing, static_cast<float>(m_grid.dx),
+                           static_cast<float>(m_grid.dz));
         glProgramUniform1f(p, kBedY, bedY);
         setVec3(p, kAbsorption, shading.absorption);
         setVec3(p, kScatter, shading.scatterColour);
     }
     const GLuint v = m_surfaceProgram.get();
-    setVec3(v, kSunDir, sun);
+    setVec3(v, kSunDir, m_sun);
     setVec3(v, kBed, shading.bedColour);
     glProgramUniform1f(v, kEta, eta);
     glProgramUniform1f(v, kF0, f0);
@@ -183,7 +197,7 @@ WaterRenderer::WaterRenderer(const Grid& grid, const cache::Domain& domain,
     // The floor, drawn with the sky (sky.frag): the bed's colour and lighting, the block's
     // footprint (the mesh's extent, as the sides) for its shadow.
     const GLuint f = m_skyProgram.get();
-    setVec3(f, kSunDir, sun);
+    setVec3(f, kSunDir, m_sun);
     glProgramUniform1f(f, kBedY, bedY);
     setVec3(f, kAbsorption, shading.absorption);
     setVec3(f, kBed, shading.bedColour);
@@ -195,11 +209,15 @@ WaterRenderer::WaterRenderer(const Grid& grid, const cache::Domain& domain,
     glProgramUniform4f(f, kBlock, static_cast<float>(mesh.x0), static_cast<float>(mesh.z0),
                        static_cast<float>(mesh.x0 + (N - 1) * mesh.dx),
                        static_cast<float>(mesh.z0 + (M - 1) * mesh.dz));
+}
+
+void WaterRenderer::setLightUniforms(const CubeFaces& sky) {
+    const Vec3& sun = m_sun;
     const GLuint w = m_waterProgram.get();
     setVec3(w, kSunDir, sun);
-    glProgramUniform2f(w, kSun, static_cast<float>(shading.sunShininess),
-                       static_cast<float>(shading.sunIntensity));
-    setVec3(w, kSunColour, shading.sunColour);
+    glProgramUniform2f(w, kSun, static_cast<float>(m_shading.sunShininess),
+                       static_cast<float>(m_shading.sunIntensity));
+    setVec3(w, kSunColour, m_shading.sunColour);
     const Vec3 ambient = zenithRadiance(sky);
     // Light from above entering a side: the sky straight up and the sun, tinted by the water.
     const double sideLight = 0.6 * (0.35 + 0.65 * std::max(sun[1], 0.0));
@@ -213,8 +231,7 @@ WaterRenderer::WaterRenderer(const Grid& grid, const cache::Domain& domain,
     for (double& c : dropLight)
         c /= dropNorm;
     setVec3(m_splashProgram.get(), kDropLight, dropLight);
-    setVec3(m_splashProgram.get(), kSplashColour, shading.splashColour);
-    checkGl("setting up the water renderer");
+    setVec3(m_splashProgram.get(), kSplashColour, m_shading.splashColour);
 }
 
 WaterRenderer::~WaterRenderer() {

@@ -69,6 +69,144 @@ void packParticles(const FrameSet& frames, const Grid& grid, double reference,
     }
 }
 
+/// The held slot of cache frame `id`, or -1 when `frames` does not hold it.
+long long heldSlot(const FrameSet& frames, std::uint32_t id) {
+    const cache::Frame* f = frames.find(id);
+    return f == nullptr ? -1 : static_cast<long long>(f - frames.frames.data());
+}
+
+/// Per timeline entry, its column slot and its shown frame (the inputs of slice_lookup.comp).
+struct SlotTable {
+    std::vector<std::size_t> blendEntries; ///< timeline entries with a cross-fade slot, in order
+    std::vector<GLuint> slotOf;            ///< column slot, or 0xffffffff when not held
+    std::vector<GLint> shown;              ///< the cache frame shown
+};
+
+/// Slots of the column buffer: the held frames, then one per cross-faded timeline entry whose
+/// two frames are both held (timeline.h).
+SlotTable assignSlots(const FrameSet& frames, const Timeline& timeline, std::size_t entries) {
+    const std::size_t held = frames.frames.size();
+    SlotTable t;
+    t.slotOf.assign(entries, 0xffffffffu);
+    t.shown.assign(entries, 0);
+    for (std::size_t i = 0; i < entries; ++i) {
+        const TimelineEntry& e = timeline[i];
+        t.shown[i] = static_cast<GLint>(e.shown());
+        const long long a = heldSlot(frames, e.a);
+        if (!e.blended()) {
+            if (a >= 0)
+                t.slotOf[i] = static_cast<GLuint>(a);
+        } else if (a >= 0 && heldSlot(frames, e.b) >= 0) {
+            t.slotOf[i] = static_cast<GLuint>(held + t.blendEntries.size());
+            t.blendEntries.push_back(i);
+        }
+    }
+    return t;
+}
+
+/// reconstruct.comp runs one work group per row, as few groups as fit the row's column quads:
+/// the quads per group, a power of two in 32 .. 256.
+std::uint32_t reconstructQuadsPerGroup(int N) {
+    const GLuint quads = static_cast<GLuint>((N + 3) / 4);
+    std::uint32_t perGroup = 32;
+    while (perGroup < quads && perGroup < 256)
+        perGroup *= 2;
+    return perGroup;
+}
+
+/// reconstruct.comp compiled for `quadsPerGroup` column quads per work group.
+GlProgram makeReconstructProgram(std::uint32_t quadsPerGroup) {
+    std::string source(shaders::get("reconstruct.comp"));
+    source.insert(source.find('\n') + 1,
+                  fmt::format("#define SWELL_QUADS_PER_GROUP {}\n", quadsPerGroup));
+    return makeComputeProgram("reconstruct.comp", source);
+}
+
+/// Throws RuntimeError when the particle or column buffer exceeds the driver's limit of one
+/// shader-storage block.
+void checkStorageLimit(std::size_t particleBytes, std::size_t columnBytes, std::size_t heldFrames,
+                       int N) {
+    GLint64 maxBlock = 0;
+    glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &maxBlock);
+    for (const std::size_t bytes : {particleBytes, columnBytes}) {
+        if (static_cast<GLint64>(bytes) > maxBlock) {
+            throw RuntimeError(fmt::format(
+                "the replay needs a {:.0f} MB buffer ({} held frames at {} columns), above this "
+                "driver's {:.0f} MB shader-storage limit: lower --res or replay fewer seconds",
+                static_cast<double>(bytes) / 1e6, heldFrames, N,
+                static_cast<double>(maxBlock) / 1e6));
+        }
+    }
+}
+
+/// Float index of h (c = 0) or W (c = 1) of column n in `slot` of the column buffer, whose
+/// slots hold Nq column quads (column_pass.comp).
+std::size_t columnIndex(int Nq, std::size_t slot, int n, int c) {
+    return ((slot * static_cast<std::size_t>(Nq) + static_cast<std::size_t>(n / 4)) * 2 +
+            static_cast<std::size_t>(c)) *
+               4 +
+           static_cast<std::size_t>(n % 4);
+}
+
+/// Envelope columns (eta(P_x), 1), or (empty-frame height `missing`, 0), of every held frame
+/// on the CPU in double, heights relative to `reference`, into `columns`. Returns the time
+/// taken (ms).
+double sampleEnvelopeColumns(const FrameSet& frames, const Grid& grid, double reference,
+                             float missing, std::vector<float>& columns) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const int N = grid.cellsX;
+    const int Nq = (N + 3) / 4;
+    const std::size_t held = frames.frames.size();
+    const double binWidth = envelopeBinWidth(frames.header, grid);
+    // Each slot writes only its own columns: split over the cores.
+    forEachChunk(held, chunkCount(held, 64), [&](std::size_t, std::size_t begin, std::size_t end) {
+        for (std::size_t slot = begin; slot < end; ++slot) {
+            const std::vector<double> eta =
+                sampleEnvelope(SurfaceEnvelope(frames.frames[slot], binWidth), grid.x0, grid.dx, N);
+            for (int n = 0; n < N; ++n) {
+                columns[columnIndex(Nq, slot, n, 0)] =
+                    eta.empty() ? missing
+                                : static_cast<float>(eta[static_cast<std::size_t>(n)] - reference);
+                columns[columnIndex(Nq, slot, n, 1)] = eta.empty() ? 0.0f : 1.0f;
+            }
+        }
+    });
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+/// Cross-fades of two held frames' columns (blendColumns), once: reads the held frames' columns
+/// of `columnBuffer` into `columns` and uploads the cross-faded slots that follow them.
+void uploadCrossFades(GLuint columnBuffer, const FrameSet& frames, const Timeline& timeline,
+                      const std::vector<std::size_t>& blendEntries, int N,
+                      std::vector<float>& columns) {
+    const int Nq = (N + 3) / 4;
+    const std::size_t held = frames.frames.size();
+    glGetNamedBufferSubData(columnBuffer, 0, static_cast<GLsizeiptr>(held * Nq * 8 * sizeof(float)),
+                            columns.data());
+    for (std::size_t b = 0; b < blendEntries.size(); ++b) {
+        const TimelineEntry& e = timeline[blendEntries[b]];
+        const auto sa = static_cast<std::size_t>(heldSlot(frames, e.a));
+        const auto sb = static_cast<std::size_t>(heldSlot(frames, e.b));
+        const std::size_t slot = held + b;
+        for (int n = 0; n < N; ++n) {
+            // The buffer holds (h, W); blendColumns takes (h W, W), or (h, 0) when W = 0.
+            auto sum = [&](std::size_t s, int k) {
+                const double h = columns[columnIndex(Nq, s, k, 0)];
+                const double W = columns[columnIndex(Nq, s, k, 1)];
+                return W > 0.0 ? ColumnSum{h * W, W} : ColumnSum{h, 0.0};
+            };
+            const ColumnSum c = blendColumns(sum(sa, n), sum(sb, n), e.alpha);
+            columns[columnIndex(Nq, slot, n, 0)] = static_cast<float>(c.height());
+            columns[columnIndex(Nq, slot, n, 1)] = static_cast<float>(c.W);
+        }
+    }
+    const std::size_t offset = held * static_cast<std::size_t>(Nq) * 8;
+    glNamedBufferSubData(columnBuffer, static_cast<GLintptr>(offset * sizeof(float)),
+                         static_cast<GLsizeiptr>((columns.size() - offset) * sizeof(float)),
+                         columns.data() + offset);
+    checkGl("uploading the cross-faded columns");
+}
+
 } // namespace
 
 GpuReplay::GpuReplay(const FrameSet& frames, const ReplayParams& params,
@@ -84,39 +222,12 @@ GpuReplay::GpuReplay(const FrameSet& frames, const ReplayParams& params,
     }
     const int N = m_grid.cellsX;
     m_heldFrames = frames.frames.size();
-    // Slots of the column buffer: the held frames, then one per cross-faded timeline entry
-    // whose two frames are both held (timeline.h).
-    std::vector<std::size_t> blendEntries;
-    std::vector<GLuint> slotOf(m_timelineSize, 0xffffffffu);
-    std::vector<GLint> shown(m_timelineSize, 0);
-    auto heldSlot = [&](std::uint32_t id) -> long long {
-        const cache::Frame* f = frames.find(id);
-        return f == nullptr ? -1 : static_cast<long long>(f - frames.frames.data());
-    };
-    for (std::size_t i = 0; i < m_timelineSize; ++i) {
-        const TimelineEntry& e = timeline[i];
-        shown[i] = static_cast<GLint>(e.shown());
-        const long long a = heldSlot(e.a);
-        if (!e.blended()) {
-            if (a >= 0)
-                slotOf[i] = static_cast<GLuint>(a);
-        } else if (a >= 0 && heldSlot(e.b) >= 0) {
-            slotOf[i] = static_cast<GLuint>(m_heldFrames + blendEntries.size());
-            blendEntries.push_back(i);
-        }
-    }
-    m_slots = m_heldFrames + blendEntries.size();
+    const SlotTable table = assignSlots(frames, timeline, m_timelineSize);
+    m_slots = m_heldFrames + table.blendEntries.size();
 
     m_lookup = makeEmbeddedProgram("slice_lookup.comp");
-    // reconstruct.comp: one work group per row, as few groups as fit the row's column quads.
-    const GLuint quads = static_cast<GLuint>((N + 3) / 4);
-    m_quadsPerGroup = 32;
-    while (m_quadsPerGroup < quads && m_quadsPerGroup < 256)
-        m_quadsPerGroup *= 2;
-    std::string source(shaders::get("reconstruct.comp"));
-    source.insert(source.find('\n') + 1,
-                  fmt::format("#define SWELL_QUADS_PER_GROUP {}\n", m_quadsPerGroup));
-    m_reconstruct = makeComputeProgram("reconstruct.comp", source);
+    m_quadsPerGroup = reconstructQuadsPerGroup(N);
+    m_reconstruct = makeReconstructProgram(m_quadsPerGroup);
     const bool envelope = params.reconstruction == Reconstruction::Envelope;
 
     // Heights are uploaded relative to the middle of the domain, which keeps float sums of
@@ -135,89 +246,23 @@ GpuReplay::GpuReplay(const FrameSet& frames, const ReplayParams& params,
         packParticles(frames, m_grid, reference, particles, binStart);
     if (m_heldFrames == 0 || envelope)
         binStart.assign(static_cast<std::size_t>(N + 3), 0);
-    // Driver limit: one shader-storage block per buffer.
-    GLint64 maxBlock = 0;
-    glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &maxBlock);
     const std::size_t columnBytes = S * static_cast<std::size_t>((N + 3) / 4) * 8 * sizeof(float);
-    for (const std::size_t bytes : {particles.size() * sizeof(float), columnBytes}) {
-        if (static_cast<GLint64>(bytes) > maxBlock) {
-            throw RuntimeError(fmt::format(
-                "the replay needs a {:.0f} MB buffer ({} held frames at {} columns), above this "
-                "driver's {:.0f} MB shader-storage limit: lower --res or replay fewer seconds",
-                static_cast<double>(bytes) / 1e6, m_heldFrames, N,
-                static_cast<double>(maxBlock) / 1e6));
-        }
-    }
+    checkStorageLimit(particles.size() * sizeof(float), columnBytes, m_heldFrames, N);
     const int Nq = (N + 3) / 4; // columns in quads of four (column_pass.comp)
     std::vector<float> zeros(S * static_cast<std::size_t>(Nq) * 8, 0.0f);
-    auto at = [Nq](std::size_t slot, int n, int c) { // float index of h (c = 0) or W (c = 1)
-        return ((slot * static_cast<std::size_t>(Nq) + static_cast<std::size_t>(n / 4)) * 2 +
-                static_cast<std::size_t>(c)) *
-                   4 +
-               static_cast<std::size_t>(n % 4);
-    };
     for (GlQuery& q : m_queries)
         q = makeTimestampQuery();
-    if (envelope) {
-        // Envelope columns (eta(P_x), 1), or (empty-frame height, 0), on the CPU in double.
-        const auto t0 = std::chrono::steady_clock::now();
-        const double binWidth = envelopeBinWidth(frames.header, m_grid);
-        // Each slot writes only its own columns: split over the cores.
-        forEachChunk(
-            m_heldFrames, chunkCount(m_heldFrames, 64),
-            [&](std::size_t, std::size_t begin, std::size_t end) {
-                for (std::size_t slot = begin; slot < end; ++slot) {
-                    const std::vector<double> eta = sampleEnvelope(
-                        SurfaceEnvelope(frames.frames[slot], binWidth), m_grid.x0, m_grid.dx, N);
-                    for (int n = 0; n < N; ++n) {
-                        zeros[at(slot, n, 0)] =
-                            eta.empty()
-                                ? m_missing
-                                : static_cast<float>(eta[static_cast<std::size_t>(n)] - reference);
-                        zeros[at(slot, n, 1)] = eta.empty() ? 0.0f : 1.0f;
-                    }
-                }
-            });
-        m_columnPassMs =
-            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
-                .count();
-    }
+    if (envelope)
+        m_columnPassMs = sampleEnvelopeColumns(frames, m_grid, reference, m_missing, zeros);
     m_columns = makeStorageBuffer(zeros.size() * sizeof(float), zeros.data());
     if (!envelope)
         runColumnPass(particles, binStart, params.sigma);
-    if (!blendEntries.empty()) {
-        // Cross-fades of two held frames' columns (blendColumns), once, from the columns above.
-        std::vector<float>& columns = zeros;
-        glGetNamedBufferSubData(m_columns.get(), 0,
-                                static_cast<GLsizeiptr>(m_heldFrames * Nq * 8 * sizeof(float)),
-                                columns.data());
-        for (std::size_t b = 0; b < blendEntries.size(); ++b) {
-            const TimelineEntry& e = timeline[blendEntries[b]];
-            const auto sa = static_cast<std::size_t>(heldSlot(e.a));
-            const auto sb = static_cast<std::size_t>(heldSlot(e.b));
-            const std::size_t slot = m_heldFrames + b;
-            for (int n = 0; n < N; ++n) {
-                // The buffer holds (h, W); blendColumns takes (h W, W), or (h, 0) when W = 0.
-                auto sum = [&](std::size_t s, int k) {
-                    const double h = columns[at(s, k, 0)];
-                    const double W = columns[at(s, k, 1)];
-                    return W > 0.0 ? ColumnSum{h * W, W} : ColumnSum{h, 0.0};
-                };
-                const ColumnSum c = blendColumns(sum(sa, n), sum(sb, n), e.alpha);
-                columns[at(slot, n, 0)] = static_cast<float>(c.height());
-                columns[at(slot, n, 1)] = static_cast<float>(c.W);
-            }
-        }
-        const std::size_t offset = m_heldFrames * static_cast<std::size_t>(Nq) * 8;
-        glNamedBufferSubData(m_columns.get(), static_cast<GLintptr>(offset * sizeof(float)),
-                             static_cast<GLsizeiptr>((columns.size() - offset) * sizeof(float)),
-                             columns.data() + offset);
-        checkGl("uploading the cross-faded columns");
-    }
-    buildLookupAndRows(params, sampler, slotOf, shown);
+    if (!table.blendEntries.empty())
+        uploadCrossFades(m_columns.get(), frames, timeline, table.blendEntries, N, zeros);
+    buildLookupAndRows(params, sampler, table.slotOf, table.shown);
     m_uploadedBytes = particles.size() * sizeof(float) + binStart.size() * sizeof(GLuint) +
                       zeros.size() * sizeof(float) +
-                      slotOf.size() * (sizeof(GLuint) + sizeof(GLint)) + m_lookupBytes;
+                      table.slotOf.size() * (sizeof(GLuint) + sizeof(GLint)) + m_lookupBytes;
     glFinish(); // the particle and bin buffers are released when this returns
     checkGl("uploading the replay");
 }

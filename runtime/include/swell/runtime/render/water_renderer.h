@@ -96,6 +96,15 @@ public:
     std::size_t lastCulledSplashCount() const { return m_lastCulled; }
 
 private:
+    /// The mesh's index and vertex buffers, the splash buffer and their vertex arrays.
+    void createMeshBuffers();
+    /// The offscreen framebuffers (multisampled, resolved, background); throws RuntimeError
+    /// when one is incomplete.
+    void createFramebuffers();
+    /// Uniforms of the surface, the sides and the floor that do not change between frames.
+    void setSurfaceUniforms();
+    /// Sun, side and splash lighting uniforms; the ambient light is the zenith radiance of `sky`.
+    void setLightUniforms(const CubeFaces& sky);
     void renderBackground(const Camera& camera, const Mat4& invViewProj, GlName heightBuffer);
     void updateMeshOrder(const Vec3& eye);
     void stamp(const GlQuery& query) const;
