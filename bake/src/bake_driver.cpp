@@ -208,6 +208,254 @@ void removeStaleTemporaries(const std::filesystem::path& output,
     }
 }
 
+/// The height potential energy is measured from: the tank's bed, or without a tank the lowest
+/// water.
+double energyDatum(const Scene& scene, const Particles& P) {
+    double bed =
+        scene.geometry.tank ? scene.geometry.tank->y0 : std::numeric_limits<double>::infinity();
+    if (!scene.geometry.tank) {
+        for (std::size_t i = 0; i < P.size(); ++i) {
+            if (P.kind[i] == ParticleKind::Water)
+                bed = std::min(bed, P.y[i]);
+        }
+    }
+    return bed;
+}
+
+/// Header: everything needed to reproduce the bake (docs/cache-format.md).
+cache::Header cacheHeader(const Scene& scene, const BakeOptions& opt, const Box& dom,
+                          const BakeSummary& sum, long steps, long interval, double n0) {
+    cache::Header header;
+    header.domain = cache::Domain{static_cast<float>(dom.x0), static_cast<float>(dom.y0),
+                                  static_cast<float>(dom.x1), static_cast<float>(dom.y1)};
+    header.dt = scene.solver.time.dt;
+    header.frameInterval = static_cast<std::uint32_t>(interval);
+    header.seed = scene.seed;
+    const json meta{
+        {"program", "swell-bake"},
+        {"version", opt.programVersion},
+        {"numerics_version", kNumericsVersion},
+        {"scene_file", opt.sceneFile},
+        {"overrides", opt.overrides},
+        {"scene", toJson(scene)},
+        {"seed", scene.seed},
+        {"dt", scene.solver.time.dt},
+        {"steps", steps},
+        {"frame_interval_steps", interval},
+        {"n0", n0},
+        {"still_water_level", stillWaterLevel(scene)},
+        {"particles_water", sum.particlesWater},
+        {"particles_wall", sum.particlesWall},
+        // What the runtime cannot guess: water extent and steady start (replay_window.h).
+        {"replay", toJson(sum.replay)}};
+    header.metadataJson = meta.dump();
+    return header;
+}
+
+/// Checkpoints (docs/scenes.md "Checkpoints"): a resume must match what decides the
+/// numbers: the numerics version, the scene and the overrides; not the thread count
+/// (numerics_version.h), the program version or build (a rebuild keeps a long bake).
+/// "threads": "any" is what builds before the thread count stopped mattering wrote for
+/// small scenes, so their checkpoints still resume; their large-scene checkpoints, which
+/// name a count, are refused.
+std::string checkpointFingerprint(const Scene& scene, const BakeOptions& opt) {
+    return json{{"numerics_version", kNumericsVersion},
+                {"scene", toJson(scene)},
+                {"overrides", opt.overrides},
+                {"threads", "any"}}
+        .dump();
+}
+
+/// Reads the checkpoint at ckptPath, checks that it belongs to this bake (its fingerprint, its
+/// step and stored frames) and imports its solver state.
+Checkpoint resumeCheckpoint(const std::filesystem::path& ckptPath, const std::string& fingerprint,
+                            long steps, long interval, MpsSolver& solver) {
+    Checkpoint resumed = readCheckpoint(ckptPath);
+    checkFingerprint(ckptPath, resumed.fingerprint, fingerprint);
+    const long first = resumed.solver.step;
+    if (first < 1 || first > steps ||
+        resumed.frames.size() != static_cast<std::size_t>(first / interval + 1)) {
+        throw CheckpointError(
+            fmt::format("{}: damaged checkpoint: step {} with {} stored frames does not fit "
+                        "this bake ({} steps, a frame every {})",
+                        ckptPath.string(), first, resumed.frames.size(), steps, interval));
+    }
+    try {
+        solver.importState(resumed.solver);
+    } catch (const std::invalid_argument& e) {
+        throw CheckpointError(
+            fmt::format("{}: checkpoint does not fit the scene: {}", ckptPath.string(), e.what()));
+    }
+    return resumed;
+}
+
+/// A bake's steps and what they leave: the stored frames (in the cache, the probes file and,
+/// with checkpoints, the frames and probe rows a checkpoint holds), the checkpoints and the
+/// totals.
+struct BakeSteps {
+    const Scene& scene;
+    const BakeOptions& opt;
+    MpsSolver& solver;
+    const std::optional<TankOutline>& outline;
+    cache::Writer& writer;
+    ProbeFile& probes;
+    const ProbeParams& probeParams;
+    const std::filesystem::path& ckptPath;
+    const std::string& fingerprint;
+    long every; ///< steps between checkpoints; 0: none
+    double n0;
+    BakeTotals& tot;
+    BakeSummary& sum;
+    // With checkpoints the stored frames and probe rows are kept: a checkpoint holds them all.
+    std::vector<cache::Frame> keptFrames = {};
+    std::vector<std::string> keptRows = {};
+
+    bool keep() const { return every > 0; }
+
+    /// Stored frame: eq. (4) classification, only surface and splash particles kept (Sec. 3.2).
+    void store() {
+        const Particles& P = solver.particles();
+        const double d1 = scene.output.splashRatio, d2 = scene.output.surfaceRatio;
+        ClassifiedFrame c = classifyParticles(P, n0, d1, d2, solver.surfaceLayer());
+        writer.addFrame(c.frame);
+        tot.surface += static_cast<double>(c.surface());
+        tot.splash += static_cast<double>(c.splash());
+        tot.keptMax = std::max<std::uint64_t>(tot.keptMax, c.surface() + c.splash());
+        tot.rawBytes += (c.frame.surface.size() + c.frame.splash.size()) * sizeof(float);
+        if (probes.enabled() || keep()) {
+            std::string row = probeCsvRow(sampleProbes(P, solver.time(), probeParams));
+            if (probes.enabled())
+                probes.add(row);
+            if (keep())
+                keptRows.push_back(std::move(row));
+        }
+        if (keep())
+            keptFrames.push_back(std::move(c.frame));
+    }
+
+    /// Writes a checkpoint: the solver's state, the frames and probe rows so far, the totals.
+    void saveCheckpoint() {
+        const auto t0 = Clock::now();
+        Checkpoint ck;
+        ck.fingerprint = fingerprint;
+        ck.checkpointEvery = every;
+        ck.solver = solver.exportState();
+        ck.frames = std::move(keptFrames); // lent to the checkpoint, taken back below
+        ck.probeRows = std::move(keptRows);
+        ck.totals = tot;
+        ck.writerPid = ::getpid();
+        sum.checkpointBytes = writeCheckpoint(ckptPath, ck);
+        keptFrames = std::move(ck.frames);
+        keptRows = std::move(ck.probeRows);
+        ++sum.checkpoints;
+        sum.checkpointSeconds += secondsSince(t0);
+    }
+
+    /// The frames stored before the checkpoint, re-encoded exactly as the first run did.
+    void restore(Checkpoint& resumed) {
+        for (std::size_t f = 0; f < resumed.frames.size(); ++f) {
+            writer.addFrame(resumed.frames[f]);
+            if (probes.enabled())
+                probes.add(resumed.probeRows[f]);
+        }
+        if (keep()) {
+            keptFrames = std::move(resumed.frames);
+            keptRows = std::move(resumed.probeRows);
+        }
+    }
+
+    /// The frames before the first step: those of the checkpoint resumed from (let go once
+    /// stored), or else frame 0.
+    void storeFirstFrames(std::optional<Checkpoint>& resumed) {
+        if (resumed) {
+            restore(*resumed);
+            resumed.reset();
+        } else {
+            store(); // frame 0: the initial state
+        }
+    }
+
+    /// One solver step, then recycling and the water gone over the walls; adds it to the totals.
+    void step() {
+        const StepStats& st = solver.step();
+        if (scene.recycling)
+            tot.recycled += recycle(solver, scene);
+        if (outline) {
+            if (const std::size_t gone = removeSpilledWater(solver, *outline); gone > 0) {
+                if (tot.spilled == 0)
+                    tot.firstSpillTime = solver.time();
+                tot.spilled += gone;
+            }
+        }
+        tot.solverSeconds += st.seconds();
+        tot.ppeIterations += st.ppeIterations;
+        tot.maxCourant = std::max(tot.maxCourant, st.courant);
+        if (st.substeps > 1) {
+            ++tot.splitSteps;
+            tot.substeps += static_cast<std::uint64_t>(st.substeps);
+        }
+    }
+
+    /// Stops the bake cancelled after step k, saving a checkpoint first where it takes them.
+    [[noreturn]] void cancel(long k) {
+        if (every > 0) {
+            saveCheckpoint();
+            throw BakeCancelled(fmt::format("bake cancelled at step {} (t = {:.4f} s); no cache "
+                                            "written; checkpoint {} saved: continue with --resume",
+                                            k, solver.time(), ckptPath.string()));
+        }
+        throw BakeCancelled(fmt::format(
+            "bake cancelled at step {} (t = {:.4f} s); no cache written", k, solver.time()));
+    }
+
+    /// Steps first + 1 to steps: a frame stored every `interval`, a checkpoint every `every`.
+    void run(long first, long steps, long interval) {
+        const auto solveStart = Clock::now();
+        for (long k = first + 1; k <= steps; ++k) {
+            step();
+            if (k % interval == 0)
+                store();
+            if (opt.onProgress) {
+                opt.onProgress(BakeProgress{k, first, steps, solver.time(),
+                                            secondsSince(solveStart), writer.frameCount()});
+            }
+            if (opt.cancelled && opt.cancelled())
+                cancel(k);
+            if (every > 0 && k % every == 0 && k < steps)
+                saveCheckpoint();
+        }
+    }
+};
+
+/// The summary's totals and means over the bake's steps and stored frames (sum.frames), the
+/// cache's size, and a warning where water went over the tank's walls.
+void summarise(BakeSummary& sum, const BakeTotals& tot, long steps,
+               const std::filesystem::path& output) {
+    sum.recycled = tot.recycled;
+    sum.spilled = tot.spilled;
+    if (tot.spilled > 0) {
+        sum.warnings.push_back(fmt::format(
+            "{} water particle(s) went over the tank's walls and left the run, the first at t = "
+            "{:.3f} s (conservation.water_lost counts them; higher walls, geometry.tank.y1, keep "
+            "them)",
+            tot.spilled, tot.firstSpillTime));
+    }
+    sum.maxCourant = tot.maxCourant;
+    sum.splitSteps = tot.splitSteps;
+    sum.substeps = tot.substeps;
+    sum.keptMax = static_cast<std::size_t>(tot.keptMax);
+    sum.rawBytes = tot.rawBytes;
+    const double surfaceTotal = tot.surface, splashTotal = tot.splash;
+    const double solverSeconds = tot.solverSeconds, ppeIterations = tot.ppeIterations;
+    sum.cacheBytes = std::filesystem::file_size(output);
+    sum.surfaceMean = surfaceTotal / static_cast<double>(sum.frames);
+    sum.splashMean = splashTotal / static_cast<double>(sum.frames);
+    const double kept = sum.surfaceMean + sum.splashMean;
+    sum.reduction = kept > 0.0 ? static_cast<double>(sum.particlesWater) / kept : 0.0;
+    sum.msPerStep = 1e3 * solverSeconds / static_cast<double>(steps);
+    sum.ppeIterationsMean = ppeIterations / static_cast<double>(steps);
+}
+
 } // namespace
 
 long frameIntervalSteps(const Scene& scene) {
@@ -368,84 +616,26 @@ BakeSummary runBake(const Scene& scene, const BakeOptions& opt) {
         requireWaterInTank(P, scene.geometry, *outline);
     // Conservation at the start: the scene's initial state (also when resuming, before the
     // checkpoint's state is imported below).
-    double bed =
-        scene.geometry.tank ? scene.geometry.tank->y0 : std::numeric_limits<double>::infinity();
-    if (!scene.geometry.tank) {
-        for (std::size_t i = 0; i < P.size(); ++i) {
-            if (P.kind[i] == ParticleKind::Water)
-                bed = std::min(bed, P.y[i]);
-        }
-    }
+    const double bed = energyDatum(scene, P);
     sum.start = measureConservation(solver, scene, bed);
     sum.particlesWater = P.count(ParticleKind::Water);
     sum.particlesWall = P.size() - sum.particlesWater;
     const double n0 = solver.densityConstants().n0;
-    const double d1 = scene.output.splashRatio, d2 = scene.output.surfaceRatio;
-
-    // Header: everything needed to reproduce the bake (docs/cache-format.md).
-    cache::Header header;
-    const Box& dom = solver.domain();
-    header.domain = cache::Domain{static_cast<float>(dom.x0), static_cast<float>(dom.y0),
-                                  static_cast<float>(dom.x1), static_cast<float>(dom.y1)};
-    header.dt = scene.solver.time.dt;
-    header.frameInterval = static_cast<std::uint32_t>(interval);
-    header.seed = scene.seed;
-    const json meta{
-        {"program", "swell-bake"},
-        {"version", opt.programVersion},
-        {"numerics_version", kNumericsVersion},
-        {"scene_file", opt.sceneFile},
-        {"overrides", opt.overrides},
-        {"scene", toJson(scene)},
-        {"seed", scene.seed},
-        {"dt", scene.solver.time.dt},
-        {"steps", steps},
-        {"frame_interval_steps", interval},
-        {"n0", n0},
-        {"still_water_level", stillWaterLevel(scene)},
-        {"particles_water", sum.particlesWater},
-        {"particles_wall", sum.particlesWall},
-        // What the runtime cannot guess: water extent and steady start (replay_window.h).
-        {"replay", toJson(sum.replay)}};
-    header.metadataJson = meta.dump();
+    const cache::Header header = cacheHeader(scene, opt, solver.domain(), sum, steps, interval, n0);
 
     // One writer per output (cache, checkpoint, temporaries), from before the checkpoint is
     // read until the cache is complete; then the leftovers of killed bakes can go.
     const cache::OutputLock lock(opt.output);
     removeStaleTemporaries(opt.output, opt.probes);
 
-    // Checkpoints (docs/scenes.md "Checkpoints"): a resume must match what decides the
-    // numbers: the numerics version, the scene and the overrides; not the thread count
-    // (numerics_version.h), the program version or build (a rebuild keeps a long bake).
-    // "threads": "any" is what builds before the thread count stopped mattering wrote for
-    // small scenes, so their checkpoints still resume; their large-scene checkpoints, which
-    // name a count, are refused.
     const std::filesystem::path ckptPath = checkpointPath(opt.output);
-    const std::string fingerprint = json{
-        {"numerics_version", kNumericsVersion},
-        {"scene", toJson(scene)},
-        {"overrides", opt.overrides},
-        {"threads", "any"}}.dump();
+    const std::string fingerprint = checkpointFingerprint(scene, opt);
     std::optional<Checkpoint> resumed;
     long first = 0; // steps already done
     BakeTotals tot;
     if (opt.resume) {
-        resumed = readCheckpoint(ckptPath);
-        checkFingerprint(ckptPath, resumed->fingerprint, fingerprint);
+        resumed = resumeCheckpoint(ckptPath, fingerprint, steps, interval, solver);
         first = resumed->solver.step;
-        if (first < 1 || first > steps ||
-            resumed->frames.size() != static_cast<std::size_t>(first / interval + 1)) {
-            throw CheckpointError(
-                fmt::format("{}: damaged checkpoint: step {} with {} stored frames does not fit "
-                            "this bake ({} steps, a frame every {})",
-                            ckptPath.string(), first, resumed->frames.size(), steps, interval));
-        }
-        try {
-            solver.importState(resumed->solver);
-        } catch (const std::invalid_argument& e) {
-            throw CheckpointError(fmt::format("{}: checkpoint does not fit the scene: {}",
-                                              ckptPath.string(), e.what()));
-        }
         tot = resumed->totals;
         sum.resumedFromStep = first;
     }
@@ -456,99 +646,21 @@ BakeSummary runBake(const Scene& scene, const BakeOptions& opt) {
     ProbeFile probes(opt.probes, scene.output.gauges);
     const ProbeParams probeParams =
         probeParamsFor(solver, scene, stillWaterLevel(scene), scene.output.gauges);
-    // With checkpoints the stored frames and probe rows are kept: a checkpoint holds them all.
-    std::vector<cache::Frame> keptFrames;
-    std::vector<std::string> keptRows;
-    const bool keep = every > 0;
-
-    // Stored frame: eq. (4) classification, only surface and splash particles kept (Sec. 3.2).
-    const auto store = [&] {
-        ClassifiedFrame c = classifyParticles(P, n0, d1, d2, solver.surfaceLayer());
-        writer.addFrame(c.frame);
-        tot.surface += static_cast<double>(c.surface());
-        tot.splash += static_cast<double>(c.splash());
-        tot.keptMax = std::max<std::uint64_t>(tot.keptMax, c.surface() + c.splash());
-        tot.rawBytes += (c.frame.surface.size() + c.frame.splash.size()) * sizeof(float);
-        if (probes.enabled() || keep) {
-            std::string row = probeCsvRow(sampleProbes(P, solver.time(), probeParams));
-            if (probes.enabled())
-                probes.add(row);
-            if (keep)
-                keptRows.push_back(std::move(row));
-        }
-        if (keep)
-            keptFrames.push_back(std::move(c.frame));
-    };
-    const auto saveCheckpoint = [&] {
-        const auto t0 = Clock::now();
-        Checkpoint ck;
-        ck.fingerprint = fingerprint;
-        ck.checkpointEvery = every;
-        ck.solver = solver.exportState();
-        ck.frames = std::move(keptFrames); // lent to the checkpoint, taken back below
-        ck.probeRows = std::move(keptRows);
-        ck.totals = tot;
-        ck.writerPid = ::getpid();
-        sum.checkpointBytes = writeCheckpoint(ckptPath, ck);
-        keptFrames = std::move(ck.frames);
-        keptRows = std::move(ck.probeRows);
-        ++sum.checkpoints;
-        sum.checkpointSeconds += secondsSince(t0);
-    };
-    if (resumed) {
-        // The frames stored before the checkpoint, re-encoded exactly as the first run did.
-        for (std::size_t f = 0; f < resumed->frames.size(); ++f) {
-            writer.addFrame(resumed->frames[f]);
-            if (probes.enabled())
-                probes.add(resumed->probeRows[f]);
-        }
-        if (keep) {
-            keptFrames = std::move(resumed->frames);
-            keptRows = std::move(resumed->probeRows);
-        }
-        resumed.reset();
-    } else {
-        store(); // frame 0: the initial state
-    }
-    const auto solveStart = Clock::now();
-    for (long k = first + 1; k <= steps; ++k) {
-        const StepStats& st = solver.step();
-        if (scene.recycling)
-            tot.recycled += recycle(solver, scene);
-        if (outline) {
-            if (const std::size_t gone = removeSpilledWater(solver, *outline); gone > 0) {
-                if (tot.spilled == 0)
-                    tot.firstSpillTime = solver.time();
-                tot.spilled += gone;
-            }
-        }
-        tot.solverSeconds += st.seconds();
-        tot.ppeIterations += st.ppeIterations;
-        tot.maxCourant = std::max(tot.maxCourant, st.courant);
-        if (st.substeps > 1) {
-            ++tot.splitSteps;
-            tot.substeps += static_cast<std::uint64_t>(st.substeps);
-        }
-        if (k % interval == 0)
-            store();
-        if (opt.onProgress) {
-            opt.onProgress(BakeProgress{k, first, steps, solver.time(), secondsSince(solveStart),
-                                        writer.frameCount()});
-        }
-        if (opt.cancelled && opt.cancelled()) {
-            if (every > 0) {
-                saveCheckpoint();
-                throw BakeCancelled(
-                    fmt::format("bake cancelled at step {} (t = {:.4f} s); no cache written; "
-                                "checkpoint {} saved: continue with --resume",
-                                k, solver.time(), ckptPath.string()));
-            }
-            throw BakeCancelled(fmt::format(
-                "bake cancelled at step {} (t = {:.4f} s); no cache written", k, solver.time()));
-        }
-        if (every > 0 && k % every == 0 && k < steps)
-            saveCheckpoint();
-    }
+    BakeSteps loop{.scene = scene,
+                   .opt = opt,
+                   .solver = solver,
+                   .outline = outline,
+                   .writer = writer,
+                   .probes = probes,
+                   .probeParams = probeParams,
+                   .ckptPath = ckptPath,
+                   .fingerprint = fingerprint,
+                   .every = every,
+                   .n0 = n0,
+                   .tot = tot,
+                   .sum = sum};
+    loop.storeFirstFrames(resumed);
+    loop.run(first, steps, interval);
     sum.end = measureConservation(solver, scene, bed);
     sum.frames = writer.frameCount();
     probes.write();
@@ -558,29 +670,7 @@ BakeSummary runBake(const Scene& scene, const BakeOptions& opt) {
         std::error_code ec;
         std::filesystem::remove(ckptPath, ec); // the cache is complete: nothing left to resume
     }
-    sum.recycled = tot.recycled;
-    sum.spilled = tot.spilled;
-    if (tot.spilled > 0) {
-        sum.warnings.push_back(fmt::format(
-            "{} water particle(s) went over the tank's walls and left the run, the first at t = "
-            "{:.3f} s (conservation.water_lost counts them; higher walls, geometry.tank.y1, keep "
-            "them)",
-            tot.spilled, tot.firstSpillTime));
-    }
-    sum.maxCourant = tot.maxCourant;
-    sum.splitSteps = tot.splitSteps;
-    sum.substeps = tot.substeps;
-    sum.keptMax = static_cast<std::size_t>(tot.keptMax);
-    sum.rawBytes = tot.rawBytes;
-    const double surfaceTotal = tot.surface, splashTotal = tot.splash;
-    const double solverSeconds = tot.solverSeconds, ppeIterations = tot.ppeIterations;
-    sum.cacheBytes = std::filesystem::file_size(opt.output);
-    sum.surfaceMean = surfaceTotal / static_cast<double>(sum.frames);
-    sum.splashMean = splashTotal / static_cast<double>(sum.frames);
-    const double kept = sum.surfaceMean + sum.splashMean;
-    sum.reduction = kept > 0.0 ? static_cast<double>(sum.particlesWater) / kept : 0.0;
-    sum.msPerStep = 1e3 * solverSeconds / static_cast<double>(steps);
-    sum.ppeIterationsMean = ppeIterations / static_cast<double>(steps);
+    summarise(sum, tot, steps, opt.output);
     sum.wallSeconds = secondsSince(start);
     return sum;
 }

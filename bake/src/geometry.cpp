@@ -117,23 +117,11 @@ double depthUnder(double b, double y, double l0) {
     return std::abs(d - whole) < 1e-6 ? whole : d;
 }
 
-} // namespace
+/// A solid region (m) that water must not lie in, and the key that names it.
+using SolidRegion = std::pair<Box, std::string>;
 
-double bedHeight(const GeometryParams& g, double x) {
-    if (g.bed.empty())
-        return g.tank ? g.tank->y0 : 0.0;
-    if (x <= g.bed.front().x)
-        return g.bed.front().y;
-    if (x >= g.bed.back().x)
-        return g.bed.back().y;
-    const auto next = std::upper_bound(g.bed.begin(), g.bed.end(), x,
-                                       [](double v, const BedPoint& p) { return v < p.x; });
-    const BedPoint& b = *next;
-    const BedPoint& a = *(next - 1);
-    return a.y + (b.y - a.y) * (x - a.x) / (b.x - a.x);
-}
-
-GeneratedGeometry generateGeometry(const GeometryParams& g) {
+/// Refuses a spacing that is not a positive length, too few wall or dummy layers, or no water.
+void checkLattice(const GeometryParams& g) {
     const double l0 = g.particleSpacing;
     if (!(l0 > 0.0) || !std::isfinite(l0)) {
         throw SceneError("geometry.particle_spacing",
@@ -145,10 +133,14 @@ GeneratedGeometry generateGeometry(const GeometryParams& g) {
         throw SceneError("geometry.dummy_layers", "must not be negative");
     if (g.water.empty())
         throw SceneError("geometry.water", "the scene has no water rectangle");
-    const int layers = g.wallLayers + g.dummyLayers;
+}
 
-    // Solid regions (m) used to reject water placed inside walls.
-    std::vector<std::pair<Box, std::string>> solidRegions;
+/// Checks the tank, the bed and the solid blocks, and returns the solid regions (m) used to
+/// reject water placed inside walls: the tank's bed and side walls with their layers, and the
+/// blocks.
+std::vector<SolidRegion> solidRegionsOf(const GeometryParams& g, int layers) {
+    const double l0 = g.particleSpacing;
+    std::vector<SolidRegion> solidRegions;
     if (g.tank) {
         const Box& t = *g.tank;
         checkBox(t, "geometry.tank");
@@ -172,7 +164,12 @@ GeneratedGeometry generateGeometry(const GeometryParams& g) {
         }
         solidRegions.push_back({g.solids[s], key});
     }
+    return solidRegions;
+}
 
+/// Checks each water rectangle and its cosine top: an amplitude below the rectangle's height in
+/// size, and a positive wavelength where the amplitude is not 0.
+void checkWaterTops(const GeometryParams& g) {
     for (std::size_t w = 0; w < g.water.size(); ++w) {
         checkBox(g.water[w], fmt::format("geometry.water[{}]", w));
         const CosineTop top = waterTop(g, w);
@@ -186,132 +183,150 @@ GeneratedGeometry generateGeometry(const GeometryParams& g) {
             throw SceneError(key + ".wavelength",
                              fmt::format("must be positive, got {} m", top.wavelength));
     }
-    checkParticleCount(g, layers);
+}
 
-    GeneratedGeometry out;
-    Particles& P = out.particles;
-    std::vector<std::uint8_t> backWall; // 1 for the tank's back-wall particles (piston)
-
-    // Water: lattice sites (x0 + (i + 1/2) l0, y0 + (j + 1/2) l0).
-    for (std::size_t w = 0; w < g.water.size(); ++w) {
-        const std::string key = fmt::format("geometry.water[{}]", w);
-        const Box& b = g.water[w];
-        checkBox(b, key);
-        const CosineTop top = waterTop(g, w);
-        const long nx = cellsIn(b.width(), l0);
-        const long ny = cellsIn(b.height() + std::abs(top.amplitude), l0);
-        if (nx < 1 || ny < 1) {
-            throw SceneError(
-                key,
-                fmt::format("holds no particle: {} x {} m is smaller than particle_spacing {} m",
-                            b.width(), b.height(), l0));
+/// Refuses water rectangle w overlapping an earlier one (each with its cosine top's amplitude).
+void checkWaterOverlap(const GeometryParams& g, std::size_t w, const std::string& key) {
+    const Box& b = g.water[w];
+    const CosineTop top = waterTop(g, w);
+    for (std::size_t v = 0; v < w; ++v) {
+        const Box& o = g.water[v];
+        const double ox = std::min(b.x1, o.x1) - std::max(b.x0, o.x0);
+        const double oy =
+            std::min(b.y1 + std::abs(top.amplitude), o.y1 + std::abs(waterTop(g, v).amplitude)) -
+            std::max(b.y0, o.y0);
+        if (ox > 1e-9 && oy > 1e-9) {
+            throw SceneError(key, fmt::format("overlaps geometry.water[{}]", v));
         }
-        for (std::size_t v = 0; v < w; ++v) {
-            const Box& o = g.water[v];
-            const double ox = std::min(b.x1, o.x1) - std::max(b.x0, o.x0);
-            const double oy = std::min(b.y1 + std::abs(top.amplitude),
-                                       o.y1 + std::abs(waterTop(g, v).amplitude)) -
-                              std::max(b.y0, o.y0);
-            if (ox > 1e-9 && oy > 1e-9) {
-                throw SceneError(key, fmt::format("overlaps geometry.water[{}]", v));
-            }
-        }
-        // Only the solids that reach into this rectangle can hold one of its particles.
-        std::vector<std::pair<Box, std::string>> near;
-        for (const auto& region : solidRegions) {
-            const Box& r = region.first;
-            if (r.x1 > b.x0 && r.x0 < b.x1 && r.y1 > b.y0 && r.y0 < b.y1)
-                near.push_back(region);
-        }
-        std::size_t held = 0;
-        for (long j = 0; j < ny; ++j) {
-            for (long i = 0; i < nx; ++i) {
-                const double x = b.x0 + (static_cast<double>(i) + 0.5) * l0;
-                const double y = b.y0 + (static_cast<double>(j) + 0.5) * l0;
-                if (top.amplitude != 0.0 &&
-                    !(y < b.y1 + top.amplitude * std::cos(2.0 * std::numbers::pi * (x - b.x0) /
-                                                          top.wavelength)))
-                    continue; // above the cosine top
-                for (const auto& [box, name] : near) {
-                    const double m = 0.25 * l0; // a particle centre strictly inside a solid
-                    if (x > box.x0 + m && x < box.x1 - m && y > box.y0 + m && y < box.y1 - m) {
-                        throw SceneError(
-                            key,
-                            fmt::format("water at ({:.6g}, {:.6g}) m lies inside {}", x, y, name));
-                    }
-                }
-                // Water starts l0 / 2 above the profile, one spacing above the bed's first layer
-                // at b - l0 / 2: as on the flat bed, no closer (a closer start is a pressure
-                // spike the textbook scheme cannot take), at most two spacings.
-                if (!g.bed.empty() && depthUnder(bedHeight(g, x) + 0.5 * l0, y, l0) > 0.0)
-                    continue;
-                P.add(x, y, ParticleKind::Water);
-                ++held;
-            }
-        }
-        if (held == 0)
-            throw SceneError(key, "holds no particle: it lies wholly under geometry.bed");
     }
+}
 
-    // Tank: bed (with corners) and two side walls; layer 0 is the one touching the water.
-    if (g.tank) {
-        const Box& t = *g.tank;
-        const long nIn = std::lround(t.width() / l0);
-        // Bed extension behind the back wall (piston travel), in whole spacings.
-        const long back = bedExtensionCells(g);
-        // Each column stands on the bed's height at its x (the profile's, clamped to the tank;
-        // y0 on a flat bed): its bed layers k below it, its side-wall sites above it. So the
-        // bed follows the profile smoothly, one column at a time, instead of in lattice steps.
-        const auto base = [&](double x) { return bedHeight(g, std::clamp(x, t.x0, t.x1)); };
-        for (long k = 0; k < layers; ++k) { // bed rows, corners included
-            for (long i = -layers - back; i < nIn + layers; ++i) {
-                const double x = t.x0 + (static_cast<double>(i) + 0.5) * l0;
-                const long side = i < -back ? -i - 1 - back : (i >= nIn ? i - nIn : 0);
-                P.add(x, base(x) - (static_cast<double>(k) + 0.5) * l0,
-                      layerKind(std::max(k, side), g.wallLayers));
+/// Only the solids that reach into the rectangle b can hold one of its particles.
+std::vector<SolidRegion> solidsNear(const Box& b, const std::vector<SolidRegion>& solidRegions) {
+    std::vector<SolidRegion> near;
+    for (const auto& region : solidRegions) {
+        const Box& r = region.first;
+        if (r.x1 > b.x0 && r.x0 < b.x1 && r.y1 > b.y0 && r.y0 < b.y1)
+            near.push_back(region);
+    }
+    return near;
+}
+
+/// Water rectangle w: lattice sites (x0 + (i + 1/2) l0, y0 + (j + 1/2) l0) under its cosine
+/// top and above the bed; refuses one that holds no particle, overlaps an earlier one or puts
+/// water inside a solid.
+void addWater(const GeometryParams& g, std::size_t w, const std::vector<SolidRegion>& solidRegions,
+              Particles& P) {
+    const double l0 = g.particleSpacing;
+    const std::string key = fmt::format("geometry.water[{}]", w);
+    const Box& b = g.water[w];
+    checkBox(b, key);
+    const CosineTop top = waterTop(g, w);
+    const long nx = cellsIn(b.width(), l0);
+    const long ny = cellsIn(b.height() + std::abs(top.amplitude), l0);
+    if (nx < 1 || ny < 1) {
+        throw SceneError(
+            key, fmt::format("holds no particle: {} x {} m is smaller than particle_spacing {} m",
+                             b.width(), b.height(), l0));
+    }
+    checkWaterOverlap(g, w, key);
+    const std::vector<SolidRegion> near = solidsNear(b, solidRegions);
+    std::size_t held = 0;
+    for (long j = 0; j < ny; ++j) {
+        for (long i = 0; i < nx; ++i) {
+            const double x = b.x0 + (static_cast<double>(i) + 0.5) * l0;
+            const double y = b.y0 + (static_cast<double>(j) + 0.5) * l0;
+            if (top.amplitude != 0.0 &&
+                !(y < b.y1 + top.amplitude *
+                                 std::cos(2.0 * std::numbers::pi * (x - b.x0) / top.wavelength)))
+                continue; // above the cosine top
+            for (const auto& [box, name] : near) {
+                const double m = 0.25 * l0; // a particle centre strictly inside a solid
+                if (x > box.x0 + m && x < box.x1 - m && y > box.y0 + m && y < box.y1 - m) {
+                    throw SceneError(
+                        key, fmt::format("water at ({:.6g}, {:.6g}) m lies inside {}", x, y, name));
+                }
             }
+            // Water starts l0 / 2 above the profile, one spacing above the bed's first layer
+            // at b - l0 / 2: as on the flat bed, no closer (a closer start is a pressure
+            // spike the textbook scheme cannot take), at most two spacings.
+            if (!g.bed.empty() && depthUnder(bedHeight(g, x) + 0.5 * l0, y, l0) > 0.0)
+                continue;
+            P.add(x, y, ParticleKind::Water);
+            ++held;
         }
-        // Side walls from each column's base to the top y1: nUp sites on a flat bed.
-        const auto sites = [&](double b) { return cellsIn(t.y1 - b, l0); };
-        std::vector<double> xBack(layers), xFront(layers);
+    }
+    if (held == 0)
+        throw SceneError(key, "holds no particle: it lies wholly under geometry.bed");
+}
+
+/// Tank: bed (with corners) and two side walls; layer 0 is the one touching the water.
+/// backWall marks the back-wall particles (1) for the piston.
+void addTank(const GeometryParams& g, int layers, Particles& P,
+             std::vector<std::uint8_t>& backWall) {
+    const double l0 = g.particleSpacing;
+    const Box& t = *g.tank;
+    const long nIn = std::lround(t.width() / l0);
+    // Bed extension behind the back wall (piston travel), in whole spacings.
+    const long back = bedExtensionCells(g);
+    // Each column stands on the bed's height at its x (the profile's, clamped to the tank;
+    // y0 on a flat bed): its bed layers k below it, its side-wall sites above it. So the
+    // bed follows the profile smoothly, one column at a time, instead of in lattice steps.
+    const auto base = [&](double x) { return bedHeight(g, std::clamp(x, t.x0, t.x1)); };
+    for (long k = 0; k < layers; ++k) { // bed rows, corners included
+        for (long i = -layers - back; i < nIn + layers; ++i) {
+            const double x = t.x0 + (static_cast<double>(i) + 0.5) * l0;
+            const long side = i < -back ? -i - 1 - back : (i >= nIn ? i - nIn : 0);
+            P.add(x, base(x) - (static_cast<double>(k) + 0.5) * l0,
+                  layerKind(std::max(k, side), g.wallLayers));
+        }
+    }
+    // Side walls from each column's base to the top y1: nUp sites on a flat bed.
+    const auto sites = [&](double b) { return cellsIn(t.y1 - b, l0); };
+    std::vector<double> xBack(layers), xFront(layers);
+    for (long k = 0; k < layers; ++k) {
+        xBack[k] = t.x0 - (static_cast<double>(k) + 0.5) * l0;
+        xFront[k] = t.x1 + (static_cast<double>(k) + 0.5) * l0;
+    }
+    const long nUp = std::max(sites(base(t.x0)), sites(base(t.x1)));
+    for (long j = 0; j < nUp; ++j) {
+        const double up = (static_cast<double>(j) + 0.5) * l0;
         for (long k = 0; k < layers; ++k) {
-            xBack[k] = t.x0 - (static_cast<double>(k) + 0.5) * l0;
-            xFront[k] = t.x1 + (static_cast<double>(k) + 0.5) * l0;
-        }
-        const long nUp = std::max(sites(base(t.x0)), sites(base(t.x1)));
-        for (long j = 0; j < nUp; ++j) {
-            const double up = (static_cast<double>(j) + 0.5) * l0;
-            for (long k = 0; k < layers; ++k) {
-                if (j < sites(base(xBack[k]))) {
-                    backWall.resize(P.size(), 0);
-                    backWall.push_back(1);
-                    P.add(xBack[k], base(xBack[k]) + up, layerKind(k, g.wallLayers));
-                }
-                if (j < sites(base(xFront[k])))
-                    P.add(xFront[k], base(xFront[k]) + up, layerKind(k, g.wallLayers));
+            if (j < sites(base(xBack[k]))) {
+                backWall.resize(P.size(), 0);
+                backWall.push_back(1);
+                P.add(xBack[k], base(xBack[k]) + up, layerKind(k, g.wallLayers));
             }
+            if (j < sites(base(xFront[k])))
+                P.add(xFront[k], base(xFront[k]) + up, layerKind(k, g.wallLayers));
         }
     }
-    // Solid blocks: outer wallLayers are wall, the next dummyLayers dummy, the core is left empty.
-    for (const Box& s : g.solids) {
-        const long nx = cellsIn(s.width(), l0);
-        const long ny = cellsIn(s.height(), l0);
-        for (long j = 0; j < ny; ++j) {
-            // Rows through the empty core visit only their outer `layers` sites at each end.
-            const bool core = j >= layers && j < ny - layers;
-            for (long i = 0; i < nx; ++i) {
-                if (core && i == layers && nx - layers > i)
-                    i = nx - layers;
-                const long layer = std::min({i, j, nx - 1 - i, ny - 1 - j});
-                if (layer >= layers)
-                    continue;
-                P.add(s.x0 + (static_cast<double>(i) + 0.5) * l0,
-                      s.y0 + (static_cast<double>(j) + 0.5) * l0, layerKind(layer, g.wallLayers));
-            }
-        }
-    }
+}
 
-    // Stable order: water, wall, dummy (keeps indices meaningful for users and tests).
+/// Solid block: outer wallLayers are wall, the next dummyLayers dummy, the core is left empty.
+void addSolidBlock(const GeometryParams& g, const Box& s, int layers, Particles& P) {
+    const double l0 = g.particleSpacing;
+    const long nx = cellsIn(s.width(), l0);
+    const long ny = cellsIn(s.height(), l0);
+    for (long j = 0; j < ny; ++j) {
+        // Rows through the empty core visit only their outer `layers` sites at each end.
+        const bool core = j >= layers && j < ny - layers;
+        for (long i = 0; i < nx; ++i) {
+            if (core && i == layers && nx - layers > i)
+                i = nx - layers;
+            const long layer = std::min({i, j, nx - 1 - i, ny - 1 - j});
+            if (layer >= layers)
+                continue;
+            P.add(s.x0 + (static_cast<double>(i) + 0.5) * l0,
+                  s.y0 + (static_cast<double>(j) + 0.5) * l0, layerKind(layer, g.wallLayers));
+        }
+    }
+}
+
+/// Stable order: water, wall, dummy (keeps indices meaningful for users and tests); the
+/// back-wall particles' new indices go to out.backWall.
+void sortByKind(GeneratedGeometry& out, std::vector<std::uint8_t>& backWall) {
+    const Particles& P = out.particles;
     backWall.resize(P.size(), 0);
     const auto isBackWall = [&](std::size_t i) { return backWall[i] != 0; };
     Particles sorted;
@@ -326,14 +341,20 @@ GeneratedGeometry generateGeometry(const GeometryParams& g) {
         }
     }
     out.particles = std::move(sorted);
+}
 
+/// The domain: geometry.domain, which must hold every particle with a margin of one spacing,
+/// or else the particles' extent grown by half its width either side, a quarter of its height
+/// below and its height above.
+Box domainOf(const GeometryParams& g, const Particles& particles) {
+    const double l0 = g.particleSpacing;
     double bx0 = std::numeric_limits<double>::max(), by0 = bx0;
     double bx1 = std::numeric_limits<double>::lowest(), by1 = bx1;
-    for (std::size_t i = 0; i < out.particles.size(); ++i) {
-        bx0 = std::min(bx0, out.particles.x[i]);
-        bx1 = std::max(bx1, out.particles.x[i]);
-        by0 = std::min(by0, out.particles.y[i]);
-        by1 = std::max(by1, out.particles.y[i]);
+    for (std::size_t i = 0; i < particles.size(); ++i) {
+        bx0 = std::min(bx0, particles.x[i]);
+        bx1 = std::max(bx1, particles.x[i]);
+        by0 = std::min(by0, particles.y[i]);
+        by1 = std::max(by1, particles.y[i]);
     }
     bx0 -= l0;
     bx1 += l0;
@@ -349,23 +370,62 @@ GeneratedGeometry generateGeometry(const GeometryParams& g) {
                             "spacing: particles span [{:.6g}, {:.6g}] x [{:.6g}, {:.6g}] m",
                             bx0 + l0, bx1 - l0, by0 + l0, by1 - l0));
         }
-        out.domain = d;
-    } else {
-        const double w = bx1 - bx0;
-        const double h = by1 - by0;
-        out.domain = Box{bx0 - 0.5 * w, by0 - 0.25 * h, bx1 + 0.5 * w, by1 + h};
+        return d;
     }
-    // The solver's neighbour grid covers the domain with cells of at least l0: bound them here,
-    // naming the key, rather than fail later inside the solver (NeighborGrid allows 5e7).
-    const double cells = std::ceil(out.domain.width() / l0) * std::ceil(out.domain.height() / l0);
+    const double w = bx1 - bx0;
+    const double h = by1 - by0;
+    return Box{bx0 - 0.5 * w, by0 - 0.25 * h, bx1 + 0.5 * w, by1 + h};
+}
+
+/// The solver's neighbour grid covers the domain with cells of at least l0: bound them here,
+/// naming the key, rather than fail later inside the solver (NeighborGrid allows 5e7).
+void checkDomainCells(const GeometryParams& g, const Box& domain) {
+    const double l0 = g.particleSpacing;
+    const double cells = std::ceil(domain.width() / l0) * std::ceil(domain.height() / l0);
     if (!(cells <= kMaxDomainCells)) {
         throw SceneError(g.domain ? "geometry.domain" : "geometry",
                          fmt::format("the domain [{:.6g}, {:.6g}] x [{:.6g}, {:.6g}] m is {:.4g} "
                                      "particle spacings square, more than {:.0e}{}",
-                                     out.domain.x0, out.domain.x1, out.domain.y0, out.domain.y1,
-                                     cells, kMaxDomainCells,
+                                     domain.x0, domain.x1, domain.y0, domain.y1, cells,
+                                     kMaxDomainCells,
                                      g.domain ? "" : " (it grows with the rectangles' extent)"));
     }
+}
+
+} // namespace
+
+double bedHeight(const GeometryParams& g, double x) {
+    if (g.bed.empty())
+        return g.tank ? g.tank->y0 : 0.0;
+    if (x <= g.bed.front().x)
+        return g.bed.front().y;
+    if (x >= g.bed.back().x)
+        return g.bed.back().y;
+    const auto next = std::upper_bound(g.bed.begin(), g.bed.end(), x,
+                                       [](double v, const BedPoint& p) { return v < p.x; });
+    const BedPoint& b = *next;
+    const BedPoint& a = *(next - 1);
+    return a.y + (b.y - a.y) * (x - a.x) / (b.x - a.x);
+}
+
+GeneratedGeometry generateGeometry(const GeometryParams& g) {
+    checkLattice(g);
+    const int layers = g.wallLayers + g.dummyLayers;
+    const std::vector<SolidRegion> solidRegions = solidRegionsOf(g, layers);
+    checkWaterTops(g);
+    checkParticleCount(g, layers);
+
+    GeneratedGeometry out;
+    std::vector<std::uint8_t> backWall; // 1 for the tank's back-wall particles (piston)
+    for (std::size_t w = 0; w < g.water.size(); ++w)
+        addWater(g, w, solidRegions, out.particles);
+    if (g.tank)
+        addTank(g, layers, out.particles, backWall);
+    for (const Box& s : g.solids)
+        addSolidBlock(g, s, layers, out.particles);
+    sortByKind(out, backWall);
+    out.domain = domainOf(g, out.particles);
+    checkDomainCells(g, out.domain);
     return out;
 }
 

@@ -256,6 +256,298 @@ void readRecordedConstants(Section& s, const ModelParams& m) {
     off("higher_order_laplacian", "the Laplacian is eq. (4)'s");
 }
 
+/// The scene's top-level keys name, description and seed.
+void readHeader(Section& top, Scene& scene) {
+    scene.name = top.string("name", "");
+    scene.description = top.string("description", "");
+    if (const json* sd = top.get("seed")) {
+        if (!sd->is_number_unsigned() && !(sd->is_number_integer() && sd->get<long long>() >= 0)) {
+            throw SceneError("seed",
+                             fmt::format("must be a non-negative integer, got {}", shown(*sd)));
+        }
+        scene.seed = sd->get<std::uint64_t>();
+    }
+}
+
+/// An optional section's JSON: the object given, or an empty one (every key at its default).
+const json& orEmpty(const json* v) {
+    static const json kEmpty = json::object();
+    return v ? *v : kEmpty;
+}
+
+/// physics: density, kinematic viscosity, gravity.
+void readPhysics(const json* phys, PhysicsParams& p) {
+    Section s(orEmpty(phys), "physics");
+    p.density = s.number("density", p.density, 0.0, kInf, true, " (kg/m^3)");
+    p.kinematicViscosity =
+        s.number("kinematic_viscosity", p.kinematicViscosity, 0.0, kInf, false, " (m^2/s)");
+    p.gravity = s.number("gravity", p.gravity, 0.0, kInf, false, " (m/s^2)");
+    s.finish();
+}
+
+/// geometry: the spacing, tank, water, solids, bed, wall layers, jitter and domain.
+void readGeometry(const json* geo, GeometryParams& g) {
+    if (!geo)
+        throw SceneError("geometry", "missing: a scene needs at least one water rectangle");
+    Section s(*geo, "geometry");
+    g.particleSpacing = s.number("particle_spacing", g.particleSpacing, 0.0, kInf, true, " (m)");
+    if (const json* t = s.get("tank"))
+        g.tank = readBox(*t, "geometry.tank");
+    if (!s.has("water"))
+        throw SceneError("geometry.water", "missing: a scene needs at least one water rectangle");
+    readWater(s, g);
+    if (g.water.empty())
+        throw SceneError("geometry.water", "is empty: a scene needs at least one water rectangle");
+    g.solids = readBoxes(s, "solids");
+    g.bed = readBed(s);
+    g.wallLayers = s.integer("wall_layers", g.wallLayers, 1, 10);
+    g.dummyLayers = s.integer("dummy_layers", g.dummyLayers, 0, 10);
+    g.jitter = s.number("jitter", g.jitter, 0.0, 0.1, false, " (l0)");
+    if (const json* d = s.get("domain"))
+        g.domain = readBox(*d, "geometry.domain");
+    s.finish();
+}
+
+/// solver's time-step keys, and the run's end time and expected speed listed among them.
+void readTimeStep(Section& s, TimeStepParams& t, RunParams& run) {
+    t.dt = s.number("dt", t.dt, 0.0, kInf, true, " (s)");
+    run.endTime = s.number("end_time", run.endTime, 0.0, kInf, true, " (s)");
+    t.adaptive = s.boolean("adaptive_dt", t.adaptive);
+    t.courantTarget = s.number("courant_target", t.courantTarget, 0.0, 1.0, true);
+    t.courantLimit = s.number("courant_limit", t.courantLimit, 0.0, 2.0, true);
+    t.substepCourant = s.number("substep_courant", t.substepCourant, 0.0, 1.0);
+    run.expectedSpeed = s.number("expected_speed", run.expectedSpeed, 0.0, kInf, false, " (m/s)");
+}
+
+/// Refuses particle shifting without the distribution surface test, and shift damping without
+/// shifting where the scene asks for it (the scheme's default turns itself off).
+void checkShifting(const Section& s, ModelParams& m) {
+    if (m.shifting > 0.0 && m.surfaceTest != SurfaceTest::Distribution) {
+        throw SceneError("solver.shifting",
+                         fmt::format("particle shifting (C = {:g}) needs solver.surface_test "
+                                     "\"distribution\" (it moves free-surface particles "
+                                     "along the surface normal that test finds); set "
+                                     "solver.shifting to 0 to use another surface test",
+                                     m.shifting));
+    }
+    // Without shifting there is nothing to damp: the scheme's default turns itself off,
+    // and asking for it by name is an error.
+    if (m.shiftDamping && !(m.shifting > 0.0)) {
+        if (s.has("shift_damping")) {
+            throw SceneError("solver.shift_damping",
+                             "takes from a free-surface particle the velocity its shift "
+                             "undoes, and solver.shifting is 0: set a shifting coefficient "
+                             "or set this to false");
+        }
+        m.shiftDamping = false;
+    }
+}
+
+/// solver's particle-model keys (radii, surface test, collisions, shifting, gradient), with the
+/// pressure keys relaxation, compressibility and source_term read in the order listed among them.
+void readModel(Section& s, ModelParams& m, PressureParams& e) {
+    m.reDensity = s.number("re_density", m.reDensity, 1.0, 10.0, true, " (l0)");
+    m.reLaplacian = s.number("re_laplacian", m.reLaplacian, 1.0, 10.0, true, " (l0)");
+    m.rePacking = s.number("re_packing", m.rePacking, 0.0, 10.0, false, " (l0)");
+    if (m.rePacking > 0.0 && m.rePacking <= 1.0) {
+        throw SceneError(
+            "solver.re_packing",
+            fmt::format("{:g} is out of range: must be 0 (off) or > 1 (l0)", m.rePacking));
+    }
+    m.surfaceThreshold = s.number("surface_threshold", m.surfaceThreshold, 0.0, 1.0, true);
+    e.relaxation = s.number("relaxation", e.relaxation, 0.0, 1.0, true);
+    e.compressibility = s.number("compressibility", e.compressibility, 0.0, kInf, false, " (1/Pa)");
+    m.collisionDistance =
+        s.number("collision_distance", m.collisionDistance, 0.0, 1.0, false, " (l0)");
+    m.restitution = s.number("restitution", m.restitution, 0.0, 1.0);
+    e.sourceTerm =
+        s.enumeration("source_term", e.sourceTerm, {SourceTerm::Relaxed, SourceTerm::Mixed});
+    m.surfaceTest = s.enumeration("surface_test", m.surfaceTest,
+                                  {SurfaceTest::Density, SurfaceTest::Distribution});
+    m.sparseThreshold = s.number("sparse_threshold", m.sparseThreshold, 0.0, 1.0, true);
+    m.distributionThreshold =
+        s.number("distribution_threshold", m.distributionThreshold, 0.0, 10.0, false);
+    m.shifting = s.number("shifting", m.shifting, 0.0, 1.0, false);
+    m.shiftDamping = s.boolean("shift_damping", m.shiftDamping);
+    m.shiftDampingGain = s.number("shift_damping_gain", m.shiftDampingGain, 0.0, 10.0, true);
+    readRecordedConstants(s, m);
+    checkShifting(s, m);
+    const bool corrected = s.boolean("gradient_correction", usesCorrectiveMatrix(m.gradient));
+    const bool symmetric = s.boolean("symmetric_gradient", usesSymmetricPairs(m.gradient));
+    m.gradient = gradientModel(symmetric, corrected);
+}
+
+/// solver's pressure-solve keys (preconditioner, tolerance, iterations) and neighbour keys.
+void readPressureSolve(Section& s, PressureParams& e, NeighborParams& nb) {
+    e.preconditioner =
+        s.enumeration("preconditioner", e.preconditioner,
+                      {Preconditioner::Jacobi, Preconditioner::SymmetricGaussSeidel,
+                       Preconditioner::IncompleteCholesky, Preconditioner::TwoLevel});
+    e.tolerance = s.number("ppe_tolerance", e.tolerance, 0.0, 0.5, true);
+    e.maxIterations = s.integer("ppe_max_iterations", e.maxIterations, 1, 1000000);
+    nb.skin = s.number("neighbor_skin", nb.skin, 0.0, 2.0, false, " (l0)");
+    nb.maxNeighbors = s.integer("max_neighbors", nb.maxNeighbors, 8, 1024);
+}
+
+/// solver: the scheme, then the time-step, model, pressure-solve and neighbour keys.
+void readSolver(const json* sol, Scene& scene) {
+    Section s(orEmpty(sol), "solver");
+    SolverParams& p = scene.solver;
+    // The scheme sets the model and pressure defaults; the keys below override them.
+    p = schemeParams(s.enumeration("scheme", Scheme::Swell, {Scheme::Textbook, Scheme::Swell}));
+    readTimeStep(s, p.time, scene.run);
+    readModel(s, p.model, p.pressure);
+    readPressureSolve(s, p.pressure, p.neighbors);
+    s.finish();
+}
+
+/// output: the frame interval, the classification ratios, the gauges and the still level.
+void readOutput(const json* outp, OutputParams& o) {
+    Section s(orEmpty(outp), "output");
+    o.frameInterval = s.number("frame_interval", o.frameInterval, 0.0, kInf, true, " (s)");
+    o.splashRatio = s.number("splash_ratio", o.splashRatio, 0.0, 1.0, true);
+    o.surfaceRatio = s.number("surface_ratio", o.surfaceRatio, 0.0, 1.0, true);
+    if (const json* g = s.get("gauges")) {
+        if (!g->is_array())
+            throw SceneError("output.gauges", "must be an array of x positions (m)");
+        for (std::size_t i = 0; i < g->size(); ++i) {
+            const json& v = (*g)[i];
+            if (!v.is_number() || !std::isfinite(v.get<double>())) {
+                throw SceneError(fmt::format("output.gauges[{}]", i),
+                                 fmt::format("must be a number (m), got {}", shown(v)));
+            }
+            o.gauges.push_back(v.get<double>());
+        }
+    }
+    if (s.has("still_water_level")) {
+        o.stillWaterLevel = s.number("still_water_level", 0.0, -kInf, kInf, false, " (m)");
+    }
+    s.finish();
+    if (!(o.splashRatio < o.surfaceRatio)) {
+        throw SceneError("output.splash_ratio",
+                         fmt::format("d1 = {} must be below output.surface_ratio d2 = {}",
+                                     o.splashRatio, o.surfaceRatio));
+    }
+}
+
+/// The piston's forward travel (m) against half the tank width; a solitary piston's depth is
+/// the still water over the tank's bed, and its stroke what its motion reaches in the end.
+void checkPistonTravel(PistonParams& p, const Scene& scene) {
+    const bool solitary = p.kind == PistonKind::Solitary;
+    if (solitary) {
+        // Goring's stroke is made for the water it pushes: the still water over the bed.
+        p.depth = stillWaterLevel(scene) - scene.geometry.tank->y0;
+        p.gravity = scene.physics.gravity;
+        if (!(p.depth > 0.0))
+            throw SceneError("piston.kind",
+                             "solitary needs still water above the tank's bed: its depth");
+    }
+    double solitaryStroke = 0.0;
+    try {
+        const PistonMotion motion(p, scene.run.endTime);
+        if (solitary)
+            solitaryStroke = motion.at(kInf).displacement;
+    } catch (const std::invalid_argument& e) {
+        const std::string what = e.what(); // "piston.<field>: problem"
+        const auto colon = what.find(':');
+        throw SceneError(what.substr(0, colon),
+                         colon == std::string::npos ? what : what.substr(colon + 2));
+    }
+    const bool sinus = p.kind == PistonKind::Sinusoidal;
+    const double forward = sinus ? 0.5 * p.stroke : solitary ? solitaryStroke : p.strokeMax;
+    if (forward >= 0.5 * scene.geometry.tank->width()) {
+        throw SceneError(
+            sinus ? "piston.stroke" : (solitary ? "piston.height" : "piston.stroke_max"),
+            fmt::format("the piston would travel {} m, at least half the tank width {} m", forward,
+                        scene.geometry.tank->width()));
+    }
+}
+
+/// piston: the wave maker, the tank's back wall above the bed.
+void readPiston(const json& pj, Scene& scene) {
+    Section s(pj, "piston");
+    PistonParams p;
+    p.kind = s.enumeration("kind", p.kind,
+                           {PistonKind::Sinusoidal, PistonKind::Random, PistonKind::Solitary});
+    p.period = s.number("period", p.period, 0.0, kInf, true, " (s)");
+    p.stroke = s.number("stroke", p.stroke, 0.0, kInf, false, " (m)");
+    p.periodMin = s.number("period_min", p.periodMin, 0.0, kInf, true, " (s)");
+    p.periodMax = s.number("period_max", p.periodMax, 0.0, kInf, true, " (s)");
+    p.strokeMin = s.number("stroke_min", p.strokeMin, 0.0, kInf, false, " (m)");
+    p.strokeMax = s.number("stroke_max", p.strokeMax, 0.0, kInf, false, " (m)");
+    p.rampTime = s.number("ramp_time", p.rampTime, 0.0, kInf, false, " (s)");
+    p.height = s.number("height", p.height, 0.0, kInf, true, " (m)");
+    s.finish();
+    p.seed = scene.seed;
+    if (!scene.geometry.tank)
+        throw SceneError("piston", "needs geometry.tank: the piston is the tank's back wall");
+    if (bedHeight(scene.geometry, scene.geometry.tank->x0) != scene.geometry.tank->y0)
+        throw SceneError("geometry.bed",
+                         "must start at the tank's y0 at its back wall when the scene has a "
+                         "piston (the piston is the back wall above the bed)");
+    checkPistonTravel(p, scene);
+    // Room behind the back wall for a piston that moves back (sinusoidal: S/2).
+    scene.geometry.bedExtensionBack = p.kind == PistonKind::Sinusoidal ? 0.5 * p.stroke : 0.0;
+    scene.piston = p;
+}
+
+/// recycling: the inflow and outflow of a channel, in place of a piston.
+void readRecycling(const json& rj, Scene& scene) {
+    Section s(rj, "recycling");
+    RecyclingParams r;
+    r.inflowX1 = s.number("inflow_x1", r.inflowX1, -kInf, kInf, false, " (m)");
+    r.velocity = s.number("velocity", r.velocity, -kInf, kInf, false, " (m/s)");
+    r.outflowX = s.number("outflow_x", r.outflowX, -kInf, kInf, false, " (m)");
+    s.finish();
+    if (!scene.geometry.tank)
+        throw SceneError("recycling", "needs geometry.tank (the channel)");
+    const Box& t = *scene.geometry.tank;
+    const double l0 = scene.geometry.particleSpacing;
+    if (!(r.inflowX1 >= t.x0 + 2.0 * l0)) {
+        throw SceneError("recycling.inflow_x1",
+                         fmt::format("{} m must be at least two spacings past the tank's "
+                                     "back wall x0 = {} m",
+                                     r.inflowX1, t.x0));
+    }
+    if (!(r.outflowX > r.inflowX1 && r.outflowX <= t.x1 - l0)) {
+        throw SceneError("recycling.outflow_x",
+                         fmt::format("{} m must lie between inflow_x1 = {} m and the "
+                                     "front wall x1 - l0 = {} m",
+                                     r.outflowX, r.inflowX1, t.x1 - l0));
+    }
+    if (scene.piston)
+        throw SceneError("recycling", "a scene has either a piston or recycling, not both");
+    scene.recycling = r;
+}
+
+/// Refuses a gauge outside the tank.
+void checkGauges(const Scene& scene) {
+    for (std::size_t i = 0; i < scene.output.gauges.size(); ++i) {
+        const double x = scene.output.gauges[i];
+        if (scene.geometry.tank && (x < scene.geometry.tank->x0 || x > scene.geometry.tank->x1)) {
+            throw SceneError(fmt::format("output.gauges[{}]", i),
+                             fmt::format("x = {} m lies outside the tank [{}, {}] m", x,
+                                         scene.geometry.tank->x0, scene.geometry.tank->x1));
+        }
+    }
+}
+
+/// Time step against the Courant limit for the expected speed.
+void checkCourant(const Scene& scene) {
+    const double speed = expectedSpeed(scene);
+    const TimeStepParams& time = scene.solver.time;
+    const double courant = speed * time.dt / scene.geometry.particleSpacing;
+    if (!time.adaptive && courant > time.courantLimit) {
+        throw SceneError(
+            "solver.dt",
+            fmt::format("dt = {} s gives Courant number {:.3g} = {:.3g} m/s x dt / {} m at "
+                        "the expected speed, above solver.courant_limit {}; use dt <= {:.3g} s "
+                        "or solver.adaptive_dt",
+                        time.dt, courant, speed, scene.geometry.particleSpacing, time.courantLimit,
+                        time.courantLimit * scene.geometry.particleSpacing / speed));
+    }
+}
+
 } // namespace
 
 double expectedSpeed(const Scene& scene) {
@@ -273,266 +565,22 @@ double expectedSpeed(const Scene& scene) {
 Scene parseScene(const json& j) {
     Scene scene;
     Section top(j, "");
-    scene.name = top.string("name", "");
-    scene.description = top.string("description", "");
-    if (const json* sd = top.get("seed")) {
-        if (!sd->is_number_unsigned() && !(sd->is_number_integer() && sd->get<long long>() >= 0)) {
-            throw SceneError("seed",
-                             fmt::format("must be a non-negative integer, got {}", shown(*sd)));
-        }
-        scene.seed = sd->get<std::uint64_t>();
-    }
-
-    static const json kEmpty = json::object();
-    const json* phys = top.get("physics");
-    {
-        Section s(phys ? *phys : kEmpty, "physics");
-        PhysicsParams& p = scene.physics;
-        p.density = s.number("density", p.density, 0.0, kInf, true, " (kg/m^3)");
-        p.kinematicViscosity =
-            s.number("kinematic_viscosity", p.kinematicViscosity, 0.0, kInf, false, " (m^2/s)");
-        p.gravity = s.number("gravity", p.gravity, 0.0, kInf, false, " (m/s^2)");
-        s.finish();
-    }
-    const json* geo = top.get("geometry");
-    if (!geo)
-        throw SceneError("geometry", "missing: a scene needs at least one water rectangle");
-    {
-        Section s(*geo, "geometry");
-        GeometryParams& g = scene.geometry;
-        g.particleSpacing =
-            s.number("particle_spacing", g.particleSpacing, 0.0, kInf, true, " (m)");
-        if (const json* t = s.get("tank"))
-            g.tank = readBox(*t, "geometry.tank");
-        if (!s.has("water"))
-            throw SceneError("geometry.water",
-                             "missing: a scene needs at least one water rectangle");
-        readWater(s, g);
-        if (g.water.empty())
-            throw SceneError("geometry.water",
-                             "is empty: a scene needs at least one water rectangle");
-        g.solids = readBoxes(s, "solids");
-        g.bed = readBed(s);
-        g.wallLayers = s.integer("wall_layers", g.wallLayers, 1, 10);
-        g.dummyLayers = s.integer("dummy_layers", g.dummyLayers, 0, 10);
-        g.jitter = s.number("jitter", g.jitter, 0.0, 0.1, false, " (l0)");
-        if (const json* d = s.get("domain"))
-            g.domain = readBox(*d, "geometry.domain");
-        s.finish();
-    }
-    const json* sol = top.get("solver");
-    {
-        Section s(sol ? *sol : kEmpty, "solver");
-        SolverParams& p = scene.solver;
-        // The scheme sets the model and pressure defaults; the keys below override them.
-        p = schemeParams(s.enumeration("scheme", Scheme::Swell, {Scheme::Textbook, Scheme::Swell}));
-        TimeStepParams& t = p.time;
-        ModelParams& m = p.model;
-        PressureParams& e = p.pressure;
-        NeighborParams& nb = p.neighbors;
-        RunParams& run = scene.run;
-        t.dt = s.number("dt", t.dt, 0.0, kInf, true, " (s)");
-        run.endTime = s.number("end_time", run.endTime, 0.0, kInf, true, " (s)");
-        t.adaptive = s.boolean("adaptive_dt", t.adaptive);
-        t.courantTarget = s.number("courant_target", t.courantTarget, 0.0, 1.0, true);
-        t.courantLimit = s.number("courant_limit", t.courantLimit, 0.0, 2.0, true);
-        t.substepCourant = s.number("substep_courant", t.substepCourant, 0.0, 1.0);
-        run.expectedSpeed =
-            s.number("expected_speed", run.expectedSpeed, 0.0, kInf, false, " (m/s)");
-        m.reDensity = s.number("re_density", m.reDensity, 1.0, 10.0, true, " (l0)");
-        m.reLaplacian = s.number("re_laplacian", m.reLaplacian, 1.0, 10.0, true, " (l0)");
-        m.rePacking = s.number("re_packing", m.rePacking, 0.0, 10.0, false, " (l0)");
-        if (m.rePacking > 0.0 && m.rePacking <= 1.0) {
-            throw SceneError(
-                "solver.re_packing",
-                fmt::format("{:g} is out of range: must be 0 (off) or > 1 (l0)", m.rePacking));
-        }
-        m.surfaceThreshold = s.number("surface_threshold", m.surfaceThreshold, 0.0, 1.0, true);
-        e.relaxation = s.number("relaxation", e.relaxation, 0.0, 1.0, true);
-        e.compressibility =
-            s.number("compressibility", e.compressibility, 0.0, kInf, false, " (1/Pa)");
-        m.collisionDistance =
-            s.number("collision_distance", m.collisionDistance, 0.0, 1.0, false, " (l0)");
-        m.restitution = s.number("restitution", m.restitution, 0.0, 1.0);
-        e.sourceTerm =
-            s.enumeration("source_term", e.sourceTerm, {SourceTerm::Relaxed, SourceTerm::Mixed});
-        m.surfaceTest = s.enumeration("surface_test", m.surfaceTest,
-                                      {SurfaceTest::Density, SurfaceTest::Distribution});
-        m.sparseThreshold = s.number("sparse_threshold", m.sparseThreshold, 0.0, 1.0, true);
-        m.distributionThreshold =
-            s.number("distribution_threshold", m.distributionThreshold, 0.0, 10.0, false);
-        m.shifting = s.number("shifting", m.shifting, 0.0, 1.0, false);
-        m.shiftDamping = s.boolean("shift_damping", m.shiftDamping);
-        m.shiftDampingGain = s.number("shift_damping_gain", m.shiftDampingGain, 0.0, 10.0, true);
-        readRecordedConstants(s, m);
-        if (m.shifting > 0.0 && m.surfaceTest != SurfaceTest::Distribution) {
-            throw SceneError("solver.shifting",
-                             fmt::format("particle shifting (C = {:g}) needs solver.surface_test "
-                                         "\"distribution\" (it moves free-surface particles "
-                                         "along the surface normal that test finds); set "
-                                         "solver.shifting to 0 to use another surface test",
-                                         m.shifting));
-        }
-        // Without shifting there is nothing to damp: the scheme's default turns itself off,
-        // and asking for it by name is an error.
-        if (m.shiftDamping && !(m.shifting > 0.0)) {
-            if (s.has("shift_damping")) {
-                throw SceneError("solver.shift_damping",
-                                 "takes from a free-surface particle the velocity its shift "
-                                 "undoes, and solver.shifting is 0: set a shifting coefficient "
-                                 "or set this to false");
-            }
-            m.shiftDamping = false;
-        }
-        const bool corrected = s.boolean("gradient_correction", usesCorrectiveMatrix(m.gradient));
-        const bool symmetric = s.boolean("symmetric_gradient", usesSymmetricPairs(m.gradient));
-        m.gradient = gradientModel(symmetric, corrected);
-
-        e.preconditioner =
-            s.enumeration("preconditioner", e.preconditioner,
-                          {Preconditioner::Jacobi, Preconditioner::SymmetricGaussSeidel,
-                           Preconditioner::IncompleteCholesky, Preconditioner::TwoLevel});
-        e.tolerance = s.number("ppe_tolerance", e.tolerance, 0.0, 0.5, true);
-        e.maxIterations = s.integer("ppe_max_iterations", e.maxIterations, 1, 1000000);
-        nb.skin = s.number("neighbor_skin", nb.skin, 0.0, 2.0, false, " (l0)");
-        nb.maxNeighbors = s.integer("max_neighbors", nb.maxNeighbors, 8, 1024);
-        s.finish();
-    }
-    const json* outp = top.get("output");
-    {
-        Section s(outp ? *outp : kEmpty, "output");
-        OutputParams& o = scene.output;
-        o.frameInterval = s.number("frame_interval", o.frameInterval, 0.0, kInf, true, " (s)");
-        o.splashRatio = s.number("splash_ratio", o.splashRatio, 0.0, 1.0, true);
-        o.surfaceRatio = s.number("surface_ratio", o.surfaceRatio, 0.0, 1.0, true);
-        if (const json* g = s.get("gauges")) {
-            if (!g->is_array())
-                throw SceneError("output.gauges", "must be an array of x positions (m)");
-            for (std::size_t i = 0; i < g->size(); ++i) {
-                const json& v = (*g)[i];
-                if (!v.is_number() || !std::isfinite(v.get<double>())) {
-                    throw SceneError(fmt::format("output.gauges[{}]", i),
-                                     fmt::format("must be a number (m), got {}", shown(v)));
-                }
-                o.gauges.push_back(v.get<double>());
-            }
-        }
-        if (s.has("still_water_level")) {
-            o.stillWaterLevel = s.number("still_water_level", 0.0, -kInf, kInf, false, " (m)");
-        }
-        s.finish();
-        if (!(o.splashRatio < o.surfaceRatio)) {
-            throw SceneError("output.splash_ratio",
-                             fmt::format("d1 = {} must be below output.surface_ratio d2 = {}",
-                                         o.splashRatio, o.surfaceRatio));
-        }
-    }
-    if (const json* pj = top.get("piston")) {
-        Section s(*pj, "piston");
-        PistonParams p;
-        p.kind = s.enumeration("kind", p.kind,
-                               {PistonKind::Sinusoidal, PistonKind::Random, PistonKind::Solitary});
-        p.period = s.number("period", p.period, 0.0, kInf, true, " (s)");
-        p.stroke = s.number("stroke", p.stroke, 0.0, kInf, false, " (m)");
-        p.periodMin = s.number("period_min", p.periodMin, 0.0, kInf, true, " (s)");
-        p.periodMax = s.number("period_max", p.periodMax, 0.0, kInf, true, " (s)");
-        p.strokeMin = s.number("stroke_min", p.strokeMin, 0.0, kInf, false, " (m)");
-        p.strokeMax = s.number("stroke_max", p.strokeMax, 0.0, kInf, false, " (m)");
-        p.rampTime = s.number("ramp_time", p.rampTime, 0.0, kInf, false, " (s)");
-        p.height = s.number("height", p.height, 0.0, kInf, true, " (m)");
-        s.finish();
-        p.seed = scene.seed;
-        if (!scene.geometry.tank)
-            throw SceneError("piston", "needs geometry.tank: the piston is the tank's back wall");
-        if (bedHeight(scene.geometry, scene.geometry.tank->x0) != scene.geometry.tank->y0)
-            throw SceneError("geometry.bed",
-                             "must start at the tank's y0 at its back wall when the scene has a "
-                             "piston (the piston is the back wall above the bed)");
-        const bool solitary = p.kind == PistonKind::Solitary;
-        if (solitary) {
-            // Goring's stroke is made for the water it pushes: the still water over the bed.
-            p.depth = stillWaterLevel(scene) - scene.geometry.tank->y0;
-            p.gravity = scene.physics.gravity;
-            if (!(p.depth > 0.0))
-                throw SceneError("piston.kind",
-                                 "solitary needs still water above the tank's bed: its depth");
-        }
-        double solitaryStroke = 0.0;
-        try {
-            const PistonMotion motion(p, scene.run.endTime);
-            if (solitary)
-                solitaryStroke = motion.at(kInf).displacement;
-        } catch (const std::invalid_argument& e) {
-            const std::string what = e.what(); // "piston.<field>: problem"
-            const auto colon = what.find(':');
-            throw SceneError(what.substr(0, colon),
-                             colon == std::string::npos ? what : what.substr(colon + 2));
-        }
-        const bool sinus = p.kind == PistonKind::Sinusoidal;
-        const double forward = sinus ? 0.5 * p.stroke : solitary ? solitaryStroke : p.strokeMax;
-        if (forward >= 0.5 * scene.geometry.tank->width()) {
-            throw SceneError(
-                sinus ? "piston.stroke" : (solitary ? "piston.height" : "piston.stroke_max"),
-                fmt::format("the piston would travel {} m, at least half the tank width {} m",
-                            forward, scene.geometry.tank->width()));
-        }
-        // Room behind the back wall for a piston that moves back (sinusoidal: S/2).
-        scene.geometry.bedExtensionBack = sinus ? 0.5 * p.stroke : 0.0;
-        scene.piston = p;
-    }
-    if (const json* rj = top.get("recycling")) {
-        Section s(*rj, "recycling");
-        RecyclingParams r;
-        r.inflowX1 = s.number("inflow_x1", r.inflowX1, -kInf, kInf, false, " (m)");
-        r.velocity = s.number("velocity", r.velocity, -kInf, kInf, false, " (m/s)");
-        r.outflowX = s.number("outflow_x", r.outflowX, -kInf, kInf, false, " (m)");
-        s.finish();
-        if (!scene.geometry.tank)
-            throw SceneError("recycling", "needs geometry.tank (the channel)");
-        const Box& t = *scene.geometry.tank;
-        const double l0 = scene.geometry.particleSpacing;
-        if (!(r.inflowX1 >= t.x0 + 2.0 * l0)) {
-            throw SceneError("recycling.inflow_x1",
-                             fmt::format("{} m must be at least two spacings past the tank's "
-                                         "back wall x0 = {} m",
-                                         r.inflowX1, t.x0));
-        }
-        if (!(r.outflowX > r.inflowX1 && r.outflowX <= t.x1 - l0)) {
-            throw SceneError("recycling.outflow_x",
-                             fmt::format("{} m must lie between inflow_x1 = {} m and the "
-                                         "front wall x1 - l0 = {} m",
-                                         r.outflowX, r.inflowX1, t.x1 - l0));
-        }
-        if (scene.piston)
-            throw SceneError("recycling", "a scene has either a piston or recycling, not both");
-        scene.recycling = r;
-    }
-    for (std::size_t i = 0; i < scene.output.gauges.size(); ++i) {
-        const double x = scene.output.gauges[i];
-        if (scene.geometry.tank && (x < scene.geometry.tank->x0 || x > scene.geometry.tank->x1)) {
-            throw SceneError(fmt::format("output.gauges[{}]", i),
-                             fmt::format("x = {} m lies outside the tank [{}, {}] m", x,
-                                         scene.geometry.tank->x0, scene.geometry.tank->x1));
-        }
-    }
+    readHeader(top, scene);
+    readPhysics(top.get("physics"), scene.physics);
+    readGeometry(top.get("geometry"), scene.geometry);
+    readSolver(top.get("solver"), scene);
+    readOutput(top.get("output"), scene.output);
+    if (const json* pj = top.get("piston"))
+        readPiston(*pj, scene);
+    if (const json* rj = top.get("recycling"))
+        readRecycling(*rj, scene);
+    checkGauges(scene);
     top.finish();
 
     // Geometry: generate once so bad rectangles are reported now, naming their key.
     (void)generateGeometry(scene.geometry);
 
-    // Time step against the Courant limit for the expected speed.
-    const double speed = expectedSpeed(scene);
-    const TimeStepParams& time = scene.solver.time;
-    const double courant = speed * time.dt / scene.geometry.particleSpacing;
-    if (!time.adaptive && courant > time.courantLimit) {
-        throw SceneError(
-            "solver.dt",
-            fmt::format("dt = {} s gives Courant number {:.3g} = {:.3g} m/s x dt / {} m at "
-                        "the expected speed, above solver.courant_limit {}; use dt <= {:.3g} s "
-                        "or solver.adaptive_dt",
-                        time.dt, courant, speed, scene.geometry.particleSpacing, time.courantLimit,
-                        time.courantLimit * scene.geometry.particleSpacing / speed));
-    }
+    checkCourant(scene);
     return scene;
 }
 

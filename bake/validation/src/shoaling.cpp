@@ -60,6 +60,145 @@ double valueAt(std::span<const double> T, std::span<const double> eta, double at
     return eta[j0] + f * (eta[j1] - eta[j0]);
 }
 
+/// The run in the experiment's units: time / tau, and each gauge's elevation above its still
+/// level (its mean over the still window) / h0.
+struct ScaledRun {
+    std::vector<double> T;
+    std::vector<std::vector<double>> eta;
+    std::vector<double> stillLevels; ///< each gauge's still level (m)
+};
+
+/// Refuses a gauge whose samples do not match the times, or one with no sample in the still
+/// window.
+ScaledRun scaleRun(std::span<const ShoalingGauge> records, double depth, double tau,
+                   std::span<const double> times,
+                   const std::vector<std::vector<double>>& elevations, double stillFrom,
+                   double stillTo) {
+    ScaledRun run;
+    std::vector<double>& T = run.T;
+    T.resize(times.size());
+    for (std::size_t k = 0; k < times.size(); ++k)
+        T[k] = times[k] / tau;
+    std::vector<std::vector<double>>& eta = run.eta;
+    eta.resize(records.size());
+    run.stillLevels.resize(records.size());
+    for (std::size_t g = 0; g < records.size(); ++g) {
+        if (elevations[g].size() != times.size())
+            throw std::invalid_argument(
+                fmt::format("analyseShoaling: gauge {}: {} samples for {} times", records[g].name,
+                            elevations[g].size(), times.size()));
+        double still = 0.0;
+        std::size_t n = 0;
+        for (std::size_t k = 0; k < times.size(); ++k) {
+            if (times[k] >= stillFrom && times[k] <= stillTo && std::isfinite(elevations[g][k])) {
+                still += elevations[g][k];
+                ++n;
+            }
+        }
+        if (n == 0)
+            throw std::invalid_argument(fmt::format(
+                "analyseShoaling: gauge {} has no sample in its still window [{}, {}] s",
+                records[g].name, stillFrom, stillTo));
+        still /= static_cast<double>(n);
+        run.stillLevels[g] = still;
+        eta[g].resize(times.size());
+        for (std::size_t k = 0; k < times.size(); ++k)
+            eta[g][k] = (elevations[g][k] - still) / depth;
+    }
+    return run;
+}
+
+/// The clock: the run's g0 crest (after the still window) on the record's.
+struct CrestClock {
+    double offset = 0.0;       ///< record time - run time (sqrt(h0/g))
+    double recordCrest0 = 0.0; ///< the record's g0 crest / h0
+    double runT0 = 0.0;        ///< when the run's g0 crest passes (sqrt(h0/g))
+    double runCrest0 = 0.0;    ///< the run's g0 crest / h0
+};
+
+/// Puts the run's g0 crest on the record's: the offset, and both crests.
+CrestClock alignCrests(const ShoalingGauge& g0, const ScaledRun& run, double stillTo, double tau) {
+    CrestClock c;
+    std::vector<double> rt, reta;
+    split(g0.record, rt, reta);
+    const auto [recordT0, recordCrest0] =
+        crestIn(rt, reta, rt.front(), rt.back(), fmt::format("record {}", g0.name));
+    const auto [runT0, runCrest0] =
+        crestIn(run.T, run.eta[0], stillTo / tau, run.T.empty() ? 0.0 : run.T.back(),
+                fmt::format("run at {}", g0.name));
+    c.offset = recordT0 - runT0;
+    c.recordCrest0 = recordCrest0;
+    c.runT0 = runT0;
+    c.runCrest0 = runCrest0;
+    return c;
+}
+
+/// The run at each record sample, weighted by half the time to its neighbours: the mean
+/// absolute and signed errors and the ratio of the energies.
+void addRecordErrors(std::span<const double> rt, std::span<const double> reta,
+                     std::span<const double> T, std::span<const double> eta, double clockOffset,
+                     ShoalingGaugeError& e) {
+    double sumAbs = 0.0, sumSigned = 0.0, sumW = 0.0, sumRun2 = 0.0, sumRecord2 = 0.0;
+    for (std::size_t k = 0; k < rt.size(); ++k) {
+        const double w = 0.5 * (rt[std::min(k + 1, rt.size() - 1)] - rt[k > 0 ? k - 1 : 0]);
+        const double run = valueAt(T, eta, rt[k] - clockOffset);
+        sumAbs += w * std::abs(run - reta[k]);
+        sumSigned += w * (run - reta[k]);
+        sumW += w;
+        sumRun2 += w * run * run;
+        sumRecord2 += w * reta[k] * reta[k];
+    }
+    e.meanAbsError = sumAbs / sumW;
+    e.meanSignedError = sumSigned / sumW;
+    e.energyRatio = sumRun2 / sumRecord2;
+}
+
+/// Gauge g of the run against its record: the crests, amplification since g0, half-height
+/// times and the errors over the record. Refuses a run that does not cover the record once
+/// aligned on g0's crest, or a gauge dry within it.
+ShoalingGaugeError compareGauge(std::span<const ShoalingGauge> records, std::size_t g,
+                                const ScaledRun& run, std::span<const double> times,
+                                const CrestClock& clock, double tau) {
+    const ShoalingGauge& rec = records[g];
+    const std::vector<double>& T = run.T;
+    const std::vector<double>& eta = run.eta[g];
+    std::vector<double> rt, reta;
+    split(rec.record, rt, reta);
+    ShoalingGaugeError e;
+    e.name = rec.name;
+    e.from = rt.front();
+    e.until = rt.back();
+    e.stillLevel = run.stillLevels[g];
+    const double lo = e.from - clock.offset, hi = e.until - clock.offset;
+    if (T.empty() || T.front() > lo || T.back() < hi)
+        throw std::invalid_argument(fmt::format(
+            "analyseShoaling: the run ({:.4g} s) does not cover gauge {}'s record, which "
+            "needs it from {:.4g} to {:.4g} s once aligned on {}'s crest",
+            times.empty() ? 0.0 : times.back(), rec.name, lo * tau, hi * tau, records[0].name));
+    for (std::size_t k = 0; k < T.size(); ++k) {
+        if (T[k] >= lo && T[k] <= hi && !std::isfinite(eta[k]))
+            throw std::invalid_argument(fmt::format(
+                "analyseShoaling: gauge {} is dry at t = {:.4g} s", rec.name, times[k]));
+    }
+    std::tie(e.crestTimeRecord, e.crestRecord) =
+        crestIn(rt, reta, e.from, e.until, fmt::format("record {}", rec.name));
+    if (g == 0) {
+        e.crestTime = clock.runT0 + clock.offset;
+        e.crest = clock.runCrest0;
+    } else {
+        const auto [tc, crest] = crestIn(T, eta, lo, hi, fmt::format("run at {}", rec.name));
+        e.crestTime = tc + clock.offset;
+        e.crest = crest;
+    }
+    e.amplification = e.crest / clock.runCrest0;
+    e.amplificationRecord = e.crestRecord / clock.recordCrest0;
+    std::tie(e.riseRecord, e.fallRecord) =
+        halfHeightTimes(rt, reta, e.from, e.until, e.crestTimeRecord, e.crestRecord);
+    std::tie(e.rise, e.fall) = halfHeightTimes(T, eta, lo, hi, e.crestTime - clock.offset, e.crest);
+    addRecordErrors(rt, reta, T, eta, clock.offset, e);
+    return e;
+}
+
 } // namespace
 
 std::pair<double, double> halfHeightTimes(std::span<const double> t, std::span<const double> y,
@@ -79,95 +218,13 @@ ShoalingCheck analyseShoaling(std::span<const ShoalingGauge> records, double dep
     if (!(depth > 0.0 && gravity > 0.0))
         throw std::invalid_argument("analyseShoaling: depth and gravity must be positive");
     const double tau = std::sqrt(depth / gravity);
-    // The run in the experiment's units: time / tau, elevation above the still level / h0.
-    std::vector<double> T(times.size());
-    for (std::size_t k = 0; k < times.size(); ++k)
-        T[k] = times[k] / tau;
-    std::vector<std::vector<double>> eta(records.size());
-    std::vector<double> stillLevels(records.size());
-    for (std::size_t g = 0; g < records.size(); ++g) {
-        if (elevations[g].size() != times.size())
-            throw std::invalid_argument(
-                fmt::format("analyseShoaling: gauge {}: {} samples for {} times", records[g].name,
-                            elevations[g].size(), times.size()));
-        double still = 0.0;
-        std::size_t n = 0;
-        for (std::size_t k = 0; k < times.size(); ++k) {
-            if (times[k] >= stillFrom && times[k] <= stillTo && std::isfinite(elevations[g][k])) {
-                still += elevations[g][k];
-                ++n;
-            }
-        }
-        if (n == 0)
-            throw std::invalid_argument(fmt::format(
-                "analyseShoaling: gauge {} has no sample in its still window [{}, {}] s",
-                records[g].name, stillFrom, stillTo));
-        still /= static_cast<double>(n);
-        stillLevels[g] = still;
-        eta[g].resize(times.size());
-        for (std::size_t k = 0; k < times.size(); ++k)
-            eta[g][k] = (elevations[g][k] - still) / depth;
-    }
+    const ScaledRun run = scaleRun(records, depth, tau, times, elevations, stillFrom, stillTo);
 
     ShoalingCheck out;
-    std::vector<double> rt, reta;
-    // The clock: the run's g0 crest (after the still window) on the record's.
-    split(records[0].record, rt, reta);
-    const auto [recordT0, recordCrest0] =
-        crestIn(rt, reta, rt.front(), rt.back(), fmt::format("record {}", records[0].name));
-    const auto [runT0, runCrest0] = crestIn(T, eta[0], stillTo / tau, T.empty() ? 0.0 : T.back(),
-                                            fmt::format("run at {}", records[0].name));
-    out.clockOffset = recordT0 - runT0;
-
+    const CrestClock clock = alignCrests(records[0], run, stillTo, tau);
+    out.clockOffset = clock.offset;
     for (std::size_t g = 0; g < records.size(); ++g) {
-        const ShoalingGauge& rec = records[g];
-        split(rec.record, rt, reta);
-        ShoalingGaugeError e;
-        e.name = rec.name;
-        e.from = rt.front();
-        e.until = rt.back();
-        e.stillLevel = stillLevels[g];
-        const double lo = e.from - out.clockOffset, hi = e.until - out.clockOffset;
-        if (T.empty() || T.front() > lo || T.back() < hi)
-            throw std::invalid_argument(fmt::format(
-                "analyseShoaling: the run ({:.4g} s) does not cover gauge {}'s record, which "
-                "needs it from {:.4g} to {:.4g} s once aligned on {}'s crest",
-                times.empty() ? 0.0 : times.back(), rec.name, lo * tau, hi * tau, records[0].name));
-        for (std::size_t k = 0; k < T.size(); ++k) {
-            if (T[k] >= lo && T[k] <= hi && !std::isfinite(eta[g][k]))
-                throw std::invalid_argument(fmt::format(
-                    "analyseShoaling: gauge {} is dry at t = {:.4g} s", rec.name, times[k]));
-        }
-        std::tie(e.crestTimeRecord, e.crestRecord) =
-            crestIn(rt, reta, e.from, e.until, fmt::format("record {}", rec.name));
-        if (g == 0) {
-            e.crestTime = runT0 + out.clockOffset;
-            e.crest = runCrest0;
-        } else {
-            const auto [tc, crest] = crestIn(T, eta[g], lo, hi, fmt::format("run at {}", rec.name));
-            e.crestTime = tc + out.clockOffset;
-            e.crest = crest;
-        }
-        e.amplification = e.crest / runCrest0;
-        e.amplificationRecord = e.crestRecord / recordCrest0;
-        std::tie(e.riseRecord, e.fallRecord) =
-            halfHeightTimes(rt, reta, e.from, e.until, e.crestTimeRecord, e.crestRecord);
-        std::tie(e.rise, e.fall) =
-            halfHeightTimes(T, eta[g], lo, hi, e.crestTime - out.clockOffset, e.crest);
-        // The run at each record sample, weighted by half the time to its neighbours.
-        double sumAbs = 0.0, sumSigned = 0.0, sumW = 0.0, sumRun2 = 0.0, sumRecord2 = 0.0;
-        for (std::size_t k = 0; k < rt.size(); ++k) {
-            const double w = 0.5 * (rt[std::min(k + 1, rt.size() - 1)] - rt[k > 0 ? k - 1 : 0]);
-            const double run = valueAt(T, eta[g], rt[k] - out.clockOffset);
-            sumAbs += w * std::abs(run - reta[k]);
-            sumSigned += w * (run - reta[k]);
-            sumW += w;
-            sumRun2 += w * run * run;
-            sumRecord2 += w * reta[k] * reta[k];
-        }
-        e.meanAbsError = sumAbs / sumW;
-        e.meanSignedError = sumSigned / sumW;
-        e.energyRatio = sumRun2 / sumRecord2;
+        const ShoalingGaugeError e = compareGauge(records, g, run, times, clock, tau);
         if (g > 0) {
             const double crestError = e.crest / e.crestRecord - 1.0;
             const double ampError = e.amplification / e.amplificationRecord - 1.0;
