@@ -22,4 +22,11 @@ void addRunCost(json& out, const GaugeRecords& r, std::size_t particles) {
     out["us_per_particle_step"] = usPerParticleStep(r.solverSeconds, r.steps, particles);
 }
 
+void addGaugeRun(nlohmann::json& out, const GaugeRecords& r, const std::vector<double>& gauges) {
+    out["gauges"] = gauges;
+    out["particles"] = r.particles;
+    out["water"] = r.water;
+    out["outcome"] = r.outcome;
+}
+
 } // namespace swell::bake

@@ -2,6 +2,7 @@
 // swell-validate's reports: how a figure and a run's cost go into a check's JSON report.
 
 #include <cstddef>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -18,5 +19,9 @@ double usPerParticleStep(double seconds, long steps, std::size_t particles);
 /// A wave check's cost in its report: steps, PPE iterations, solver time, and that time per
 /// step and particle.
 void addRunCost(nlohmann::json& out, const GaugeRecords& r, std::size_t particles);
+
+/// What every wave check's report says of its run: the gauges' x (m), the particles, the water
+/// particles and the outcome.
+void addGaugeRun(nlohmann::json& out, const GaugeRecords& r, const std::vector<double>& gauges);
 
 } // namespace swell::bake

@@ -22,11 +22,8 @@ json shoaling(const Scene& scene, const std::string& csv) {
              {"gravity", scene.physics.gravity},
              {"toe", r.toe},
              {"slope", r.slope},
-             {"still_window", {r.stillFrom, r.stillTo}},
-             {"gauges", r.gauges},
-             {"particles", r.particles},
-             {"water", r.water},
-             {"outcome", r.outcome}};
+             {"still_window", {r.stillFrom, r.stillTo}}};
+    addGaugeRun(out, r, r.gauges);
     if (!csv.empty())
         writeGaugeSeries(csv, r, "eta", r.gauges);
     if (r.outcome == kStable) {

@@ -20,11 +20,8 @@ json solitaryWave(const Scene& scene, const std::string& csv) {
              {"height", r.height},
              {"height_over_depth", r.height / r.depth},
              {"stroke", r.stroke},
-             {"celerity_theory", r.theory.celerity},
-             {"gauges", r.gauges},
-             {"particles", r.particles},
-             {"water", r.water},
-             {"outcome", r.outcome}};
+             {"celerity_theory", r.theory.celerity}};
+    addGaugeRun(out, r, r.gauges);
     if (!csv.empty())
         writeGaugeSeries(csv, r, "eta", r.gauges);
     if (r.outcome == kStable) {

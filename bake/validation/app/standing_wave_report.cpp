@@ -24,11 +24,8 @@ json standingWave(const Scene& scene, const std::string& csv) {
              {"amplitude", top.amplitude},
              {"wavelength", top.wavelength},
              {"kh", r.theory.kh},
-             {"period_theory", r.theory.period},
-             {"gauges", r.gauges},
-             {"particles", r.particles},
-             {"water", r.water},
-             {"outcome", r.outcome}};
+             {"period_theory", r.theory.period}};
+    addGaugeRun(out, r, r.gauges);
     if (!csv.empty())
         writeGaugeSeries(csv, r, {"eta_left", "eta_right"});
     if (r.outcome == kStable) {

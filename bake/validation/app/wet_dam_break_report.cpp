@@ -28,11 +28,8 @@ json wetDamBreak(const Scene& scene, const std::string& csv) {
                {"c0", t.c0},
                {"c2", t.c2},
                {"gravity", t.gravity}}},
-             {"compared_from", t.comparedFrom()},
-             {"gauges", r.gauges},
-             {"particles", r.particles},
-             {"water", r.water},
-             {"outcome", r.outcome}};
+             {"compared_from", t.comparedFrom()}};
+    addGaugeRun(out, r, r.gauges);
     if (!csv.empty())
         writeGaugeSeries(csv, r, "h", r.gauges);
     if (r.outcome == kStable) {
