@@ -815,8 +815,8 @@ void MpsSolver::shiftParticles(double dt) {
 }
 
 void MpsSolver::dampAgainstShift(std::size_t i, double sx, double sy, double len, double dt) {
-    // solver.shift_damping (docs/validation.md 7.11). On the free surface the shift holds the
-    // particles evenly spaced along it, while the pressure of the rows below can push a
+    // solver.shift_damping (docs/validation.md, Still tank). On the free surface the shift holds
+    // the particles evenly spaced along it, while the pressure of the rows below can push a
     // particle along it steadily: the shift then moves it back every step and its velocity
     // grows to a value that moves it nowhere. u_s = u . s/|s| < 0 is its velocity against the
     // shift, |s| / (|u_s| dt) the part of that motion the shift cancels, and rho = min(1,

@@ -89,6 +89,7 @@ public:
         const auto metaPath = sequence->writeSidecar(params, context.renderer());
         std::filesystem::remove(metaPath); // the old sidecar first: the folder is not whole
         staged.commit();                   // until the new one, renamed last
+        staged.removeStaleSequenceFiles(); // no frames of an earlier, longer run
         if (m_o.json) {
             std::cout << json{{"out", m_outDir},
                               {"format", heightFormatName(m_sequence.format)},

@@ -6,6 +6,7 @@
 #include "play_common.h"
 #include "process.h"
 
+#include "swell/cache/output_lock.h"
 #include "swell/runtime/error.h"
 #include "swell/runtime/gl/egl_context.h"
 #include "swell/runtime/io/atomic_write.h"
@@ -159,9 +160,7 @@ public:
         progress.done();
         m_totals.totalMs = msSince(t0);
         writePng(m_out / "contact_sheet.png", contactSheet(m_sheet, 3), 6);
-        if (!m_r.video.empty())
-            commit(staged); // ffmpeg reads the frames under their own names
-        m_videoStatus = encodeVideo();
+        m_videoStatus = encodeVideo(staged);
     }
 
     /// Every new file is complete: they replace the old ones now. render.json (and
@@ -173,6 +172,7 @@ public:
         if (m_r.exportHeights)
             fs::remove(m_out / "heights" / "heights.json");
         staged.commit();
+        staged.removeStaleSequenceFiles(); // the folder is this run's set, whole
     }
 
     /// render.json (and heights/heights.json with --export heights); returns render.json's object.
@@ -310,7 +310,10 @@ private:
     }
 
     /// Encodes the frames with ffmpeg when asked and installed; the status for render.json.
-    std::string encodeVideo() const {
+    /// ffmpeg reads the frames where they are (under their temporary names while `staged`
+    /// defers them) and writes the video to a temporary name, which replaces the video path
+    /// with the frames: when ffmpeg fails, the render fails and every previous output stays.
+    std::string encodeVideo(const DeferredRenames& staged) const {
         if (m_r.video.empty())
             return "not requested";
         const std::string ffmpeg = findOnPath("ffmpeg");
@@ -322,12 +325,40 @@ private:
         const fs::path videoPath(m_r.video);
         if (videoPath.has_parent_path())
             fs::create_directories(videoPath.parent_path());
-        const int rc = runProcess(
-            {ffmpeg, "-y", "-loglevel", "error", "-framerate", fmt::format("{}", m_o.playbackFps),
-             "-i", (m_out / "frame_%05d.png").string(), "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2",
-             "-c:v", "libx264", "-pix_fmt", "yuv420p", "-crf", "20", m_r.video});
-        if (rc != 0)
-            throw RuntimeError(fmt::format("ffmpeg failed (exit {}) writing {}", rc, m_r.video));
+        const fs::path frames = staged.deferring() ? cache::temporaryPath(m_out / "frame_%05d.png")
+                                                   : m_out / "frame_%05d.png";
+        writeAtomically(videoPath, [&](const fs::path& temporary) {
+            const int rc = runProcess({ffmpeg,
+                                       "-y",
+                                       "-xerror",
+                                       "-loglevel",
+                                       "error",
+                                       "-framerate",
+                                       fmt::format("{}", m_o.playbackFps),
+                                       "-f",
+                                       "image2",
+                                       "-c:v",
+                                       "png",
+                                       "-i",
+                                       frames.string(),
+                                       "-vf",
+                                       "pad=ceil(iw/2)*2:ceil(ih/2)*2",
+                                       "-c:v",
+                                       "libx264",
+                                       "-pix_fmt",
+                                       "yuv420p",
+                                       "-crf",
+                                       "20",
+                                       "-f",
+                                       "mp4",
+                                       temporary.string()});
+            std::error_code ec;
+            if (rc != 0 || fs::file_size(temporary, ec) == 0 || ec) {
+                throw RuntimeError(fmt::format("--video {}: ffmpeg failed (exit {}); the previous "
+                                               "frames and video are left as they were",
+                                               m_r.video, rc));
+            }
+        });
         return "written";
     }
 
@@ -489,7 +520,7 @@ public:
         // under temporary names (atomic_write.h): a failed render leaves the folder as it was.
         DeferredRenames staged;
         run.renderAll(taus, staged);
-        json meta = run.writeRecords(); // still staged unless --video committed the frames
+        json meta = run.writeRecords(); // still staged: replaces the old records with the rest
         run.commit(staged);
         if (m_o.json) {
             meta.erase("frames");

@@ -6,6 +6,8 @@
 
 #include <cstring>
 #include <fmt/format.h>
+#include <regex>
+#include <set>
 #include <stdexcept>
 #include <system_error>
 #include <unistd.h>
@@ -40,7 +42,33 @@ void DeferredRenames::commit() {
         std::filesystem::rename(temporary, path, ec);
         if (ec)
             throw RuntimeError(fmt::format("cannot write {}: {}", path.string(), ec.message()));
+        m_committed.push_back(path);
         m_pending.erase(m_pending.begin());
+    }
+}
+
+void DeferredRenames::removeStaleSequenceFiles() const {
+    static const std::regex kSequence(
+        "(frame|height|normal|surface|splashes)_[0-9]{5}\\.(png|exr|ply)|disp_[0-9]{4}\\.exr");
+    const std::set<std::filesystem::path> written(m_committed.begin(), m_committed.end());
+    std::set<std::filesystem::path> folders;
+    for (const auto& path : m_committed)
+        folders.insert(path.parent_path());
+    for (const auto& folder : folders) {
+        std::error_code ec;
+        std::vector<std::filesystem::path> stale;
+        for (const auto& e : std::filesystem::directory_iterator(folder, ec)) {
+            const std::string name = e.path().filename().string();
+            if (e.is_regular_file() && std::regex_match(name, kSequence) &&
+                !written.count(e.path()))
+                stale.push_back(e.path());
+        }
+        for (const auto& path : stale) {
+            std::filesystem::remove(path, ec);
+            if (ec)
+                throw RuntimeError(fmt::format("cannot remove {} (a frame of an earlier run): {}",
+                                               path.string(), ec.message()));
+        }
     }
 }
 

@@ -68,10 +68,10 @@ TEST_P(ShortValidationRun, StaysStableKeepsItsWaterAndItsSpeedBounded) {
 }
 
 INSTANTIATE_TEST_SUITE_P(LongCases, ShortValidationRun,
-                         testing::Values(ShortRun{"progressive_wave.json", {}, 300},
-                                         ShortRun{"shoaling_small.json", {}, 300},
-                                         ShortRun{"wet_dam_break_small.json", {}, 400},
-                                         ShortRun{"solitary_wave_small.json", {}, 400},
+                         testing::Values(ShortRun{"progressive_wave.json", {}, 100},
+                                         ShortRun{"shoaling_small.json", {}, 100},
+                                         ShortRun{"wet_dam_break_small.json", {}, 150},
+                                         ShortRun{"solitary_wave_small.json", {}, 200},
                                          ShortRun{
                                              "still_tank_small.json", {"solver.dt=0.0005"}, 2000}),
                          [](const testing::TestParamInfo<ShortRun>& info) {

@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <memory>
 #include <sstream>
 #include <string>
@@ -230,6 +231,58 @@ TEST_F(RenderApp, VideoWithoutFfmpegWritesPngsAndSaysSo) {
     EXPECT_FALSE(fs::exists(out / "clip.mp4"));
     EXPECT_EQ(nlohmann::json::parse(slurp(out / "render.json"))["video_status"],
               "skipped: ffmpeg not found");
+}
+
+TEST_F(RenderApp, AFailingFfmpegFailsTheRenderAndLeavesEveryPreviousOutput) {
+    const fs::path out = s_dir / "vfail";
+    const fs::path clip = out / "clip.mp4";
+    ASSERT_EQ(
+        run("render " + cache() + " --out " + out.string() + kSmall, "PATH=/nonexistent").code, 0);
+    { std::ofstream(clip, std::ios::binary) << "the previous video"; }
+    std::map<std::string, std::string> before;
+    for (const auto& e : fs::recursive_directory_iterator(out)) {
+        if (e.is_regular_file())
+            before[e.path().string()] = slurp(e.path());
+    }
+    const fs::path bin = s_dir / "fake_ffmpeg";
+    fs::create_directories(bin);
+    {
+        std::ofstream f(bin / "ffmpeg");
+        f << "#!/bin/sh\necho 'No space left on device' >&2\nexit 1\n";
+    }
+    fs::permissions(bin / "ffmpeg", fs::perms::owner_all);
+    const Result r = run("render " + cache() + " --out " + out.string() + kSmall +
+                             " --seed 7 --video " + clip.string(),
+                         "PATH=" + bin.string());
+    EXPECT_NE(r.code, 0);
+    EXPECT_NE(r.err.find("--video " + clip.string() + ": ffmpeg failed (exit 1)"),
+              std::string::npos)
+        << r.err;
+    std::map<std::string, std::string> after;
+    for (const auto& e : fs::recursive_directory_iterator(out)) {
+        if (e.is_regular_file())
+            after[e.path().string()] = slurp(e.path());
+    }
+    EXPECT_EQ(after.size(), before.size()) << "files left behind or removed";
+    EXPECT_TRUE(after == before) << "a previous output changed";
+}
+
+TEST_F(RenderApp, AShorterRenderReplacesTheFolderWithoutTheOldFrames) {
+    const fs::path out = s_dir / "shorter";
+    const std::string common = " --res 48x32 --slices 16 --size 160x90 --fps 20";
+    ASSERT_EQ(run("render " + cache() + " --out " + out.string() + common + " --seconds 0.5").code,
+              0);
+    ASSERT_TRUE(fs::exists(out / "frame_00009.png"));
+    const Result r = run("render " + cache() + " --out " + out.string() + common +
+                         " --seconds 0.2 --export heights");
+    ASSERT_EQ(r.code, 0) << r.err;
+    std::size_t frames = 0;
+    for (const auto& e : fs::directory_iterator(out))
+        frames += e.path().filename().string().rfind("frame_", 0) == 0;
+    const auto meta = nlohmann::json::parse(slurp(out / "render.json"));
+    EXPECT_EQ(frames, meta["frames"].size());
+    EXPECT_EQ(frames, 4u);
+    EXPECT_FALSE(fs::exists(out / "frame_00004.png"));
 }
 
 TEST_F(RenderApp, VideoThroughFfmpegWhenInstalled) {

@@ -4,7 +4,8 @@
 // the entire simulation"). A pure function of time: the solver asks for the velocity,
 // the driver for the displacement; no state, so a resumed bake gets the same motion.
 // Besides the paper's random motion: a sinusoid (regular waves) and Goring's (1978) single
-// stroke that makes a solitary wave, the two validation waves (docs/validation.md 5, 7.31).
+// stroke that makes a solitary wave, the two validation waves (docs/validation.md, Progressive
+// waves and Solitary wave).
 
 #include <cstdint>
 #include <string_view>

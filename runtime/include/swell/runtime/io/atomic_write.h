@@ -28,11 +28,17 @@ public:
     void commit();
     /// True until commit().
     bool deferring() const { return m_active; }
+    /// After commit(): removes from each folder a file was written to every numbered file of
+    /// swell's output sequences (frame_NNNNN.png, height_NNNNN.png|exr, normal_NNNNN.exr,
+    /// disp_NNNN.exr, surface_NNNNN.ply, splashes_NNNNN.ply) that this run did not write, so a
+    /// shorter run leaves no frames of an older one beside its own.
+    void removeStaleSequenceFiles() const;
 
 private:
     friend void writeAtomically(const std::filesystem::path&,
                                 const std::function<void(const std::filesystem::path&)>&);
     std::vector<std::pair<std::filesystem::path, std::filesystem::path>> m_pending; // tmp, path
+    std::vector<std::filesystem::path> m_committed;
     bool m_active = true;
 };
 
