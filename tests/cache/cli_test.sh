@@ -18,6 +18,22 @@ grep -q '"splash_median":2.0' "$dir/info.json" || fail "info --json splash_media
 "$bin/swell-cache" info "$dir/dry.swell" | grep -q "^splash particles   mean 0.0, max 0, median 0; in 0 of 7 frames" ||
     fail "info splash line: $("$bin/swell-cache" info "$dir/dry.swell" | grep splash)"
 [[ $("$bin/swell-cache" dump "$dir/a.swell" --frame 19 | wc -l) -eq 53 ]] || fail "dump rows"
+# Positions outside the header's domain break the format's rule: verify refuses them. The
+# header's domain is narrowed to x 0 .. 1 m and its checksum recomputed (XXH3-64 of the fixed
+# header before the checksum field and the metadata).
+/usr/bin/python3 - "$dir/a.swell" "$dir/narrow.swell" <<'PY' || fail "narrowing the domain"
+import struct, sys, xxhash
+b = bytearray(open(sys.argv[1], "rb").read())
+struct.pack_into("<f", b, 32, 1.0)  # x max (domain at byte 24: x min, y min, x max, y max)
+meta = struct.unpack_from("<I", b, 68)[0]
+h = xxhash.xxh3_64()
+h.update(bytes(b[:88]))
+h.update(bytes(b[96:96 + meta]))
+struct.pack_into("<Q", b, 88, h.intdigest())
+open(sys.argv[2], "wb").write(b)
+PY
+if out=$("$bin/swell-cache" verify "$dir/narrow.swell" 2>&1); then fail "verify accepted positions outside the domain"; fi
+grep -q "is outside the header's domain x .* \.\. 1, y" <<<"$out" || fail "verify domain message: $out"
 # A negative frame is refused naming the option, not wrapped to 2^64 - 1.
 if out=$("$bin/swell-cache" dump "$dir/a.swell" --frame -1 2>&1); then fail "dump --frame -1 accepted"; fi
 grep -q -- "--frame" <<<"$out" || fail "dump --frame -1 message: $out"
