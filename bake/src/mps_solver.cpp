@@ -559,27 +559,27 @@ void MpsSolver::numberDensityAndSurface() {
 }
 
 double MpsSolver::measurePacking() const {
-    // P = mean(n_R / n0_R) / mean(n_P / n0_P) over the water particles whose neighbourhoods are
-    // full on both kernels: off the free surface and the surface layer, and with a neighbour
-    // distribution below kFullNeighbourhood (0.05, under half of what a flat lattice's second
-    // row has on 2.8 l0), so rows that a surface truncates do not count. On
-    // the square lattice the water starts on, P = 1; as the flow and the shifting reorder it
-    // towards a hexagonal packing, P falls below 1 (about 0.984 for a hexagonal packing on
-    // R = 2.8 l0 and a 3.0 l0 packing kernel), and n0 P is the density the relaxation's
-    // kernel reads for water of the starting volume. Summed in index order: the same P with
-    // any thread count.
+    // P = mean(n / n0) / mean(n_P / n0_P), n on the number-density kernel R = re_density, over
+    // the water particles whose neighbourhoods are full on both kernels: off the free surface
+    // and the surface layer, and with a neighbour distribution below kFullNeighbourhood (0.05,
+    // under half of what a flat lattice's second row has on 2.8 l0), so rows that a surface
+    // truncates do not count. On the square lattice the water starts on, P = 1; as the flow and
+    // the shifting reorder it towards a hexagonal packing, P falls below 1 (about 0.984 for a
+    // hexagonal packing on R = 2.8 l0 and a 3.0 l0 packing kernel), and n0 P is the density the
+    // number-density kernel reads for water of the starting volume. Summed in index order: the
+    // same P with any thread count.
     const std::size_t n = m_p.size();
-    double sumR = 0.0, sumP = 0.0;
+    double sumN = 0.0, sumP = 0.0;
     for (std::size_t i = 0; i < n; ++i) {
         if (m_p.kind[i] != ParticleKind::Water || m_surface[i] != 0 || m_layer[i] != 0 ||
             m_fNorm[i] >= kFullNeighbourhood)
             continue;
-        sumR += m_p.n[i];
+        sumN += m_p.n[i];
         sumP += m_nPack[i];
     }
-    if (sumR <= 0.0 || sumP <= 0.0)
+    if (sumN <= 0.0 || sumP <= 0.0)
         return 1.0; // no full neighbourhood (a spray of particles): aim at n0
-    return (sumR / m_latN.n0) / (sumP / m_latP.n0);
+    return (sumN / m_latN.n0) / (sumP / m_latP.n0);
 }
 
 void MpsSolver::assemblePressureEquation(double dt) {

@@ -132,20 +132,17 @@ void runVerify(const CacheOptions& o) {
                 fmt::format("{}: frame {}: holds a non-finite value (NaN or infinity)", o.path, i));
         // Every position inside the header's domain (docs/cache-format.md; the writer's rule).
         const Domain& d = r.header().domain;
-        const auto outside = [&](float x, float y) {
-            return !(x >= d.xMin && x <= d.xMax && y >= d.yMin && y <= d.yMax);
-        };
         const auto refuse = [&](const char* kind, std::size_t k, float x, float y) {
             throw CacheError(fmt::format("{}: frame {}: {} particle {} at ({}, {}) is outside the "
                                          "header's domain x {} .. {}, y {} .. {}",
                                          o.path, i, kind, k, x, y, d.xMin, d.xMax, d.yMin, d.yMax));
         };
         for (std::size_t k = 0; k < f.surfaceCount(); ++k) {
-            if (outside(f.surface[2 * k], f.surface[2 * k + 1]))
+            if (!d.contains(f.surface[2 * k], f.surface[2 * k + 1]))
                 refuse("surface", k, f.surface[2 * k], f.surface[2 * k + 1]);
         }
         for (std::size_t k = 0; k < f.splashCount(); ++k) {
-            if (outside(f.splash[4 * k], f.splash[4 * k + 1]))
+            if (!d.contains(f.splash[4 * k], f.splash[4 * k + 1]))
                 refuse("splash", k, f.splash[4 * k], f.splash[4 * k + 1]);
         }
     }

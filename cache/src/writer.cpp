@@ -51,15 +51,12 @@ void validateFrame(const Header& h, const Frame& f, std::size_t index) {
             format::kMaxRawFrameBytes)
         throw std::invalid_argument(where() + "frame larger than 256 MiB");
     const Domain& d = h.domain;
-    auto inside = [&](float x, float y) {
-        return x >= d.xMin && x <= d.xMax && y >= d.yMin && y <= d.yMax;
-    };
     for (std::size_t i = 0; i < f.surfaceCount(); ++i)
-        if (!inside(f.surface[2 * i], f.surface[2 * i + 1]))
+        if (!d.contains(f.surface[2 * i], f.surface[2 * i + 1]))
             throw std::invalid_argument(where() + "surface particle " + std::to_string(i) +
                                         " is outside the domain bounds or not finite");
     for (std::size_t i = 0; i < f.splashCount(); ++i) {
-        if (!inside(f.splash[4 * i], f.splash[4 * i + 1]))
+        if (!d.contains(f.splash[4 * i], f.splash[4 * i + 1]))
             throw std::invalid_argument(where() + "splash particle " + std::to_string(i) +
                                         " is outside the domain bounds or not finite");
         if (!std::isfinite(f.splash[4 * i + 2]) || !std::isfinite(f.splash[4 * i + 3]))

@@ -21,6 +21,12 @@ struct Domain {
     float yMin = 0.0f;
     float xMax = 1.0f;
     float yMax = 1.0f;
+
+    /// Whether (x, y) lies inside, bounds included: the rule every stored position keeps (false
+    /// for a NaN).
+    bool contains(float x, float y) const {
+        return x >= xMin && x <= xMax && y >= yMin && y <= yMax;
+    }
 };
 
 /// What a bake says about itself; written once, read back verbatim.
