@@ -585,11 +585,8 @@ Scene parseScene(const json& j) {
 }
 
 json parseSceneJson(std::string_view text, const std::string& source) {
-    if (!cache::jsonDepthAcceptable(text)) {
-        throw SceneError("", fmt::format("{} nests {} levels deep, more than the {} a scene may",
-                                         printable(source), cache::jsonNestingDepth(text),
-                                         cache::kMaxJsonDepth));
-    }
+    if (const std::string deep = cache::jsonDepthProblem(text); !deep.empty())
+        throw SceneError("", fmt::format("{} {}", printable(source), deep));
     try {
         return json::parse(text);
     } catch (const json::exception& e) { // syntax, and numbers beyond a double (out_of_range)
@@ -742,12 +739,8 @@ void applyOverride(json& j, const std::string& assignment) {
     }
     const std::string path = assignment.substr(0, eq);
     const std::string text = assignment.substr(eq + 1);
-    if (!cache::jsonDepthAcceptable(text)) {
-        throw SceneError(printable(path),
-                         fmt::format("override value nests {} levels deep, more than the {} a "
-                                     "scene may",
-                                     cache::jsonNestingDepth(text), cache::kMaxJsonDepth));
-    }
+    if (const std::string deep = cache::jsonDepthProblem(text); !deep.empty())
+        throw SceneError(printable(path), "override value " + deep);
     json value;
     try {
         value = json::parse(text);

@@ -28,4 +28,12 @@ std::size_t jsonNestingDepth(std::string_view text) {
     return deepest;
 }
 
+std::string jsonDepthProblem(std::string_view text) {
+    const std::size_t depth = jsonNestingDepth(text);
+    if (depth <= kMaxJsonDepth)
+        return std::string();
+    return "nests " + std::to_string(depth) + " levels deep, more than the " +
+           std::to_string(kMaxJsonDepth) + " allowed";
+}
+
 } // namespace swell::cache

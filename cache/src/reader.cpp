@@ -168,10 +168,8 @@ Header decodeHeader(const std::vector<std::uint8_t>& head, const Failure& fail) 
     h.seed = getField<std::uint64_t>(&head[kOffSeed]);
     h.metadataJson.assign(reinterpret_cast<const char*>(head.data() + kFixedHeaderSize),
                           head.size() - kFixedHeaderSize);
-    if (!jsonDepthAcceptable(h.metadataJson)) {
-        throw fail("header metadata nests " + std::to_string(jsonNestingDepth(h.metadataJson)) +
-                   " levels deep, more than the " + std::to_string(kMaxJsonDepth) + " allowed");
-    }
+    if (const std::string deep = jsonDepthProblem(h.metadataJson); !deep.empty())
+        throw fail("header metadata " + deep);
     if (!nlohmann::json::accept(h.metadataJson))
         throw fail("header metadata is not valid JSON");
     return h;

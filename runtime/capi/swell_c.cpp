@@ -96,11 +96,8 @@ PlaybackConfig configOf(const swell_replay_config& c) {
     swell::runtime::PlaybackChoice choice;
     choice.mode = modeOf(c.mode);
     if (c.params_json != nullptr) {
-        if (!swell::cache::jsonDepthAcceptable(c.params_json)) {
-            throw std::invalid_argument(fmt::format(
-                "params_json: nests {} levels deep, more than the {} allowed",
-                swell::cache::jsonNestingDepth(c.params_json), swell::cache::kMaxJsonDepth));
-        }
+        if (const std::string deep = swell::cache::jsonDepthProblem(c.params_json); !deep.empty())
+            throw std::invalid_argument("params_json: " + deep);
         choice.named = nlohmann::json::parse(c.params_json);
     }
     if (!choice.named.is_object())

@@ -28,6 +28,9 @@ TEST(JsonDepth, CountsOpenArraysAndObjectsNotBracketsInStrings) {
     EXPECT_EQ(jsonNestingDepth(nested(1000000)), 1000000u);
     EXPECT_TRUE(jsonDepthAcceptable(nested(kMaxJsonDepth)));
     EXPECT_FALSE(jsonDepthAcceptable(nested(kMaxJsonDepth + 1)));
+    EXPECT_EQ(jsonDepthProblem(nested(kMaxJsonDepth)), "");
+    EXPECT_EQ(jsonDepthProblem(nested(kMaxJsonDepth + 1)),
+              "nests 65 levels deep, more than the 64 allowed");
 }
 
 TEST(JsonDepth, ReaderRefusesMetadataNestedAMillionLevelsNamingTheDepth) {

@@ -51,12 +51,8 @@ json fromPython(const py::handle& o) {
             "a value nests deeper than Python's json module writes; at most {} levels are allowed",
             cache::kMaxJsonDepth));
     }
-    if (!cache::jsonDepthAcceptable(text)) {
-        throw std::invalid_argument(fmt::format("a value nests {} levels deep, more than the {} "
-                                                "allowed",
-                                                cache::jsonNestingDepth(text),
-                                                cache::kMaxJsonDepth));
-    }
+    if (const std::string deep = cache::jsonDepthProblem(text); !deep.empty())
+        throw std::invalid_argument("a value " + deep);
     return json::parse(text);
 }
 

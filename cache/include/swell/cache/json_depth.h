@@ -4,6 +4,7 @@
 // held to kMaxJsonDepth first: printing or comparing a value recurses once per level, so a
 // value nested a million levels deep would overflow the stack instead of being refused.
 #include <cstddef>
+#include <string>
 #include <string_view>
 
 namespace swell::cache {
@@ -19,5 +20,9 @@ std::size_t jsonNestingDepth(std::string_view text);
 inline bool jsonDepthAcceptable(std::string_view text) {
     return jsonNestingDepth(text) <= kMaxJsonDepth;
 }
+
+/// "" when `text` nests at most kMaxJsonDepth levels, else what every refusal says after naming
+/// the text: "nests N levels deep, more than the 64 allowed".
+std::string jsonDepthProblem(std::string_view text);
 
 } // namespace swell::cache
