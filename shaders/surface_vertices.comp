@@ -6,7 +6,10 @@
 // reflected environment (cube map) and the Fresnel weight (Schlick), mixed. water.frag adds the
 // per-pixel sun highlight around the interpolated reflected ray.
 // A compute pass: llvmpipe runs it on every core, while its vertex shaders run on one thread and
-// once per triangle corner, so water.vert only fetches these.
+// once per triangle corner, so water.vert only fetches these. It writes u_rows rows of vertices
+// from row u_firstRow per dispatch, into a range of the vertex buffer bound at that row: a
+// mesh whose vertex buffer exceeds the driver's largest shader-storage block is written in
+// several dispatches.
 layout(local_size_x = 64) in;
 
 layout(std430, binding = 0) readonly buffer Heights { float h[]; };
@@ -29,6 +32,8 @@ layout(location = 9) uniform vec3 u_bed;        // bed albedo
 layout(location = 10) uniform float u_eta;      // n_air / n_water
 layout(location = 11) uniform float u_f0;             // Schlick's F0 = ((n - 1) / (n + 1))^2
 layout(location = 18) uniform float u_reflectionLod; // fixed cube-map level of the reflections
+layout(location = 25) uniform int u_firstRow;        // the row m of vertices[0]
+layout(location = 26) uniform int u_rows;            // the rows this dispatch writes
 layout(binding = 0) uniform samplerCube u_sky;
 
 float heightAt(int n, int m) {
@@ -39,9 +44,9 @@ float heightAt(int n, int m) {
 
 void main() {
     const int id = int(gl_GlobalInvocationID.x);
-    if (id >= u_cells.x * u_cells.y) return;
+    if (id >= u_cells.x * u_rows) return;
     const int n = id % u_cells.x;
-    const int m = id / u_cells.x;
+    const int m = u_firstRow + id / u_cells.x;
     const float y = heightAt(n, m);
     const int n0 = max(n - 1, 0), n1 = min(n + 1, u_cells.x - 1);
     const int m0 = max(m - 1, 0), m1 = min(m + 1, u_cells.y - 1);

@@ -29,13 +29,13 @@ std::optional<int> parseBakeCommandLine(int argc, const char* const* argv, BakeC
                  "same numerics version)");
     app.add_flag("--json", cl.asJson, "print the summary as one JSON object on stdout");
     app.add_flag("-q,--quiet", cl.quiet, "no progress lines");
-    if (const auto rc = cli::parse(app, argc, argv, "swell-bake", 2, out, err))
+    if (const auto rc = cli::parse(app, argc, argv, "swell-bake", out, err))
         return rc;
     for (const auto& [name, value] :
          {std::pair{"SCENE", &cl.scenePath}, {"--output", &cl.output}}) {
         if (value->empty()) {
             err << "swell-bake: " << name << ": an empty path (see --help)\n";
-            return 2;
+            return cli::kExitBadInput;
         }
     }
     return std::nullopt;

@@ -17,6 +17,7 @@
 #include <omp.h>
 
 #include "bake_cli.h"
+#include "exit_codes.h"
 #include "swell/bake/bake_driver.h"
 #include "swell/bake/checkpoint.h"
 #include "swell/bake/error.h"
@@ -25,6 +26,7 @@
 #include "swell/cache/output_lock.h"
 
 using namespace swell::bake;
+namespace cli = swell::cli;
 using nlohmann::json;
 
 namespace {
@@ -107,29 +109,24 @@ void printSummary(const Scene& scene, const BakeSummary& s, const std::string& o
     }
 }
 
-/// Exit code and stderr line of a failed bake (README "Programs"): 130 cancelled, 3 diverged
-/// (no cache), 2 bad scene, 5 checkpoint, 6 output in use by another process, 4 cache, 1
-/// anything else.
+/// Exit status (exit_codes.h) and stderr line of a failed bake: cancelled, diverged (no cache),
+/// bad scene, checkpoint, output in use by another process, cache, anything else.
 int reportFailure(const std::exception& e, const std::string& scenePath,
                   ProgressReporter& progress) {
     if (dynamic_cast<const SceneError*>(&e) != nullptr) {
         std::fprintf(stderr, "swell-bake: %s: %s\n", scenePath.c_str(), e.what());
-        return 2;
+        return cli::kExitBadInput;
     }
     progress.endLine();
-    int code = 1;
+    int code = cli::exitCodeFor(e);
     const char* suffix = "";
     if (dynamic_cast<const BakeCancelled*>(&e) != nullptr) {
-        code = 130;
+        code = cli::kExitCancelled;
     } else if (dynamic_cast<const DivergenceError*>(&e) != nullptr) {
-        code = 3;
+        code = cli::kExitDiverged;
         suffix = "; no cache written";
     } else if (dynamic_cast<const CheckpointError*>(&e) != nullptr) {
-        code = 5;
-    } else if (dynamic_cast<const swell::cache::OutputBusy*>(&e) != nullptr) {
-        code = 6;
-    } else if (dynamic_cast<const swell::cache::CacheError*>(&e) != nullptr) {
-        code = 4;
+        code = cli::kExitCheckpoint;
     }
     std::fprintf(stderr, "swell-bake: %s%s\n", e.what(), suffix);
     return code;
@@ -168,7 +165,7 @@ int main(int argc, char** argv) {
 
     if (const std::string problem = outputPathProblem(output); !problem.empty()) {
         std::fprintf(stderr, "swell-bake: %s\n", problem.c_str());
-        return 4;
+        return cli::kExitBadInput;
     }
     ProgressReporter progress(quiet);
     try {
@@ -194,7 +191,7 @@ int main(int argc, char** argv) {
             printSummary(scene, s, output);
         if (cl.asJson)
             std::printf("%s\n", toJson(s).dump().c_str());
-        return 0;
+        return cli::kExitOk;
     } catch (const std::exception& e) {
         return reportFailure(e, scenePath, progress);
     }

@@ -20,7 +20,7 @@ std::optional<int> parseMpsBenchCommandLine(int argc, const char* const* argv,
         ->expected(1)
         ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
     app.add_flag("--json", cl.asJson, "print one JSON object on stdout");
-    return cli::parse(app, argc, argv, "swell-mps-bench", 0, out, err);
+    return cli::parse(app, argc, argv, "swell-mps-bench", out, err);
 }
 
 Scene mpsBenchScene(const MpsBenchCommandLine& cl) {

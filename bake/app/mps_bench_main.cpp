@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 #include <omp.h>
 
+#include "exit_codes.h"
 #include "mps_bench_cli.h"
 
 #include "swell/bake/error.h"
@@ -86,6 +87,6 @@ int main(int argc, char** argv) {
         return 0;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "swell-mps-bench: %s\n", e.what());
-        return 1;
+        return swell::cli::exitCodeFor(e);
     }
 }

@@ -53,7 +53,7 @@ std::optional<int> parseCacheCommandLine(int argc, const char* const* argv, Cach
     synth->add_option("--seed", o.wave.seed, "seed of the jitter and splash placement");
     addEncodingOptions(synth, o);
     addEncodingOptions(recode, o);
-    if (const auto rc = cli::parse(app, argc, argv, "swell-cache", 0, out, err))
+    if (const auto rc = cli::parse(app, argc, argv, "swell-cache", out, err))
         return rc;
     const std::pair<CLI::App*, CacheCommand> commands[] = {{info, CacheCommand::Info},
                                                            {verify, CacheCommand::Verify},
@@ -68,7 +68,7 @@ std::optional<int> parseCacheCommandLine(int argc, const char* const* argv, Cach
         if (p->empty() && (p == &o.path || command == CacheCommand::Recode)) {
             err << "swell-cache: " << (p == &o.path ? "CACHE" : "OUT")
                 << ": an empty path (see --help)\n";
-            return 2;
+            return cli::kExitBadInput;
         }
     }
     return std::nullopt;

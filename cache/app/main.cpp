@@ -1,5 +1,6 @@
 // swell-cache: inspect, verify, dump and synthesize .swell caches.
 #include "cache_cli.h"
+#include "exit_codes.h"
 #include "swell/cache/error.h"
 #include "swell/cache/output_lock.h"
 #include "swell/cache/reader.h"
@@ -239,12 +240,9 @@ int main(int argc, char** argv) {
             if (which == command)
                 run(o);
         }
-    } catch (const OutputBusy& e) {
-        fmt::print(stderr, "swell-cache: {}\n", e.what());
-        return 6; // as swell-bake: the output is being written by another process
     } catch (const std::exception& e) {
         fmt::print(stderr, "swell-cache: {}\n", e.what());
-        return 1;
+        return swell::cli::exitCodeFor(e);
     }
-    return 0;
+    return swell::cli::kExitOk;
 }

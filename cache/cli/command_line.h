@@ -5,6 +5,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "exit_codes.h"
+
 #include <algorithm>
 #include <cmath>
 #include <optional>
@@ -74,14 +76,13 @@ inline std::optional<std::string> unknownSubcommand(const CLI::App& app, const s
 
 /// Parses argv with `app`. Returns nullopt when the program should go on, else its exit status:
 /// 0 after --help (printed on `out`); after a bad command line one line "PROGRAM: problem (see
-/// --help)" on `err` and `badStatus`, or CLI11's own code for the error when badStatus is 0.
+/// --help)" on `err` and kExitBadInput.
 inline std::optional<int> parse(CLI::App& app, int argc, const char* const* argv,
-                                const std::string& program, int badStatus, std::ostream& out,
-                                std::ostream& err) {
+                                const std::string& program, std::ostream& out, std::ostream& err) {
     if (argc > 1) {
         if (const auto unknown = unknownSubcommand(app, argv[1])) {
             err << program << ": " << *unknown << " (see --help)\n";
-            return badStatus != 0 ? badStatus : static_cast<int>(CLI::ExitCodes::ExtrasError);
+            return kExitBadInput;
         }
     }
     try {
@@ -90,7 +91,7 @@ inline std::optional<int> parse(CLI::App& app, int argc, const char* const* argv
         if (e.get_exit_code() == 0)
             return app.exit(e, out, err);
         err << program << ": " << oneLine(e.what()) << " (see --help)\n";
-        return badStatus != 0 ? badStatus : e.get_exit_code();
+        return kExitBadInput;
     }
     return std::nullopt;
 }

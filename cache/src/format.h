@@ -21,6 +21,15 @@ inline constexpr std::size_t kIndexEntrySize = 40;
 /// Upper bounds that make a damaged file fail fast instead of allocating wildly.
 inline constexpr std::uint64_t kMaxMetadataBytes = 16u << 20;  // 16 MiB
 inline constexpr std::uint64_t kMaxRawFrameBytes = 256u << 20; // 256 MiB per frame
+
+/// A frame's raw size is at most 1 MiB + 1024 x its compressed size: particle positions and
+/// velocities compress a few times, never a thousand, so a small file stating huge frames is
+/// damaged, and is refused when opened rather than after decoding them.
+inline constexpr std::uint64_t kRatioSlackBytes = 1u << 20;
+inline constexpr std::uint64_t kMaxCompressionRatio = 1024;
+inline bool rawSizeFits(std::uint64_t rawSize, std::uint64_t compressedSize) {
+    return rawSize <= kRatioSlackBytes + kMaxCompressionRatio * compressedSize;
+}
 inline constexpr std::uint32_t kFlagShuffle = 1u;
 inline constexpr std::uint32_t kFlagDelta = 2u;
 

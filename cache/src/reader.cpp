@@ -219,6 +219,11 @@ void checkIndexEntry(const FrameInfo& e, std::size_t i, Encoding encoding,
     if (e.compressedSize == 0 || e.compressedSize > ZSTD_compressBound(e.rawSize))
         throw bad("compressed size " + std::to_string(e.compressedSize) +
                   " impossible for raw size " + std::to_string(e.rawSize));
+    if (!rawSizeFits(e.rawSize, e.compressedSize))
+        throw bad("raw size " + std::to_string(e.rawSize) + " from " +
+                  std::to_string(e.compressedSize) +
+                  " compressed bytes is beyond the format's bound of 1 MiB + 1024 x the "
+                  "compressed size");
     if (e.offset > indexOffset || e.compressedSize > indexOffset - e.offset)
         throw bad("offset " + std::to_string(e.offset) + " + size " +
                   std::to_string(e.compressedSize) + " extends past the frame data (ends at " +

@@ -170,6 +170,13 @@ void Writer::addFrame(const Frame& frame) {
         throw CacheError(
             describe(m_path, std::string("zstd compression failed: ") + ZSTD_getErrorName(n)));
     info.compressedSize = n;
+    if (!format::rawSizeFits(info.rawSize, n))
+        throw CacheError(describe(
+            m_path, "frame " + std::to_string(m_index.size()) + ": " +
+                        std::to_string(info.rawSize) + " raw bytes compress to " +
+                        std::to_string(n) +
+                        ", beyond the format's bound of 1 MiB + 1024 x the compressed size: "
+                        "not particle data"));
     writeBytes(m_compressed.data(), n);
     m_index.push_back(info);
 }

@@ -2,6 +2,7 @@
 // times, and the error against the double-precision CPU reference (docs/runtime.md).
 
 #include "command.h"
+#include "exit_codes.h"
 #include "play_common.h"
 
 #include "swell/runtime/gl/egl_context.h"
@@ -226,18 +227,18 @@ private:
             check.framesExact ? "exact" : "DIFFERS", cpuMs > 0 ? 1000.0 / cpuMs : 0.0, cpuMs);
     }
 
-    /// 0, or 2 when the GPU is not within 1e-4 of the depth of the reference or a frame choice
-    /// differs (with --reference-cache the encodings differ: reported, not judged).
+    /// kExitOk, or kExitMissed when the GPU is not within 1e-4 of the depth of the reference or
+    /// a frame choice differs (with --reference-cache the encodings differ: reported, not judged).
     int verdict(const ReferenceCheck& check, double depth) const {
         const double maxAbs = check.difference.maxAbs;
         if (!m_referenceCache.empty())
-            return check.framesExact && std::isfinite(maxAbs) ? 0 : 2;
+            return check.framesExact && std::isfinite(maxAbs) ? cli::kExitOk : cli::kExitMissed;
         if (!check.framesExact || !(maxAbs <= 1e-4 * depth)) {
             std::cerr << "swell-play: GPU result differs from the CPU reference beyond 1e-4 of the "
                          "depth\n";
-            return 2;
+            return cli::kExitMissed;
         }
-        return 0;
+        return cli::kExitOk;
     }
 
     Options m_o;

@@ -107,6 +107,8 @@ public:
         finishOptions(m_o);
         if (m_o.modeParams.mode != ReplayMode::Surging)
             throw std::invalid_argument("fidelity measures the surging layout (--mode surging)");
+        if (m_seamSeconds > 0.0)
+            checkSeconds(m_seamSeconds, m_o.playbackFps, "--seam-seconds");
     }
 
     int run() override {

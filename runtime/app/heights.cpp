@@ -44,7 +44,7 @@ public:
 
     void check() override {
         finishOptions(m_o);
-        checkSeconds(m_seconds);
+        checkSeconds(m_seconds, m_o.playbackFps);
         m_sequence.format = parseHeightFormat(m_format, "--format");
     }
 
@@ -52,6 +52,10 @@ public:
         const cache::Reader reader(m_o.cache);
         resolveFromCache(m_o, reader.header());
         const std::vector<double> taus = outputTaus(m_o, m_seconds);
+        checkDiskSpace(m_outDir,
+                       static_cast<double>(taus.size()) *
+                           heightFrameBytes(m_sequence, m_o.params.cellsX, m_o.params.cellsZ),
+                       taus.size());
         const TimelinePlan plan = planReplay(m_o, reader);
         // More output than the memory budget holds at once is replayed in chunks of output
         // frames, each with only its own frames decoded and uploaded: the same heights.

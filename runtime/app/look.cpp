@@ -87,7 +87,7 @@ public:
 
     void check() override {
         finishOptions(m_o);
-        checkSeconds(m_seconds);
+        checkSeconds(m_seconds, m_o.playbackFps);
     }
 
     int run() override {

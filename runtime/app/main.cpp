@@ -3,8 +3,11 @@
 // play_cli.cpp parses and checks the command line, this one runs it and turns every error into
 // one line on stderr.
 
+#include "option_words.h"
 #include "play_cli.h"
 #include "play_common.h"
+
+#include "exit_codes.h"
 
 #include "swell/runtime/gl/egl_context.h"
 
@@ -22,7 +25,7 @@ int main(int argc, char** argv) {
             std::cerr << "swell-play: note: " << note << "\n";
         return rc;
     } catch (const std::exception& e) { // cache, GL, parameter and I/O errors alike: one line
-        std::cerr << "swell-play: " << e.what() << "\n";
+        std::cerr << "swell-play: " << inOptionWords(e.what()) << "\n";
+        return swell::cli::exitCodeFor(e);
     }
-    return 1;
 }

@@ -1,6 +1,7 @@
 #include "play_cli.h"
 
 #include "command_line.h"
+#include "option_words.h"
 
 #include <stdexcept>
 
@@ -20,7 +21,7 @@ PlayCommandLine::PlayCommandLine()
 
 std::optional<int> PlayCommandLine::parse(int argc, const char* const* argv, std::ostream& out,
                                           std::ostream& err) {
-    if (const auto rc = cli::parse(m_app, argc, argv, "swell-play", 0, out, err))
+    if (const auto rc = cli::parse(m_app, argc, argv, "swell-play", out, err))
         return rc;
     for (std::size_t i = 0; i < m_subcommands.size(); ++i) {
         if (*m_subcommands[i])
@@ -29,8 +30,8 @@ std::optional<int> PlayCommandLine::parse(int argc, const char* const* argv, std
     try {
         command().check();
     } catch (const std::exception& e) { // an option value the subcommand refuses: one line
-        err << "swell-play: " << cli::oneLine(e.what()) << "\n";
-        return 1;
+        err << "swell-play: " << cli::oneLine(inOptionWords(e.what())) << "\n";
+        return cli::kExitBadInput;
     }
     return std::nullopt;
 }

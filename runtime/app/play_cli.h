@@ -17,8 +17,9 @@ public:
     PlayCommandLine();
     /// Parses argv and checks the chosen subcommand's options (Command::check). Returns the exit
     /// status when swell-play should stop now: 0 after --help (printed on `out`); after a bad
-    /// command line one line "swell-play: ..." on `err` and CLI11's code, or 1 for an option
-    /// value the subcommand refuses; nullopt when it should go on and run command().
+    /// command line or an option value the subcommand refuses, one line "swell-play: ..."
+    /// naming the option (option_words.h) on `err` and kExitBadInput; nullopt when it should go
+    /// on and run command().
     std::optional<int> parse(int argc, const char* const* argv, std::ostream& out,
                              std::ostream& err);
     /// The chosen subcommand (after parse).

@@ -284,9 +284,42 @@ std::vector<double> outputTaus(const Options& o, double seconds) {
                      static_cast<std::size_t>(std::max(1.0, std::round(seconds * o.playbackFps))));
 }
 
-void checkSeconds(double seconds) {
+void checkSeconds(double seconds, double fps, const char* option) {
     if (!(seconds > 0.0) || !std::isfinite(seconds))
-        throw std::invalid_argument(fmt::format("--seconds must be > 0, got {}", seconds));
+        throw std::invalid_argument(fmt::format("{} must be > 0, got {}", option, seconds));
+    if (std::round(seconds * fps) > kMaxOutputFrames) {
+        throw std::invalid_argument(fmt::format(
+            "{} {} x --fps {} asks for {:.0f} output frames; at most {:.0f} fit in one run "
+            "({} up to {:g} at --fps {})",
+            option, seconds, fps, std::round(seconds * fps), kMaxOutputFrames, option,
+            kMaxOutputFrames / fps, fps));
+    }
+}
+
+void checkDiskSpace(const std::filesystem::path& out, double bytes, std::size_t frames) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    fs::path folder = fs::absolute(out, ec);
+    while (!folder.empty() && !fs::is_directory(folder, ec) && folder != folder.parent_path())
+        folder = folder.parent_path();
+    const fs::space_info space = fs::space(folder, ec);
+    if (ec || bytes <= static_cast<double>(space.available))
+        return;
+    const double perFrame = bytes / static_cast<double>(std::max<std::size_t>(frames, 1));
+    throw std::invalid_argument(fmt::format(
+        "--out {}: {} frames may take up to {:.3g} GB (uncompressed) and {} has {:.3g} GB free: "
+        "about {:.0f} frames fit (lower --seconds, --fps or the resolution)",
+        out.string(), frames, bytes / 1e9, folder.string(),
+        static_cast<double>(space.available) / 1e9,
+        std::floor(static_cast<double>(space.available) / perFrame)));
+}
+
+double heightFrameBytes(const HeightSequenceParams& s, int cellsX, int cellsZ) {
+    const double samples = (cellsX + 1.0) * (cellsZ + 1.0);
+    const double sample = s.format == HeightFormat::ExrFloat ? 4.0 : 2.0;
+    const double exr = s.exrPixelType() == ExrPixelType::Half ? 2.0 : 4.0;
+    return 4096.0 +
+           samples * (sample + (s.normals ? 3.0 * exr : 0.0) + (s.displacement ? 3.0 * exr : 0.0));
 }
 
 HeightScale heightScale(const cache::Domain& d) {

@@ -13,7 +13,9 @@
 #include "swell/runtime/replay/timeline.h"
 
 #include <CLI/CLI.hpp>
+
 #include <chrono>
+#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -81,8 +83,19 @@ double secondsOf(const Options& o, std::size_t i);
 std::vector<double> frameTaus(const Options& o, std::size_t count);
 /// The animation times of `seconds` of output at o.playbackFps (at least one frame).
 std::vector<double> outputTaus(const Options& o, double seconds);
-/// Throws std::invalid_argument unless --seconds is finite and > 0.
-void checkSeconds(double seconds);
+/// The most output frames one run writes or measures (seconds x fps).
+inline constexpr double kMaxOutputFrames = 1e6;
+/// Throws std::invalid_argument, naming `option` (as typed: "--seconds") and --fps, unless
+/// `seconds` is finite and > 0 and `seconds` x `fps` output frames are at most
+/// kMaxOutputFrames.
+void checkSeconds(double seconds, double fps, const char* option = "--seconds");
+/// Throws std::invalid_argument naming --out and what fits when `bytes` (the most `frames`
+/// output frames may take, uncompressed) exceed the free space of the file system of `out`
+/// (or of its nearest existing parent folder).
+void checkDiskSpace(const std::filesystem::path& out, double bytes, std::size_t frames);
+/// The most bytes one frame of a height sequence (height map, normals, displacement) takes on
+/// a mesh of cellsX x cellsZ cells, uncompressed.
+double heightFrameBytes(const runtime::HeightSequenceParams& s, int cellsX, int cellsZ);
 /// 16-bit PNG scale of a cache's domain: offset yMin, 65535 steps up to yMax.
 runtime::HeightScale heightScale(const cache::Domain& domain);
 

@@ -53,7 +53,7 @@ struct RenderOptions {
     HeightSequenceParams heights; ///< what heights/ holds (normals, displacement, format)
 
     /// Checks and resolves the string options; throws std::invalid_argument naming the option.
-    void finish(ReplayMode mode) {
+    void finish(ReplayMode mode, double fps) {
         int width = 0, height = 0;
         char x = 0, extra = 0;
         if (std::sscanf(size.c_str(), "%d%c%d%c", &width, &x, &height, &extra) != 3 ||
@@ -72,7 +72,7 @@ struct RenderOptions {
             !noSplashes && splashes != "off" && (splashes == "on" || mode != ReplayMode::Whirlpool);
         splash.validate();
         sky.validate();
-        checkSeconds(seconds);
+        checkSeconds(seconds, fps);
         for (std::size_t start = 0; start < exports.size();) {
             const std::size_t end = std::min(exports.find(',', start), exports.size());
             const std::string item = exports.substr(start, end - start);
@@ -96,6 +96,9 @@ struct RenderOptions {
         heights.format = parseHeightFormat(heightsFormat, "--heights-format");
         if (eye.empty() != target.empty())
             throw std::invalid_argument("--camera and --target go together");
+        if (!(fov > 0.0 && fov < 180.0))
+            throw std::invalid_argument(
+                fmt::format("--fov must be in (0, 180) degrees, got {}", fov));
         if (!video.empty() && video.find(".mp4") == std::string::npos)
             throw std::invalid_argument(
                 fmt::format("--video must name an .mp4 file, got '{}'", video));
@@ -498,13 +501,20 @@ public:
 
     void check() override {
         finishOptions(m_o);
-        m_r.finish(m_o.modeParams.mode);
+        m_r.finish(m_o.modeParams.mode, m_o.playbackFps);
     }
 
     int run() override {
         const cache::Reader reader(m_o.cache);
         resolveFromCache(m_o, reader.header());
         const std::vector<double> taus = outputTaus(m_o, m_r.seconds);
+        const double cells = (m_o.params.cellsX + 1.0) * (m_o.params.cellsZ + 1.0);
+        const double frameBytes =
+            4096.0 + 3.0 * m_r.shading.width * m_r.shading.height +
+            (m_r.exportHeights ? heightFrameBytes(m_r.heights, m_o.params.cellsX, m_o.params.cellsZ)
+                               : 0.0) +
+            (m_r.exportMesh ? 64.0 * cells : 0.0);
+        checkDiskSpace(m_r.outDir, static_cast<double>(taus.size()) * frameBytes, taus.size());
         const ReplaySetup setup = prepareReplay(m_o, reader, taus);
         const fs::path out(m_r.outDir);
         fs::create_directories(out);

@@ -110,7 +110,7 @@ class ReplayTest(unittest.TestCase):
 
     def test_bad_parameters_raise_value_errors_naming_them(self):
         c = swell.Cache(WAVE)
-        with self.assertRaisesRegex(ValueError, "F = 2"):
+        with self.assertRaisesRegex(ValueError, r"fluctuation must be in \[0, 1\].*got 2"):
             swell.Replay(c, fluctuation=2.0)
         with self.assertRaisesRegex(ValueError, "unknown key bogus"):
             swell.Replay(c, params={"bogus": 1})

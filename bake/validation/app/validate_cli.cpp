@@ -167,12 +167,12 @@ CLI::App* addShoaling(CLI::App& app, ValidateCommandLine& cl) {
 std::optional<int> refuseValues(const ValidateCommandLine& cl, std::ostream& err) {
     if (cl.scene.empty()) {
         err << "swell-validate: scene: an empty path (see --help)\n";
-        return 2;
+        return cli::kExitBadInput;
     }
     if (cl.waveFrom >= 0.0 && cl.waveTo >= 0.0 && !(cl.waveTo > cl.waveFrom)) {
         err << "swell-validate: --to " << cl.waveTo << " must be after --from " << cl.waveFrom
             << " (see --help)\n";
-        return 2;
+        return cli::kExitBadInput;
     }
     return std::nullopt;
 }
@@ -197,7 +197,7 @@ std::optional<int> parseValidateCommandLine(int argc, const char* const* argv,
     CLI::App* wet = addWetDamBreak(app, cl);
     CLI::App* shoal = addShoaling(app, cl);
 
-    if (const auto rc = cli::parse(app, argc, argv, "swell-validate", 0, out, err))
+    if (const auto rc = cli::parse(app, argc, argv, "swell-validate", out, err))
         return rc;
     cl.run = *dam     ? ValidateCommandLine::Run::DamBreak
              : *lob   ? ValidateCommandLine::Run::Lobovsky

@@ -16,6 +16,7 @@
 #include <omp.h>
 
 #include "case_reports.h"
+#include "exit_codes.h"
 #include "ensemble.h"
 #include "ensemble_figures.h"
 #include "report_files.h"
@@ -106,15 +107,15 @@ void printReport(const json& out, bool asJson) {
     }
 }
 
-/// 0 for a stable run; 2 for a stopped one, which keeps its figures in the report (stdout) and
-/// says why on stderr.
+/// kExitOk for a stable run; kExitDiverged for a stopped one, which keeps its figures in the
+/// report (stdout) and says why on stderr.
 int exitStatus(const json& out, const std::string& scene) {
     const json& outcome = out.at("outcome");
     if (outcome.is_string() && outcome.get_ref<const std::string&>() == kStable)
-        return 0;
+        return swell::cli::kExitOk;
     std::fprintf(stderr, "swell-validate: %s: %s\n", scene.c_str(),
                  outcome.get<std::string>().c_str());
-    return 2;
+    return swell::cli::kExitDiverged;
 }
 
 } // namespace
@@ -143,6 +144,6 @@ int main(int argc, char** argv) {
         return exitStatus(out, cl.scene);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "swell-validate: %s\n", e.what());
-        return 1;
+        return swell::cli::exitCodeFor(e);
     }
 }

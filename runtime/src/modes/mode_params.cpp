@@ -84,7 +84,7 @@ void WhirlpoolParams::validate() const {
     // e^(2 pi b) is the ratio of outer to inner radius: keep it a finite, sane number.
     if (!std::isfinite(growth) || growth <= 0.0 || growth > 2.0) {
         throw std::invalid_argument(
-            fmt::format("whirlpool.growth b must be in (0, 2] per radian, got {}", growth));
+            fmt::format("whirlpool.growth must be in (0, 2] per radian, got {}", growth));
     }
     if (!std::isfinite(turnsPerTimeUnit) || std::abs(turnsPerTimeUnit) > 1e3) {
         throw std::invalid_argument(

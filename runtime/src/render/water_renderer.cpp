@@ -14,6 +14,7 @@
 #include <cstdlib>
 #include <fmt/format.h>
 #include <numbers>
+#include <numeric>
 #include <stdexcept>
 #include <vector>
 
@@ -25,7 +26,9 @@ constexpr GLint kViewProj = 0, kCells = 1, kOrigin = 2, kSpacing = 3, kEye = 4, 
                 kBedY = 6, kAbsorption = 7, kScatter = 8, kBed = 9, kEta = 10, kF0 = 11, kSun = 12,
                 kSunColour = 13, kEdge = 14, kPixelsPerMetre = 15, kRadius = 16, kSplashColour = 17,
                 kReflectionLod = 18, kAmbient = 19, kDropLight = 20, kSideLight = 21, kFloor = 22,
-                kBlock = 23, kBlockTop = 24;
+                kBlock = 23, kBlockTop = 24, kFirstRow = 25, kRows = 26;
+/// Bytes of one mesh vertex (surface_vertices.comp's Vertex: three vec4).
+constexpr GLsizei kVertexBytes = 3 * 4 * sizeof(float);
 
 void setVec3(GLuint program, GLint loc, const Vec3& v) {
     glProgramUniform3f(program, loc, static_cast<float>(v[0]), static_cast<float>(v[1]),
@@ -56,6 +59,9 @@ void ShadingParams::validate() const {
         throw std::invalid_argument(
             fmt::format("image size must be within 16..8192 pixels, got {}x{}", width, height));
     }
+    if (vertexRowsPerDispatch < 0)
+        throw std::invalid_argument(fmt::format(
+            "vertex rows per dispatch must be >= 0 (0: no limit), got {}", vertexRowsPerDispatch));
     if (samples < 1 || samples > 16)
         throw std::invalid_argument(fmt::format("samples must be in 1..16, got {}", samples));
     if (!(refractiveIndex >= 1.0 && refractiveIndex < 3.0)) {
@@ -99,6 +105,22 @@ WaterRenderer::WaterRenderer(const Grid& grid, const cache::Domain& domain,
     checkGl("setting up the water renderer");
 }
 
+void WaterRenderer::writeVertices() {
+    const int N = m_grid.cellsX, M = m_grid.cellsZ;
+    const GLuint program = m_surfaceProgram.get();
+    for (int first = 0; first < M; first += m_rowsPerDispatch) {
+        const int rows = std::min(m_rowsPerDispatch, M - first);
+        glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 1, m_vertices.get(),
+                          static_cast<GLintptr>(first) * N * kVertexBytes,
+                          static_cast<GLsizeiptr>(rows) * N * kVertexBytes);
+        glProgramUniform1i(program, kFirstRow, first);
+        glProgramUniform1i(program, kRows, rows);
+        glDispatchCompute((static_cast<GLuint>(N) * static_cast<GLuint>(rows) + 63) / 64, 1, 1);
+    }
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, 0);
+    glMemoryBarrier(GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT);
+}
+
 void WaterRenderer::createMeshBuffers() {
     // Triangles of the N x M vertex grid (vertex id m * N + n), reordered front to back for
     // each new eye point (updateMeshOrder).
@@ -110,8 +132,32 @@ void WaterRenderer::createMeshBuffers() {
     glNamedBufferStorage(name, static_cast<GLsizeiptr>(m_indexCount * sizeof(std::uint32_t)),
                          nullptr, GL_DYNAMIC_STORAGE_BIT);
     // The mesh's vertices, written by surface_vertices.comp each frame: position, reflected
-    // view ray, shaded colour and Fresnel weight, three vec4 per vertex.
-    constexpr GLsizei kVertexBytes = 3 * 4 * sizeof(float);
+    // view ray, shaded colour and Fresnel weight, three vec4 per vertex; as many rows per
+    // dispatch as one shader-storage block holds, starting at aligned offsets (writeVertices).
+    // The heights the pass reads are bound whole: their 4 bytes per cell set the limit.
+    GLint64 maxBlock = 0;
+    GLint align = 1;
+    glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &maxBlock);
+    glGetIntegerv(GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT, &align);
+    const GLint64 heightBytes = static_cast<GLint64>(N) * M * static_cast<GLint64>(sizeof(float));
+    if (heightBytes > maxBlock) {
+        throw RuntimeError(fmt::format(
+            "a {}x{} mesh needs a {:.0f} MB height buffer, above this driver's {:.0f} MB "
+            "shader-storage limit: at most {:.0f} cells (lower --res)",
+            N, M, static_cast<double>(heightBytes) / 1e6, static_cast<double>(maxBlock) / 1e6,
+            std::floor(static_cast<double>(maxBlock) / sizeof(float))));
+    }
+    const GLint64 rowBytes = static_cast<GLint64>(N) * kVertexBytes;
+    const GLint64 rowStep =
+        std::max<GLint64>(align, 1) / std::gcd(rowBytes, std::max<GLint64>(align, 1));
+    const GLint64 fit = maxBlock / rowBytes / rowStep * rowStep;
+    if (fit < 1)
+        throw RuntimeError(fmt::format("a mesh row of {} cells exceeds this driver's {:.0f} MB "
+                                       "shader-storage limit (lower --res)",
+                                       N, static_cast<double>(maxBlock) / 1e6));
+    m_rowsPerDispatch = static_cast<int>(std::min<GLint64>(fit, M));
+    if (m_shading.vertexRowsPerDispatch > 0)
+        m_rowsPerDispatch = std::min(m_rowsPerDispatch, m_shading.vertexRowsPerDispatch);
     glCreateBuffers(1, &name);
     m_vertices = GlBuffer(name);
     glNamedBufferStorage(name, static_cast<GLsizeiptr>(N) * M * kVertexBytes, nullptr, 0);
@@ -319,16 +365,13 @@ void WaterRenderer::drawSurface(GlName heightBuffer, const Camera& camera, bool 
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, heightBuffer);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, m_vertices.get());
     for (GLuint p : {m_surfaceProgram.get(), m_skirtProgram.get()})
         setVec3(p, kEye, eye);
     for (GLuint p : {m_waterProgram.get(), m_skirtProgram.get()}) {
         glProgramUniformMatrix4fv(p, kViewProj, 1, GL_FALSE, viewProj.data());
     }
-    const auto vertexCount = static_cast<GLuint>(m_grid.cellsX * m_grid.cellsZ);
     glUseProgram(m_surfaceProgram.get());
-    glDispatchCompute((vertexCount + 63) / 64, 1, 1);
-    glMemoryBarrier(GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT);
+    writeVertices();
     glUseProgram(m_waterProgram.get());
     glBindVertexArray(m_meshArray);
     glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(m_indexCount), GL_UNSIGNED_INT, nullptr);

@@ -68,15 +68,15 @@ TimeSampling timeSamplingFromString(const std::string& name) {
 void ReplayParams::validate() const {
     if (cellsX < 1 || cellsX > 8192 || cellsZ < 1 || cellsZ > 8192) {
         throw std::invalid_argument(
-            fmt::format("resolution must be 1..8192 cells per axis, got {}x{}", cellsX, cellsZ));
+            fmt::format("cells_x x cells_z must be 1..8192 each, got {}x{}", cellsX, cellsZ));
     }
     if (slices < 2 || slices > 16384) {
-        throw std::invalid_argument(fmt::format("slices K must be in [2, 16384], got {}", slices));
+        throw std::invalid_argument(fmt::format("slices must be in [2, 16384], got {}", slices));
     }
     // eq. (6): F |N| <= 1 with max |N| = 1 means F <= 1.
     if (!std::isfinite(fluctuation) || fluctuation < 0.0 || fluctuation > 1.0) {
         throw std::invalid_argument(fmt::format(
-            "fluctuation F = {} breaks eq. (6) F |N| <= 1 (max |N| = 1): need 0 <= F <= 1",
+            "fluctuation must be in [0, 1] (eq. (6): F |N| <= 1 with max |N| = 1), got {}",
             fluctuation));
     }
     if (!std::isfinite(timeUnitSeconds) || timeUnitSeconds <= 0.0) {

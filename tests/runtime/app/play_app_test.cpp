@@ -183,13 +183,13 @@ TEST_F(PlayApp, BadInputGivesOneClearLineAndNonZeroExit) {
         {"rendr " + cachePath(), "unknown subcommand 'rendr'; did you mean 'render'?"},
         {"xyzzy", "unknown subcommand 'xyzzy'; the subcommands are "},
         {"bench " + cachePath() + " --mode tsunami", "--mode"},
-        {"bench " + cachePath() + " --mode ripple --angles 0 30 --weights 1", "ripple.weights"},
-        {"bench " + cachePath() + " --mode whirlpool --spiral-b 25", "whirlpool.growth"},
+        {"bench " + cachePath() + " --mode ripple --angles 0 30 --weights 1", "--weights"},
+        {"bench " + cachePath() + " --mode whirlpool --spiral-b 25", "--spiral-b must be in (0, 2] per radian, got 25"},
         {"bench " + cachePath() + " --no-such-option", "no-such-option"},
         {"bench", "CACHE"},
         {"bench " + (s_dir / "missing.swell").string(), "missing.swell"},
         {"bench " + cachePath() + " --res 64by64", "--res"},
-        {"bench " + cachePath() + " -F 1.5", "eq. (6)"},
+        {"bench " + cachePath() + " -F 1.5", "-F/--fluctuation must be in [0, 1]"},
         {"heights " + cachePath() + " --out " + (s_dir / "x").string() + " --policy bounce",
          "policy"},
         {"bench " + cachePath() + " --memory-budget 0", "--memory-budget"},
@@ -354,7 +354,7 @@ TEST_F(PlayApp, ASteadyWindowShorterThanTheSliceSpreadIsOneClearLine) {
     // 2 F x time unit = 2.4 s.
     const fs::path c = recordedCache(s_dir, "short.swell", 2.0);
     const Result r = run("bench " + c.string() + " --res 32x8 --frames 3 --preset paper");
-    EXPECT_EQ(r.code, 1);
+    EXPECT_EQ(r.code, 2); // parameters the cache cannot serve: a bad value
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
     EXPECT_NE(r.err.find("short.swell"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("shorter than the slice spread"), std::string::npos) << r.err;

@@ -85,7 +85,7 @@ static void test_bad_parameters(const swell_cache* cache) {
     EXPECT(r == NULL);
     swell_replay_config_default(&c);
     c.fluctuation = 1.5;
-    EXPECT_ERROR(swell_replay_create(cache, &c, &r), SWELL_ERROR_INVALID_ARGUMENT, "F = 1.5");
+    EXPECT_ERROR(swell_replay_create(cache, &c, &r), SWELL_ERROR_INVALID_ARGUMENT, "fluctuation must be in [0, 1]");
     swell_replay_config_default(&c);
     c.cells_x = 32; /* cells_z left at 0 */
     EXPECT_ERROR(swell_replay_create(cache, &c, &r), SWELL_ERROR_INVALID_ARGUMENT, "cells_z");

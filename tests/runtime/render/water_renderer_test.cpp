@@ -170,6 +170,21 @@ TEST_F(WaterRendering, DrawingInTwoPartsGivesTheSamePictureAsOne) {
     EXPECT_EQ(r.lastSplashCount(), 0u);
 }
 
+TEST_F(WaterRendering, AMeshWrittenInSeveralDispatchesGivesTheSamePicture) {
+    // A mesh whose vertex buffer exceeds one shader-storage block (llvmpipe: 128 MB, 1672 x
+    // 1672 cells) is written a block of rows at a time; forced here at 7 and 1 row(s) of the
+    // test grid, every pixel must be the one-dispatch picture's.
+    Scene whole(160, 90, 1);
+    const Image one = whole.render(fixedSplashes());
+    for (const int rows : {7, 1}) {
+        Scene split(160, 90, 1);
+        split.shading.vertexRowsPerDispatch = rows;
+        EXPECT_EQ(compareImages(split.render(fixedSplashes()), one).maxAbs, 0) << rows;
+    }
+    // The split is real: a pass that wrote only its first block would leave the rest unset.
+    EXPECT_GT(testGrid().cellsZ, 7);
+}
+
 TEST_F(WaterRendering, MultisamplingSmoothsButDoesNotChangeThePicture) {
     Scene one(160, 90, 1), four(160, 90, 4);
     const Image a = one.render({});
@@ -279,6 +294,9 @@ TEST_F(WaterRendering, BadParametersThrow) {
     EXPECT_THROW(WaterRenderer(grid, kDomain, s, faces, sunDirection(sky)), std::invalid_argument);
     s = ShadingParams{};
     s.samples = 0;
+    EXPECT_THROW(WaterRenderer(grid, kDomain, s, faces, sunDirection(sky)), std::invalid_argument);
+    s = ShadingParams{};
+    s.vertexRowsPerDispatch = -1;
     EXPECT_THROW(WaterRenderer(grid, kDomain, s, faces, sunDirection(sky)), std::invalid_argument);
     s = ShadingParams{};
     s.refractiveIndex = 0.5;

@@ -8,10 +8,10 @@ namespace swell::bake {
 /// A scene file or scene value that cannot be used. The message names the key
 /// (e.g. "solver.dt") and what is wrong with it; an error about the whole file (no key) is
 /// the problem alone, which names the file.
-class SceneError : public std::runtime_error {
+class SceneError : public std::invalid_argument {
 public:
     SceneError(std::string key, const std::string& problem)
-        : std::runtime_error(key.empty() ? problem : "scene key '" + key + "': " + problem),
+        : std::invalid_argument(key.empty() ? problem : "scene key '" + key + "': " + problem),
           m_key(std::move(key)) {}
     /// The dotted key path the error is about ("" for the whole file).
     const std::string& key() const { return m_key; }

@@ -50,6 +50,9 @@ struct ShadingParams {
     /// Cube-map mip level of the reflections (fixed: no derivatives, fast on llvmpipe).
     double reflectionLod = 1.0;
     FloorParams floor; ///< the floor around and under the block
+    /// Most mesh rows the vertex pass writes per dispatch (0: as many as one shader-storage
+    /// block of the driver holds); a mesh beyond one block is written in several.
+    int vertexRowsPerDispatch = 0;
 
     /// Throws std::invalid_argument naming the field.
     void validate() const;
@@ -98,6 +101,8 @@ public:
 private:
     /// The mesh's index and vertex buffers, the splash buffer and their vertex arrays.
     void createMeshBuffers();
+    /// Runs surface_vertices.comp over the mesh, m_rowsPerDispatch rows at a time.
+    void writeVertices();
     /// The offscreen framebuffers (multisampled, resolved, background); throws RuntimeError
     /// when one is incomplete.
     void createFramebuffers();
@@ -153,6 +158,7 @@ private:
     GlName m_renderbuffers[3] = {0, 0, 0}; // multisampled colour, depth; resolved colour
     GlQuery m_queries[5];
     std::size_t m_indexCount = 0;
+    int m_rowsPerDispatch = 1; // mesh rows surface_vertices.comp writes per dispatch
 };
 
 } // namespace swell::runtime
