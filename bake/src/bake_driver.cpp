@@ -641,6 +641,15 @@ BakeSummary runBake(const Scene& scene, const BakeOptions& opt) {
     }
     const long every =
         opt.checkpointEvery > 0 ? opt.checkpointEvery : (resumed ? resumed->checkpointEvery : 0);
+    // A fresh bake that takes checkpoints would replace the one there, and a failure of the
+    // fresh bake would then lose it: refused before anything is written.
+    if (!resumed && every > 0 && std::filesystem::exists(ckptPath)) {
+        throw CheckpointError(fmt::format(
+            "{}: a checkpoint of an earlier bake is there, and a fresh bake with "
+            "--checkpoint-every would replace it: continue it with --resume, or remove the file "
+            "to start afresh",
+            ckptPath.string()));
+    }
 
     cache::Writer writer(opt.output, header);
     ProbeFile probes(opt.probes, scene.output.gauges);

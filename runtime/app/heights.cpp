@@ -61,7 +61,8 @@ public:
         // frames, each with only its own frames decoded and uploaded: the same heights.
         const std::vector<SliceSampler> samplers = samplersOf(m_o, reader, plan);
         const std::vector<Chunk> chunks = streamChunks(m_o, reader, plan, samplers, taus);
-        std::filesystem::create_directories(m_outDir);
+        NewFolders folders; // removed again if the run fails
+        folders.make(m_outDir);
         const EglContext context;
         std::optional<HeightSequence> sequence;
         json params;
@@ -94,6 +95,7 @@ public:
         std::filesystem::remove(metaPath); // the old sidecar first: the folder is not whole
         staged.commit();                   // until the new one, renamed last
         staged.removeStaleSequenceFiles(); // no frames of an earlier, longer run
+        folders.keep();
         if (m_o.json) {
             std::cout << json{{"out", m_outDir},
                               {"format", heightFormatName(m_sequence.format)},

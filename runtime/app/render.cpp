@@ -517,12 +517,13 @@ public:
         checkDiskSpace(m_r.outDir, static_cast<double>(taus.size()) * frameBytes, taus.size());
         const ReplaySetup setup = prepareReplay(m_o, reader, taus);
         const fs::path out(m_r.outDir);
-        fs::create_directories(out);
+        NewFolders folders; // removed again if the render fails
+        folders.make(out);
         for (const auto& [on, folder] :
              {std::pair{m_r.exportHeights, "heights"}, std::pair{m_r.exportMesh, "mesh"},
               std::pair{m_r.exportSplashes, "splashes"}}) {
             if (on)
-                fs::create_directories(out / folder);
+                folders.make(out / folder);
         }
         const EglContext context;
         RenderRun run(m_o, m_r, setup, context);
@@ -532,6 +533,7 @@ public:
         run.renderAll(taus, staged);
         json meta = run.writeRecords(); // still staged: replaces the old records with the rest
         run.commit(staged);
+        folders.keep();
         if (m_o.json) {
             meta.erase("frames");
             meta["out"] = m_r.outDir;

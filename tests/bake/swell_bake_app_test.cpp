@@ -122,7 +122,7 @@ TEST_F(SwellBakeApp, BadInputGivesOneLineAndNonZeroExit) {
     for (const Case& c : cases) {
         SCOPED_TRACE(c.args);
         const Result r = bake(c.args);
-        EXPECT_NE(r.code, 0);
+        EXPECT_EQ(r.code, 2); // README "Exit statuses": a bad command line or scene
         EXPECT_EQ(errorLines(r.err), 1) << r.err;
         EXPECT_NE(r.err.find(c.expect), std::string::npos) << r.err;
         EXPECT_TRUE(r.out.empty());
@@ -294,6 +294,22 @@ TEST_F(SwellBakeApp, ResumeErrorsGiveOneLineAndExitCode5) {
     EXPECT_EQ(errorLines(r.err), 1) << r.err;
     EXPECT_NE(r.err.find(ckpt.string() + ": damaged checkpoint"), std::string::npos) << r.err;
     EXPECT_FALSE(fs::exists(out));
+
+    // A fresh bake that would take checkpoints over the one there (another bake's, which it
+    // could then lose) is refused before it writes anything; the checkpoint stays byte for
+    // byte. Without --checkpoint-every it bakes and leaves the checkpoint alone.
+    const std::string before = slurp(ckpt);
+    r = bake(base + " --checkpoint-every 50");
+    EXPECT_EQ(r.code, 5);
+    EXPECT_EQ(errorLines(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find(ckpt.string() + ": a checkpoint of an earlier bake is there"),
+              std::string::npos)
+        << r.err;
+    EXPECT_FALSE(fs::exists(out));
+    EXPECT_EQ(slurp(ckpt), before);
+    r = bake(base + " -q");
+    EXPECT_EQ(r.code, 0) << r.err;
+    EXPECT_EQ(slurp(ckpt), before);
 }
 
 // Two writers of one output: while a swell-bake holds the output (its temporary cache exists),
@@ -327,7 +343,8 @@ TEST_F(SwellBakeApp, SecondWriterOfAnOutputIsRefusedNamingTheFirst) {
 // A full disk or an I/O error (SWELL_FAULT_INJECT, checked_write.h) at each write site of a
 // bake: the cache, the checkpoint and the probes CSV. Each run stops with one line naming the
 // file and the reason and a non-zero exit; the previous good cache, checkpoint and probes are
-// byte for byte what they were; no temporary is left.
+// byte for byte what they were; no temporary is left. (A fresh bake that takes checkpoints
+// runs only where no checkpoint is: at the checkpoint site none is there, and none is left.)
 TEST_F(SwellBakeApp, FullDiskOrIoErrorAtEachWriteSiteKeepsThePreviousFiles) {
     const std::string scene = (kScenes / "surging_small.json").string();
     const fs::path out = m_dir / "s.swell", ckpt = m_dir / "s.swell.ckpt", probes = m_dir / "s.csv";
@@ -355,6 +372,9 @@ TEST_F(SwellBakeApp, FullDiskOrIoErrorAtEachWriteSiteKeepsThePreviousFiles) {
                 const std::string env = std::string("SWELL_FAULT_INJECT=") + kind +
                                         ":after=" + after + ":match=" + s.match;
                 // A shorter bake than the first: a cache or probes it wrote would differ.
+                const bool checkpoints = *s.extra != '\0';
+                if (checkpoints)
+                    fs::remove(ckpt);
                 const Result r = swell::test::runApp(SWELL_BAKE_EXE,
                                                      args + " --set solver.end_time=0.3" + s.extra,
                                                      env, m_io.path());
@@ -367,6 +387,10 @@ TEST_F(SwellBakeApp, FullDiskOrIoErrorAtEachWriteSiteKeepsThePreviousFiles) {
                     << r.err;
                 EXPECT_TRUE(slurp(out) == cache0) << "the previous cache changed";
                 EXPECT_TRUE(slurp(probes) == probes0) << "the previous probes changed";
+                if (checkpoints) {
+                    EXPECT_FALSE(fs::exists(ckpt)) << "a checkpoint that could not be written";
+                    std::ofstream(ckpt, std::ios::binary) << ckpt0;
+                }
                 EXPECT_TRUE(slurp(ckpt) == ckpt0) << "the previous checkpoint changed";
                 for (const auto& e : fs::directory_iterator(m_dir))
                     EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos)

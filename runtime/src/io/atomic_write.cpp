@@ -32,6 +32,32 @@ DeferredRenames::~DeferredRenames() {
     }
 }
 
+NewFolders::~NewFolders() {
+    for (auto it = m_made.rbegin(); it != m_made.rend(); ++it) {
+        std::error_code ec;
+        if (std::filesystem::is_empty(*it, ec) && !ec)
+            std::filesystem::remove(*it, ec);
+    }
+}
+
+void NewFolders::make(const std::filesystem::path& folder) {
+    namespace fs = std::filesystem;
+    std::vector<fs::path> missing;
+    std::error_code ec;
+    for (fs::path p = folder; !p.empty() && !fs::exists(p, ec); p = p.parent_path()) {
+        missing.push_back(p);
+        if (p == p.parent_path())
+            break;
+    }
+    for (auto it = missing.rbegin(); it != missing.rend(); ++it) {
+        if (!fs::create_directory(*it, ec) && ec) {
+            throw RuntimeError(
+                fmt::format("cannot create the folder {}: {}", it->string(), ec.message()));
+        }
+        m_made.push_back(*it);
+    }
+}
+
 void DeferredRenames::commit() {
     if (t_deferred == this)
         t_deferred = nullptr;

@@ -303,16 +303,19 @@ TEST_F(RenderApp, BadInputGivesOneClearLineAndNonZeroExit) {
     const std::string rest = " --seconds 0.05 --size 32x32";
     const std::pair<std::string, std::string> cases[] = {
         {"render " + cache() + out + " --seconds 0.05 --size 160by90", "--size"},
-        {"render " + cache() + out + " --seconds 0.05 --size 8x8", "--size must be within 16..8192 pixels, got 8x8"},
+        {"render " + cache() + out + " --seconds 0.05 --size 8x8",
+         "--size must be within 16..8192 pixels, got 8x8"},
         {"render " + cache() + out + " --seconds 0 --size 32x32", "--seconds"},
         {"render " + cache() + out + rest + " --fov 0", "--fov must be in (0, 180) degrees, got 0"},
         {"render " + cache() + out + rest + " --export heights,pictures", "pictures"},
         {"render " + cache() + out + rest + " --heights-format tiff",
          "png16, exr-half or exr-float"},
-        {"render " + cache() + out + rest + " --splash-count -2", "--splash-count must be in [0, 1000], got -2"},
+        {"render " + cache() + out + rest + " --splash-count -2",
+         "--splash-count must be in [0, 1000], got -2"},
         {"render " + cache() + out + rest + " --video clip.avi", ".mp4"},
         {"render " + cache() + out + rest + " --camera 1 2 3", "--target"},
-        {"render " + cache() + out + rest + " --camera 1 2 3 --target 1 2 3", "--camera/--target coincide"},
+        {"render " + cache() + out + rest + " --camera 1 2 3 --target 1 2 3",
+         "--camera/--target coincide"},
         {"render " + cache() + out + rest + " --sky " + (s_dir / "nosky").string(), "px.png"},
         {"render " + (s_dir / "missing.swell").string() + out + rest, "missing.swell"},
         {"render " + cache() + rest, "--out"},
@@ -323,6 +326,8 @@ TEST_F(RenderApp, BadInputGivesOneClearLineAndNonZeroExit) {
         EXPECT_NE(r.err.find("swell-play: "), std::string::npos) << args << ": " << r.err;
         EXPECT_NE(r.err.find(needle), std::string::npos) << args << ": " << r.err;
         EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+        // A failed render leaves no output folder it made (some cases fail after making it).
+        EXPECT_FALSE(fs::exists(s_dir / "bad")) << args;
     }
 }
 

@@ -42,6 +42,24 @@ private:
     bool m_active = true;
 };
 
+/// The output folders of a run, made when missing: a run that fails before keep() (the
+/// destructor without it) removes those it made, once they are empty again, so a failed run
+/// leaves no empty output folder behind. Folders that were there stay, whatever happens.
+class NewFolders {
+public:
+    NewFolders() = default;
+    NewFolders(const NewFolders&) = delete;
+    NewFolders& operator=(const NewFolders&) = delete;
+    ~NewFolders();
+    /// Creates `folder` and its missing parents. Throws RuntimeError naming it on failure.
+    void make(const std::filesystem::path& folder);
+    /// The run succeeded: its folders stay.
+    void keep() { m_made.clear(); }
+
+private:
+    std::vector<std::filesystem::path> m_made; // in the order made, parents first
+};
+
 /// Calls `write(temporary)` with `<path>.tmp-<pid>` and renames it onto `path` (at once, or
 /// at DeferredRenames::commit() while one is active on this thread). Whatever
 /// `write` throws propagates after the temporary is removed; a failed rename throws
