@@ -156,13 +156,31 @@ std::vector<SolidRegion> solidRegionsOf(const GeometryParams& g, int layers) {
         solidRegions.push_back({Box{t.x1, t.y0, t.x1 + L, t.y1}, "geometry.tank (front wall)"});
     }
     checkBed(g);
+    if (g.solids.size() > kMaxSolids) {
+        throw SceneError("geometry.solids",
+                         fmt::format("{} blocks, more than the {} a scene may have: join blocks "
+                                     "that touch into larger ones",
+                                     g.solids.size(), kMaxSolids));
+    }
     for (std::size_t s = 0; s < g.solids.size(); ++s) {
         const std::string key = fmt::format("geometry.solids[{}]", s);
-        checkBox(g.solids[s], key);
-        if (cellsIn(g.solids[s].width(), l0) < 1 || cellsIn(g.solids[s].height(), l0) < 1) {
+        const Box& b = g.solids[s];
+        checkBox(b, key);
+        if (cellsIn(b.width(), l0) < 1 || cellsIn(b.height(), l0) < 1) {
             throw SceneError(key, "solid block is thinner than one particle spacing");
         }
-        solidRegions.push_back({g.solids[s], key});
+        // Each block lays its own wall particles: two that overlap would stack particles on
+        // one another (a clump the solver refuses at its first step).
+        for (std::size_t o = 0; o < s; ++o) {
+            const Box& c = g.solids[o];
+            if (std::min(b.x1, c.x1) - std::max(b.x0, c.x0) > 1e-9 &&
+                std::min(b.y1, c.y1) - std::max(b.y0, c.y0) > 1e-9) {
+                throw SceneError(key, fmt::format("overlaps geometry.solids[{}]: solid blocks "
+                                                  "may touch, not overlap",
+                                                  o));
+            }
+        }
+        solidRegions.push_back({b, key});
     }
     return solidRegions;
 }

@@ -69,6 +69,10 @@ Frame decodeFrame(const fs::path& path, const Header& h, const FrameInfo& e, std
     if (stated != e.rawSize)
         throw fail("zstd content size disagrees with the index (" + std::to_string(e.rawSize) +
                    " bytes expected)");
+    const std::size_t frameSize = ZSTD_findFrameCompressedSize(compressed, e.compressedSize);
+    if (ZSTD_isError(frameSize) || frameSize != e.compressedSize)
+        throw fail("the record is not one zstd frame of the index's " +
+                   std::to_string(e.compressedSize) + " bytes");
     buf.resize(e.rawSize);
     const std::size_t n =
         ZSTD_decompressDCtx(dctx, buf.data(), buf.size(), compressed, e.compressedSize);
@@ -170,8 +174,11 @@ Header decodeHeader(const std::vector<std::uint8_t>& head, const Failure& fail) 
                           head.size() - kFixedHeaderSize);
     if (const std::string deep = jsonDepthProblem(h.metadataJson); !deep.empty())
         throw fail("header metadata " + deep);
-    if (!nlohmann::json::accept(h.metadataJson))
+    const nlohmann::json meta = nlohmann::json::parse(h.metadataJson, nullptr, false);
+    if (meta.is_discarded())
         throw fail("header metadata is not valid JSON");
+    if (!meta.is_object())
+        throw fail("header metadata is not a JSON object");
     return h;
 }
 

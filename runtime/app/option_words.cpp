@@ -11,6 +11,10 @@ namespace {
 /// names before the shorter names they begin with.
 constexpr std::pair<std::string_view, std::string_view> kOptionOf[] = {
     {"cells_x x cells_z", "--res"},
+    {"policy", "--policy"},
+    {"reconstruction", "--reconstruction"},
+    {"time_sampling", "--time-sampling"},
+    {"noise.filter", "--filter"},
     {"slices", "--slices"},
     {"fluctuation", "-F/--fluctuation"},
     {"time_unit_seconds", "--time-unit"},

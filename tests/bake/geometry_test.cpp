@@ -162,6 +162,28 @@ TEST(Geometry, MoreThanTheParticleLimitIsRefusedBeforeAnyIsMade) {
     EXPECT_EQ(sceneErrorKey([&] { (void)generateGeometry(g); }), "geometry.particle_spacing");
 }
 
+TEST(Geometry, OverlappingOrTooManySolidBlocksAreRefusedAtOnce) {
+    GeometryParams g = tankWithColumn();
+    g.tank.reset();
+    // Touching blocks are one step of two; overlapping ones would stack their wall particles.
+    g.solids = {Box{1.0, 0.0, 1.2, 0.2}, Box{1.2, 0.0, 1.4, 0.1}};
+    EXPECT_NO_THROW((void)generateGeometry(g));
+    g.solids.push_back(Box{1.1, 0.05, 1.3, 0.15});
+    try {
+        (void)generateGeometry(g);
+        ADD_FAILURE() << "overlapping solids accepted";
+    } catch (const SceneError& e) {
+        EXPECT_EQ(e.key(), "geometry.solids[2]");
+        EXPECT_NE(std::string(e.what()).find("overlaps geometry.solids[0]"), std::string::npos)
+            << e.what();
+    }
+    // 50,000 copies of one block: refused by their number before any pair is compared.
+    g.solids.assign(50'000, Box{1.0, 0.0, 1.2, 0.2});
+    EXPECT_EQ(sceneErrorKey([&] { (void)generateGeometry(g); }), "geometry.solids");
+    g.solids.resize(kMaxSolids); // at the limit: the first pair that overlaps
+    EXPECT_EQ(sceneErrorKey([&] { (void)generateGeometry(g); }), "geometry.solids[1]");
+}
+
 TEST(Geometry, HollowSolidHoldsOnlyItsWallAndDummyRing) {
     GeometryParams g = tankWithColumn();
     g.tank.reset();

@@ -166,6 +166,64 @@ TEST_F(Damage, FrameChecksumMismatch) {
     }
 }
 
+TEST_F(Damage, MetadataThatIsNotAnObject) {
+    // docs/cache-format.md: the metadata is a JSON object; valid JSON of another kind is refused.
+    for (const char* text : {"[1, 2]", "\"text\"", "3"}) {
+        const auto w = smallWave(12, 2);
+        Header h = headerFor(w);
+        h.metadataJson = text;
+        (void)writeSynthetic(m_bad, h, w, 1);
+        const std::string msg = tryRead(m_bad);
+        EXPECT_NE(msg.find("header metadata is not a JSON object"), std::string::npos)
+            << text << ": " << msg;
+    }
+}
+
+TEST_F(Damage, ARecordOfMoreThanOneZstdFrame) {
+    // An empty zstd frame appended to frame 2's record (the last before the index), with the
+    // index's compressed size and every checksum made to agree: a record is one zstd frame.
+    static const std::uint8_t kEmptyFrame[] = {0x28, 0xb5, 0x2f, 0xfd, 0x20,
+                                               0x00, 0x01, 0x00, 0x00};
+    auto b = m_good;
+    const std::size_t indexAt = peek<std::uint64_t>(b, kOffIndexOffset);
+    b.insert(b.begin() + static_cast<std::ptrdiff_t>(indexAt), std::begin(kEmptyFrame),
+             std::end(kEmptyFrame));
+    poke<std::uint64_t>(b, kOffIndexOffset, indexAt + sizeof kEmptyFrame);
+    const auto e = entryOffset(b, 2);
+    poke<std::uint64_t>(b, e + 8, peek<std::uint64_t>(b, e + 8) + sizeof kEmptyFrame);
+    resealIndex(b);
+    resealHeader(b);
+    expectError(b, {"frame 2", "not one zstd frame"});
+}
+
+TEST_F(Damage, HugeFramesFromAFewBytesAreRefusedWhenOpened) {
+    // A frame stating far more raw bytes than its compressed size could hold as particle data
+    // (1 MiB + 1024 x the compressed size) is damage, refused before decoding; the writer
+    // refuses to write one (a frame of zeros compresses some 30,000 times).
+    const auto w = smallWave(12, 2);
+    Writer writer(m_dir / "zeros.swell", headerFor(w));
+    Frame zeros;
+    zeros.surface.assign(2 * 300'000, 0.0f);
+    try {
+        writer.addFrame(zeros);
+        ADD_FAILURE() << "the writer wrote a frame of zeros";
+    } catch (const CacheError& e) {
+        EXPECT_NE(std::string(e.what()).find("beyond the format's bound"), std::string::npos)
+            << e.what();
+    }
+    // The reader: frame 0 of the good file, its stated raw size (and counts) raised so that the
+    // raw size passes every other check.
+    auto b = m_good;
+    const auto ent = entryOffset(b, 0);
+    const auto compressed = peek<std::uint64_t>(b, ent + 8);
+    const std::uint64_t ns = ((1u << 20) + 1024 * compressed) / 8 + 1;
+    poke<std::uint32_t>(b, ent + 24, static_cast<std::uint32_t>(ns));
+    poke<std::uint32_t>(b, ent + 28, 0u);
+    poke<std::uint64_t>(b, ent + 16, 8 * ns);
+    resealIndex(b);
+    expectError(b, {"frame 0: raw size", "beyond the format's bound of 1 MiB + 1024 x"});
+}
+
 TEST_F(Damage, DecompressionBomb) {
     // Consistent counts and raw size, but 4 GiB per frame: refused before allocating.
     auto b = m_good;

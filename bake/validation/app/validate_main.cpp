@@ -16,9 +16,9 @@
 #include <omp.h>
 
 #include "case_reports.h"
-#include "exit_codes.h"
 #include "ensemble.h"
 #include "ensemble_figures.h"
+#include "exit_codes.h"
 #include "report_files.h"
 #include "validate_cli.h"
 

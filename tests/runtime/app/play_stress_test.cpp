@@ -86,7 +86,8 @@ protected:
 TEST_F(PlayStress, FluctuationAtItsBoundWorksAndBeyondItIsRefused) {
     expectGood("wave.swell", "--res 32x32 --slices 16 -F 1");
     expectGood("wave.swell", "--res 32x32 --slices 16 -F 0");
-    expectClearError("wave.swell", "--res 32x32 --slices 16 -F 1.0001", "-F/--fluctuation must be in [0, 1] (eq. (6)");
+    expectClearError("wave.swell", "--res 32x32 --slices 16 -F 1.0001",
+                     "-F/--fluctuation must be in [0, 1] (eq. (6)");
 }
 
 TEST_F(PlayStress, NoiseExponentZeroAndFour) {
@@ -95,7 +96,8 @@ TEST_F(PlayStress, NoiseExponentZeroAndFour) {
 }
 
 TEST_F(PlayStress, SliceCountOneIsRefusedAndFourThousandNinetySixWorks) {
-    expectClearError("wave.swell", "--res 16x16 --slices 1", "--slices must be in [2, 16384], got 1");
+    expectClearError("wave.swell", "--res 16x16 --slices 1",
+                     "--slices must be in [2, 16384], got 1");
     expectGood("wave.swell", "--res 16x16 --slices 4096");
     expectGood("wave.swell", "--res 16x16 --slices 2");
 }

@@ -78,6 +78,8 @@ double bedHeight(const GeometryParams& g, double x);
 /// 40 times the largest shipped scene. A scene past it is refused before any particle is made,
 /// naming geometry.particle_spacing and the count, instead of allocating without bound.
 inline constexpr std::size_t kMaxParticles = 4'000'000;
+/// Most solid blocks (geometry.solids) a scene may have.
+inline constexpr std::size_t kMaxSolids = 10'000;
 
 /// Largest domain, in particle spacings squared (the solver's neighbour grid holds at most 5e7
 /// cells of at least one spacing): a geometry whose domain is larger is refused.
