@@ -34,6 +34,16 @@ open(sys.argv[2], "wb").write(b)
 PY
 if out=$("$bin/swell-cache" verify "$dir/narrow.swell" 2>&1); then fail "verify accepted positions outside the domain"; fi
 grep -q "is outside the header's domain x .* \.\. 1, y" <<<"$out" || fail "verify domain message: $out"
+# A synthetic cache larger than the disk is refused at once (exit 2), naming OUT and what fits.
+rc=0
+out=$("$bin/swell-cache" synth "$dir/huge.swell" --frames 1000000 --surface 10000000 2>&1) || rc=$?
+[[ $rc -eq 2 ]] || fail "synth beyond the disk: exit $rc: $out"
+grep -q "GB free: about .* frames fit" <<<"$out" || fail "synth beyond the disk message: $out"
+[[ ! -e "$dir/huge.swell" ]] || fail "synth beyond the disk left a file"
+# A damaged cache exits 4 (README "Exit statuses").
+rc=0
+"$bin/swell-cache" verify "$dir/narrow.swell" > /dev/null 2>&1 || rc=$?
+[[ $rc -eq 4 ]] || fail "verify of a damaged cache: exit $rc, not 4"
 # A negative frame is refused naming the option, not wrapped to 2^64 - 1.
 if out=$("$bin/swell-cache" dump "$dir/a.swell" --frame -1 2>&1); then fail "dump --frame -1 accepted"; fi
 grep -q -- "--frame" <<<"$out" || fail "dump --frame -1 message: $out"

@@ -179,7 +179,7 @@ TEST_F(PlayApp, HeightsBeyondTheMemoryBudgetStreamInChunksWithTheSameHeights) {
 }
 
 TEST_F(PlayApp, BadInputGivesOneClearLineAndNonZeroExit) {
-    const std::array<std::pair<std::string, std::string>, 13> cases = {{
+    const std::array<std::pair<std::string, std::string>, 15> cases = {{
         {"rendr " + cachePath(), "unknown subcommand 'rendr'; did you mean 'render'?"},
         {"xyzzy", "unknown subcommand 'xyzzy'; the subcommands are "},
         {"bench " + cachePath() + " --mode tsunami", "--mode"},
@@ -195,6 +195,13 @@ TEST_F(PlayApp, BadInputGivesOneClearLineAndNonZeroExit) {
          "policy"},
         {"bench " + cachePath() + " --memory-budget 0", "--memory-budget"},
         {"bench " + cachePath() + " --memory-budget 1e-6", "above the memory budget"},
+        // Sizes refused before any work: frames, and what they would take on the disk.
+        {"heights " + cachePath() + " --out " + (s_dir / "x").string() +
+             " --seconds 1e6 --fps 1000 --res 8x8",
+         "--seconds 1000000 x --fps 1000 asks for 1000000000 output frames; at most 1000000"},
+        {"heights " + cachePath() + " --out " + (s_dir / "x").string() +
+             " --seconds 33333 --fps 30 --res 8192x8192 --window all",
+         "GB free: about "},
     }};
     for (const auto& [args, needle] : cases) {
         const Result r = run(args);
@@ -203,6 +210,7 @@ TEST_F(PlayApp, BadInputGivesOneClearLineAndNonZeroExit) {
         EXPECT_NE(r.err.find(needle), std::string::npos) << r.err;
         EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
     }
+    EXPECT_FALSE(fs::exists(s_dir / "x")); // no output folder left by a refused run
     EXPECT_EQ(run("--help").code, 0);
 }
 

@@ -306,6 +306,7 @@ TEST_F(RenderApp, BadInputGivesOneClearLineAndNonZeroExit) {
         {"render " + cache() + out + " --seconds 0.05 --size 8x8",
          "--size must be within 16..8192 pixels, got 8x8"},
         {"render " + cache() + out + " --seconds 0 --size 32x32", "--seconds"},
+        {"render " + cache() + out + " --seconds 1e9 --size 32x32", "at most 1000000 fit"},
         {"render " + cache() + out + rest + " --fov 0", "--fov must be in (0, 180) degrees, got 0"},
         {"render " + cache() + out + rest + " --export heights,pictures", "pictures"},
         {"render " + cache() + out + rest + " --heights-format tiff",
