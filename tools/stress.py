@@ -181,7 +181,7 @@ def run_replay(case, timeout, log):
 # ---------------------------------------------------------------- fuzz
 FUZZ_BUILD = os.path.join(bl.ROOT, "build-fuzz")
 FUZZ_SRC = os.path.join(bl.ROOT, "tests", "fuzz")
-FUZZ_TARGETS = ["scene", "checkpoint", "options"]
+FUZZ_TARGETS = ["scene", "checkpoint", "metadata", "options"]
 FUZZ_STATE = os.path.join(OUT, "fuzz.json")
 
 

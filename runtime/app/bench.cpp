@@ -74,9 +74,8 @@ ReferenceCheck checkAgainstReference(ModeReplay& gpu, const CpuModeReference& cp
 class BenchCommand : public Command {
 public:
     CLI::App* add(CLI::App& app) override {
-        CLI::App* cmd = app.add_subcommand(
-            "bench", "time the GPU replay and check it against the CPU reference");
-        addCommon(cmd, m_o);
+        CLI::App* cmd = addSubcommand(
+            app, "bench", "time the GPU replay and check it against the CPU reference", m_o);
         cmd->add_option("--frames", m_frames, "timed frames")
             ->capture_default_str()
             ->check(CLI::Range(1, 10000000));

@@ -84,10 +84,11 @@ struct F0Result {
 class FidelityCommand : public Command {
 public:
     CLI::App* add(CLI::App& app) override {
-        CLI::App* cmd = app.add_subcommand(
-            "fidelity", "measure the replay against the simulated surface (F = 0 and F > 0) and "
-                        "the continuity of a long replay");
-        addCommon(cmd, m_o);
+        CLI::App* cmd =
+            addSubcommand(app, "fidelity",
+                          "measure the replay against the simulated surface (F = 0 and F > 0) and "
+                          "the continuity of a long replay",
+                          m_o);
         cmd->add_option("--frames", m_frames,
                         "F = 0 part: window frames measured, evenly spread (0: every one)")
             ->capture_default_str()

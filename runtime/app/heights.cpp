@@ -23,10 +23,11 @@ using namespace swell::runtime;
 class HeightsCommand : public Command {
 public:
     CLI::App* add(CLI::App& app) override {
-        CLI::App* cmd = app.add_subcommand(
-            "heights", "write height fields (16-bit PNG or OpenEXR; normal maps, Blender "
-                       "displacement) + JSON");
-        addCommon(cmd, m_o);
+        CLI::App* cmd =
+            addSubcommand(app, "heights",
+                          "write height fields (16-bit PNG or OpenEXR; normal maps, Blender "
+                          "displacement) + JSON",
+                          m_o);
         cmd->add_option("--out", m_outDir, "output folder")->required();
         cmd->add_option("--seconds", m_seconds, "simulated seconds to write")
             ->capture_default_str();

@@ -75,11 +75,12 @@ std::vector<HeightField> replayFields(const Options& o, const cache::Reader& rea
 class LookCommand : public Command {
 public:
     CLI::App* add(CLI::App& app) override {
-        CLI::App* cmd = app.add_subcommand(
-            "look", "picture check: slope ratios, needle cells, seed and frame-to-frame "
-                    "change, the whirlpool's eye, the ripple's creases and sprite lines, each "
-                    "beside its target");
-        addCommon(cmd, m_o);
+        CLI::App* cmd = addSubcommand(
+            app, "look",
+            "picture check: slope ratios, needle cells, seed and frame-to-frame "
+            "change, the whirlpool's eye, the ripple's creases and sprite lines, each "
+            "beside its target",
+            m_o);
         cmd->add_option("--seconds", m_seconds, "simulated seconds to measure")
             ->capture_default_str();
         return cmd;

@@ -132,6 +132,13 @@ void addCommon(CLI::App* cmd, Options& o) {
     cmd->add_flag("--json", o.json, "print one JSON object on stdout");
 }
 
+CLI::App* addSubcommand(CLI::App& app, const std::string& name, const std::string& description,
+                        Options& o) {
+    CLI::App* cmd = app.add_subcommand(name, description);
+    addCommon(cmd, o);
+    return cmd;
+}
+
 /// Resolves the string options into o.params and validates everything.
 void finishOptions(Options& o) {
     int n = 0, m = 0;

@@ -65,6 +65,9 @@ struct Options {
 };
 
 void addCommon(CLI::App* cmd, Options& o);
+/// Adds subcommand `name` to `app` with the options every subcommand shares (addCommon).
+CLI::App* addSubcommand(CLI::App& app, const std::string& name, const std::string& description,
+                        Options& o);
 /// The height-map format option `name` (heights --format, render --heights-format): one of
 /// runtime::kHeightFormatNames, parsed by runtime::parseHeightFormat when the command runs.
 void addHeightFormatOption(CLI::App* cmd, std::string& value, const std::string& name);

@@ -492,9 +492,9 @@ private:
 class RenderCommand : public Command {
 public:
     CLI::App* add(CLI::App& app) override {
-        CLI::App* cmd = app.add_subcommand(
-            "render", "shaded frames (PNG), contact sheet, optional mp4 and exports (Sec. 5)");
-        addCommon(cmd, m_o);
+        CLI::App* cmd = addSubcommand(
+            app, "render", "shaded frames (PNG), contact sheet, optional mp4 and exports (Sec. 5)",
+            m_o);
         addRenderOptions(cmd);
         return cmd;
     }

@@ -20,17 +20,15 @@
 using namespace swell::bake;
 using swell::test::expectRefused;
 using swell::test::Outcome;
-using swell::test::parse;
 
 namespace {
 
-Outcome bake(std::vector<std::string> a) {
-    a.insert(a.begin(), "swell-bake");
-    return parse<BakeCommandLine>(a, parseBakeCommandLine);
+Outcome bake(const std::vector<std::string>& a) {
+    return swell::test::parseAs<BakeCommandLine>("swell-bake", a, parseBakeCommandLine);
 }
-Outcome bench(std::vector<std::string> a) {
-    a.insert(a.begin(), "swell-mps-bench");
-    return parse<MpsBenchCommandLine>(a, parseMpsBenchCommandLine);
+Outcome bench(const std::vector<std::string>& a) {
+    return swell::test::parseAs<MpsBenchCommandLine>("swell-mps-bench", a,
+                                                     parseMpsBenchCommandLine);
 }
 
 } // namespace

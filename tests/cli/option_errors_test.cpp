@@ -19,50 +19,34 @@
 #include "play_cli.h"
 #include "validate_cli.h"
 
+#include "command_line_outcome.h"
+
 namespace {
 
-struct Outcome {
-    std::optional<int> rc;
-    std::string out, err;
-};
-
+using swell::test::Outcome;
 using Parse = std::function<Outcome(const std::vector<std::string>&)>;
 
 template <class Line, class F> Parse parser(F f) {
-    return [f](const std::vector<std::string>& args) {
-        std::vector<const char*> argv;
-        for (const std::string& a : args)
-            argv.push_back(a.c_str());
-        Line cl;
-        std::ostringstream out, err;
-        const auto rc = f(static_cast<int>(argv.size()), argv.data(), cl, out, err);
-        return Outcome{rc, out.str(), err.str()};
-    };
+    return [f](const std::vector<std::string>& args) { return swell::test::parse<Line>(args, f); };
 }
 
 Parse playParser() {
     return [](const std::vector<std::string>& args) {
-        std::vector<const char*> argv;
-        for (const std::string& a : args)
-            argv.push_back(a.c_str());
         swell::play::PlayCommandLine cl;
-        std::ostringstream out, err;
-        const auto rc = cl.parse(static_cast<int>(argv.size()), argv.data(), out, err);
-        return Outcome{rc, out.str(), err.str()};
+        return swell::test::run(args,
+                                [&](int argc, const char* const* argv, std::ostream& out,
+                                    std::ostream& err) { return cl.parse(argc, argv, out, err); });
     };
 }
 
 Parse cacheParser() {
     return [](const std::vector<std::string>& args) {
-        std::vector<const char*> argv;
-        for (const std::string& a : args)
-            argv.push_back(a.c_str());
         swell::cache::CacheOptions o;
         swell::cache::CacheCommand command{};
-        std::ostringstream out, err;
-        const auto rc = swell::cache::parseCacheCommandLine(static_cast<int>(argv.size()),
-                                                            argv.data(), o, command, out, err);
-        return Outcome{rc, out.str(), err.str()};
+        return swell::test::run(
+            args, [&](int argc, const char* const* argv, std::ostream& out, std::ostream& err) {
+                return swell::cache::parseCacheCommandLine(argc, argv, o, command, out, err);
+            });
     };
 }
 

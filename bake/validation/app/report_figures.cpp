@@ -22,6 +22,14 @@ void addRunCost(json& out, const GaugeRecords& r, std::size_t particles) {
     out["us_per_particle_step"] = usPerParticleStep(r.solverSeconds, r.steps, particles);
 }
 
+json waveReportHead(const Scene& scene, double depth, double height) {
+    return {{"scene", scene.name},
+            {"l0", scene.geometry.particleSpacing},
+            {"depth", depth},
+            {"height", height},
+            {"height_over_depth", height / depth}};
+}
+
 void addGaugeRun(nlohmann::json& out, const GaugeRecords& r, const std::vector<double>& gauges) {
     out["gauges"] = gauges;
     out["particles"] = r.particles;

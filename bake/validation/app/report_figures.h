@@ -6,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "swell/bake/scene.h"
 #include "swell/bake/solver_run.h"
 
 namespace swell::bake {
@@ -23,5 +24,8 @@ void addRunCost(nlohmann::json& out, const GaugeRecords& r, std::size_t particle
 /// What every wave check's report says of its run: the gauges' x (m), the particles, the water
 /// particles and the outcome.
 void addGaugeRun(nlohmann::json& out, const GaugeRecords& r, const std::vector<double>& gauges);
+
+/// The head of a wave's report: the scene, l0, the still depth, the wave height and their ratio.
+nlohmann::json waveReportHead(const Scene& scene, double depth, double height);
 
 } // namespace swell::bake

@@ -1,5 +1,7 @@
 #include "report_files.h"
 
+#include "report_figures.h"
+
 #include <cstring>
 #include <stdexcept>
 
@@ -39,6 +41,13 @@ void writeGaugeSeries(const std::filesystem::path& path, const GaugeRecords& r,
     for (double x : gauges)
         columns.push_back(fmt::format("{}_{}", prefix, x));
     writeGaugeSeries(path, r, columns);
+}
+
+void addGaugeRun(nlohmann::json& out, const GaugeRecords& r, const std::vector<double>& gauges,
+                 const std::string& csv, const std::string& prefix) {
+    addGaugeRun(out, r, gauges);
+    if (!csv.empty())
+        writeGaugeSeries(csv, r, prefix, gauges);
 }
 
 } // namespace swell::bake

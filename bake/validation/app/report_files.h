@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "swell/bake/solver_run.h"
 
 namespace swell::bake {
@@ -23,5 +25,10 @@ void writeGaugeSeries(const std::filesystem::path& path, const GaugeRecords& r,
 /// The same with one column per gauge at x (m), named PREFIX_x.
 void writeGaugeSeries(const std::filesystem::path& path, const GaugeRecords& r,
                       const std::string& prefix, std::span<const double> gauges);
+
+/// What a wave check's report says of its run (addGaugeRun) and, where `csv` names a file, its
+/// gauge series there (one column PREFIX_x per gauge).
+void addGaugeRun(nlohmann::json& out, const GaugeRecords& r, const std::vector<double>& gauges,
+                 const std::string& csv, const std::string& prefix);
 
 } // namespace swell::bake

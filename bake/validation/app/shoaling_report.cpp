@@ -14,18 +14,12 @@ namespace swell::bake {
 
 json shoaling(const Scene& scene, const std::string& csv) {
     const ShoalingReport r = runShoaling(scene);
-    json out{{"scene", scene.name},
-             {"l0", scene.geometry.particleSpacing},
-             {"depth", r.depth},
-             {"height", r.height},
-             {"height_over_depth", r.height / r.depth},
-             {"gravity", scene.physics.gravity},
-             {"toe", r.toe},
-             {"slope", r.slope},
-             {"still_window", {r.stillFrom, r.stillTo}}};
-    addGaugeRun(out, r, r.gauges);
-    if (!csv.empty())
-        writeGaugeSeries(csv, r, "eta", r.gauges);
+    json out = waveReportHead(scene, r.depth, r.height);
+    out["gravity"] = scene.physics.gravity;
+    out["toe"] = r.toe;
+    out["slope"] = r.slope;
+    out["still_window"] = {r.stillFrom, r.stillTo};
+    addGaugeRun(out, r, r.gauges, csv, "eta");
     if (r.outcome == kStable) {
         const ShoalingCheck& c = r.check;
         json gauges = json::array();
@@ -48,13 +42,13 @@ json shoaling(const Scene& scene, const std::string& csv) {
                               {"from", g.from},
                               {"until", g.until},
                               {"still_level", g.stillLevel}});
-        out["gauge_records"] = gauges;
-        out["clock_offset"] = c.clockOffset;
-        out["incident_crest_error"] = c.incidentCrestError;
-        out["crest_error_worst"] = c.crestErrorWorst;
-        out["amplification_error_worst"] = c.amplificationErrorWorst;
-        out["mean_abs_error_over_h0_worst"] = c.meanAbsErrorWorst;
-        out["travel_time_error"] = c.travelTimeError;
+        out.update({{"gauge_records", gauges},
+                    {"clock_offset", c.clockOffset},
+                    {"incident_crest_error", c.incidentCrestError},
+                    {"crest_error_worst", c.crestErrorWorst},
+                    {"amplification_error_worst", c.amplificationErrorWorst},
+                    {"mean_abs_error_over_h0_worst", c.meanAbsErrorWorst},
+                    {"travel_time_error", c.travelTimeError}});
     }
     addRunCost(out, r, r.particles);
     return out;

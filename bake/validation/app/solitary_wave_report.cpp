@@ -7,27 +7,19 @@
 #include "swell/bake/solver_run.h"
 #include "swell/bake/validation/solitary_wave.h"
 
-using namespace swell::bake::validation;
 using nlohmann::json;
 
 namespace swell::bake {
 
 json solitaryWave(const Scene& scene, const std::string& csv) {
-    const SolitaryWaveReport r = runSolitaryWave(scene);
-    json out{{"scene", scene.name},
-             {"l0", scene.geometry.particleSpacing},
-             {"depth", r.depth},
-             {"height", r.height},
-             {"height_over_depth", r.height / r.depth},
-             {"stroke", r.stroke},
-             {"celerity_theory", r.theory.celerity}};
-    addGaugeRun(out, r, r.gauges);
-    if (!csv.empty())
-        writeGaugeSeries(csv, r, "eta", r.gauges);
+    const validation::SolitaryWaveReport r = validation::runSolitaryWave(scene);
+    json out = waveReportHead(scene, r.depth, r.height);
+    out.update({{"stroke", r.stroke}, {"celerity_theory", r.theory.celerity}});
+    addGaugeRun(out, r, r.gauges, csv, "eta");
     if (r.outcome == kStable) {
-        const SolitaryWaveCheck& c = r.check;
+        const validation::SolitaryWaveCheck& c = r.check;
         json crests = json::array();
-        for (const SolitaryCrest& k : c.crests)
+        for (const validation::SolitaryCrest& k : c.crests)
             crests.push_back({{"x", k.x},
                               {"time", k.time},
                               {"amplitude", k.amplitude},

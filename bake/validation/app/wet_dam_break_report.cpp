@@ -29,9 +29,7 @@ json wetDamBreak(const Scene& scene, const std::string& csv) {
                {"c2", t.c2},
                {"gravity", t.gravity}}},
              {"compared_from", t.comparedFrom()}};
-    addGaugeRun(out, r, r.gauges);
-    if (!csv.empty())
-        writeGaugeSeries(csv, r, "h", r.gauges);
+    addGaugeRun(out, r, r.gauges, csv, "h");
     if (r.outcome == kStable) {
         const WetDamBreakCheck& c = r.check;
         // NaN (no bore, or no plateau, at a gauge) as null.

@@ -14,13 +14,11 @@
 using namespace swell::bake;
 using swell::test::expectRefused;
 using swell::test::Outcome;
-using swell::test::parse;
 
 namespace {
 
-Outcome validate(std::vector<std::string> a) {
-    a.insert(a.begin(), "swell-validate");
-    return parse<ValidateCommandLine>(a, parseValidateCommandLine);
+Outcome validate(const std::vector<std::string>& a) {
+    return swell::test::parseAs<ValidateCommandLine>("swell-validate", a, parseValidateCommandLine);
 }
 } // namespace
 
