@@ -170,7 +170,7 @@ def run_replay(case, timeout, log):
                    outcome="ok" if good else "FAIL: error %s" % err, ok=bool(good) and expect == "ok")
         if good and expect != "ok":
             row["outcome"] = "FAIL: accepted, expected a clear error"
-    elif r.rc == 1 and len([l for l in r.err.splitlines() if l.strip()]) == 1 and not r.out.strip():
+    elif r.rc == 2 and len([l for l in r.err.splitlines() if l.strip()]) == 1 and not r.out.strip():
         row.update(outcome="clear error: " + r.last_err_line().replace("swell-play: ", ""),
                    ok=expect == "error")
     else:
@@ -421,7 +421,7 @@ def docs(bake_rows, replay_rows, m, long_steps):
         t += ["**Replay** (`swell-play bench CACHE --json ...` on the surging_small bake and on "
               "`swell-cache synth` caches of one frame and of frames without surface particles; ok = "
               "exit 0, finite, within 1e-4 of the depth of the double-precision CPU reference and the "
-              "same frame choice; clear error = exit 1 with one stderr line). The quick cases are also "
+              "same frame choice; clear error = exit 2 (README, \"exit status\") with one stderr line). The quick cases are also "
               "ctest tests (`PlayStress.*`, tests/runtime/play_stress_test.cpp).", "",
               bl.md_table(replay_rows, [
                   ("case", "case"), ("expected", "expect"), ("outcome", "outcome"),

@@ -177,7 +177,7 @@ class ValidationPlots(unittest.TestCase):
             self.assertIn(f"{option} /nonexistent/dir/x.csv: cannot write", lines[0])
 
     def test_a_stopped_run_says_why_on_stderr(self):
-        # The detector stops the run (a Courant limit below the surge's): status 2, the report
+        # The detector stops the run (a Courant limit below the surge's): status 3, the report
         # on stdout still, and one line on stderr naming the scene and the stop.
         scene = str(ROOT / "scenes" / "dam_break_small.json")
         p = subprocess.run([str(BIN / "swell-validate"), "--json", "--threads", "1",
@@ -185,7 +185,7 @@ class ValidationPlots(unittest.TestCase):
                             "--set", "solver.expected_speed=1",
                             "--set", "solver.substep_courant=0", "dam-break", scene],
                            capture_output=True, text=True)
-        self.assertEqual(p.returncode, 2, p.stderr)
+        self.assertEqual(p.returncode, 3, p.stderr)
         report = json.loads(p.stdout.strip().splitlines()[-1])
         self.assertTrue(report["outcome"].startswith("stopped: "), report["outcome"])
         lines = p.stderr.strip().splitlines()
@@ -230,7 +230,7 @@ class ValidationPlots(unittest.TestCase):
                             "--set", "solver.substep_courant=0", "dam-break", scene,
                             "--ensemble", "2"],
                            capture_output=True, text=True)
-        self.assertEqual(p.returncode, 2, p.stderr)
+        self.assertEqual(p.returncode, 3, p.stderr)
         report = json.loads(p.stdout)
         self.assertTrue(report["outcome"].startswith("stopped: a member stopped"), report)
         self.assertNotIn("aligned_front_error_mean", report)  # no spread of stopped runs
