@@ -113,8 +113,12 @@ void printSummary(const Scene& scene, const BakeSummary& s, const std::string& o
 /// bad scene, checkpoint, output in use by another process, cache, anything else.
 int reportFailure(const std::exception& e, const std::string& scenePath,
                   ProgressReporter& progress) {
-    if (dynamic_cast<const SceneError*>(&e) != nullptr) {
-        std::fprintf(stderr, "swell-bake: %s: %s\n", scenePath.c_str(), e.what());
+    if (const auto* scene = dynamic_cast<const SceneError*>(&e)) {
+        // A key's error gets the file's name; an error of the whole file names it already.
+        if (scene->key().empty())
+            std::fprintf(stderr, "swell-bake: %s\n", e.what());
+        else
+            std::fprintf(stderr, "swell-bake: %s: %s\n", scenePath.c_str(), e.what());
         return cli::kExitBadInput;
     }
     progress.endLine();
