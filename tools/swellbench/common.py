@@ -74,7 +74,7 @@ def run(cmd, timeout=600, nice=5, env=None, log=None):
         e.update(env)
     t0 = time.monotonic()
     p = subprocess.Popen(full, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=e,
-                         start_new_session=True)
+                         encoding="utf-8", errors="replace", start_new_session=True)
     timed_out = False
     try:
         out, err = p.communicate(timeout=timeout)
