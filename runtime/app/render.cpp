@@ -493,7 +493,10 @@ class RenderCommand : public Command {
 public:
     CLI::App* add(CLI::App& app) override {
         CLI::App* cmd = addSubcommand(
-            app, "render", "shaded frames (PNG), contact sheet, optional mp4 and exports (Sec. 5)",
+            app, "render",
+            "shaded frames (PNG), contact sheet, optional mp4 and exports (Sec. 5); --res "
+            "at most the GL driver's shader-storage block / 4 bytes cells (llvmpipe: "
+            "33.5 M, 5792x5792)",
             m_o);
         addRenderOptions(cmd);
         return cmd;
@@ -515,6 +518,8 @@ public:
                                : 0.0) +
             (m_r.exportMesh ? 64.0 * cells : 0.0);
         checkDiskSpace(m_r.outDir, static_cast<double>(taus.size()) * frameBytes, taus.size());
+        const EglContext context; // first: the driver's limits are checked before any decoding
+        WaterRenderer::checkMeshFits(m_o.params.cellsX, m_o.params.cellsZ);
         const ReplaySetup setup = prepareReplay(m_o, reader, taus);
         const fs::path out(m_r.outDir);
         NewFolders folders; // removed again if the render fails
@@ -525,7 +530,6 @@ public:
             if (on)
                 folders.make(out / folder);
         }
-        const EglContext context;
         RenderRun run(m_o, m_r, setup, context);
         // Until every frame, the contact sheet and the exports are complete, they are written
         // under temporary names (atomic_write.h): a failed render leaves the folder as it was.

@@ -105,6 +105,21 @@ WaterRenderer::WaterRenderer(const Grid& grid, const cache::Domain& domain,
     checkGl("setting up the water renderer");
 }
 
+void WaterRenderer::checkMeshFits(int cellsX, int cellsZ) {
+    GLint64 maxBlock = 0;
+    glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &maxBlock);
+    const auto heightBytes =
+        static_cast<GLint64>(cellsX) * cellsZ * static_cast<GLint64>(sizeof(float));
+    if (heightBytes > maxBlock) {
+        const double cells = std::floor(static_cast<double>(maxBlock) / sizeof(float));
+        throw std::invalid_argument(fmt::format(
+            "cells_x x cells_z must fit this driver's {:.0f} MB shader-storage block, 4 bytes a "
+            "cell: at most {:.0f} cells (about {:.0f}x{:.0f}), got {}x{}",
+            static_cast<double>(maxBlock) / 1e6, cells, std::floor(std::sqrt(cells)),
+            std::floor(std::sqrt(cells)), cellsX, cellsZ));
+    }
+}
+
 void WaterRenderer::writeVertices() {
     const int N = m_grid.cellsX, M = m_grid.cellsZ;
     const GLuint program = m_surfaceProgram.get();
@@ -139,14 +154,7 @@ void WaterRenderer::createMeshBuffers() {
     GLint align = 1;
     glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &maxBlock);
     glGetIntegerv(GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT, &align);
-    const GLint64 heightBytes = static_cast<GLint64>(N) * M * static_cast<GLint64>(sizeof(float));
-    if (heightBytes > maxBlock) {
-        throw RuntimeError(fmt::format(
-            "a {}x{} mesh needs a {:.0f} MB height buffer, above this driver's {:.0f} MB "
-            "shader-storage limit: at most {:.0f} cells (lower --res)",
-            N, M, static_cast<double>(heightBytes) / 1e6, static_cast<double>(maxBlock) / 1e6,
-            std::floor(static_cast<double>(maxBlock) / sizeof(float))));
-    }
+    checkMeshFits(N, M);
     const GLint64 rowBytes = static_cast<GLint64>(N) * kVertexBytes;
     const GLint64 rowStep =
         std::max<GLint64>(align, 1) / std::gcd(rowBytes, std::max<GLint64>(align, 1));

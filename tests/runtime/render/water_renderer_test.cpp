@@ -21,6 +21,9 @@
 
 #include <gtest/gtest.h>
 
+#define GL_GLEXT_PROTOTYPES
+#include <GL/glcorearb.h>
+
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -183,6 +186,23 @@ TEST_F(WaterRendering, AMeshWrittenInSeveralDispatchesGivesTheSamePicture) {
     }
     // The split is real: a pass that wrote only its first block would leave the rest unset.
     EXPECT_GT(testGrid().cellsZ, 7);
+}
+
+TEST_F(WaterRendering, AMeshBeyondTheDriversStorageBlockIsRefusedNamingWhatFits) {
+    // The height buffer (4 bytes a cell) is bound whole: one row of 8192 cells past the block
+    // is refused before anything is made, a mesh that fills it is not.
+    GLint64 maxBlock = 0;
+    glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &maxBlock);
+    const auto rows = static_cast<int>(maxBlock / 4 / 8192);
+    EXPECT_NO_THROW(WaterRenderer::checkMeshFits(8192, rows));
+    try {
+        WaterRenderer::checkMeshFits(8192, rows + 1);
+        ADD_FAILURE() << "a mesh beyond the block was accepted";
+    } catch (const std::invalid_argument& e) {
+        EXPECT_NE(std::string(e.what()).find("cells_x x cells_z must fit this driver's"),
+                  std::string::npos)
+            << e.what();
+    }
 }
 
 TEST_F(WaterRendering, MultisamplingSmoothsButDoesNotChangeThePicture) {
