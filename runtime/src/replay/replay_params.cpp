@@ -67,8 +67,8 @@ TimeSampling timeSamplingFromString(const std::string& name) {
 
 void ReplayParams::validate() const {
     if (cellsX < 1 || cellsX > 8192 || cellsZ < 1 || cellsZ > 8192) {
-        throw std::invalid_argument(
-            fmt::format("cells_x x cells_z must be 1..8192 cells per axis, got {}x{}", cellsX, cellsZ));
+        throw std::invalid_argument(fmt::format(
+            "cells_x x cells_z must be 1..8192 cells per axis, got {}x{}", cellsX, cellsZ));
     }
     if (slices < 2 || slices > 16384) {
         throw std::invalid_argument(fmt::format("slices must be in [2, 16384], got {}", slices));
