@@ -72,6 +72,62 @@ std::vector<HeightField> replayFields(const Options& o, const cache::Reader& rea
     return out;
 }
 
+/// What look measures per output frame (LookCommand::run), in order.
+struct Series {
+    std::vector<double> slopeMean, slopeP99, needles, seeds, change, bakeChange, eyeStep, sprites,
+        spriteCounts;
+    std::vector<std::vector<double>> creases;
+};
+
+/// The measures of `m`, each beside its target for `mode`.
+std::vector<Measured> measuresOf(const Series& m, ReplayMode mode) {
+    std::vector<Measured> measures;
+    if (mode != ReplayMode::Whirlpool) {
+        const bool surging = mode == ReplayMode::Surging;
+        measures.push_back({"slope_ratio_mean", median(m.slopeMean), surging ? 0.15 : -INFINITY,
+                            surging ? 0.6 : INFINITY,
+                            "mean |dh/dz| / mean |dh/dx| (long crests: 0.15 - 0.6)"});
+        measures.push_back({"slope_ratio_p99", median(m.slopeP99), -INFINITY,
+                            surging ? 1.0 : INFINITY,
+                            "99th percentile of |dh/dz| / that of |dh/dx|"});
+    }
+    measures.push_back({"needle_share", median(m.needles), -INFINITY, 0.001,
+                        "share of cells more than l0/2 above or below all four neighbours"});
+    measures.push_back({"needle_share_max", largest(m.needles), -INFINITY, INFINITY,
+                        "the same in the worst frame"});
+    measures.push_back({"seed_difference", median(m.seeds),
+                        mode == ReplayMode::Surging ? 0.1 : -INFINITY, INFINITY,
+                        "share of cells where seed + 1 differs by more than l0/2"});
+    if (!m.change.empty()) {
+        measures.push_back({"frame_change_ratio", median(m.change) / median(m.bakeChange),
+                            -INFINITY, INFINITY,
+                            "mean frame-to-frame change / the bake's own (F = 0)"});
+    }
+    if (!m.eyeStep.empty()) {
+        measures.push_back({"eye_step_ratio", largest(m.eyeStep) / median(m.bakeChange), -INFINITY,
+                            1.0,
+                            "largest frame-to-frame change of the eye's mean height / the "
+                            "bake's own mean change"});
+    }
+    for (std::size_t k = 0; k < m.creases.size(); ++k) {
+        measures.push_back({fmt::format("crease_ratio_{}", k), median(m.creases[k]), -INFINITY,
+                            1.25,
+                            "|second difference| across a rotated direction's field end / "
+                            "3-8 cells beside it"});
+    }
+    if (!m.spriteCounts.empty()) {
+        measures.push_back({"sprites", median(m.spriteCounts), -INFINITY, INFINITY,
+                            "splash sprites per frame (the render's splash pass)"});
+    }
+    if (!m.sprites.empty()) {
+        measures.push_back({"sprite_line_coverage", median(m.sprites), -INFINITY,
+                            mode == ReplayMode::Ripple ? 0.25 : INFINITY,
+                            "share of the mesh's side that one straight row of splash "
+                            "sprites covers"});
+    }
+    return measures;
+}
+
 class LookCommand : public Command {
 public:
     CLI::App* add(CLI::App& app) override {
@@ -120,9 +176,8 @@ public:
                 setup.set, grid, keepSprayAwayFromTheWaveMaker(SplashParams{}, setup.plan.record),
                 m_o.params.seed, setup.samplers.size());
 
-        std::vector<double> slopeMean, slopeP99, needles, seeds, change, bakeChange, eyeStep,
-            sprites, spriteCounts;
-        std::vector<std::vector<double>> creases;
+        Series m;
+        std::vector<std::vector<double>>& creases = m.creases;
         std::optional<HeightField> previous;
         std::optional<double> previousEye;
         const std::vector<std::array<double, 4>> lines = creaseLines(grid);
@@ -132,21 +187,21 @@ public:
             const HeightField h = gpu.readHeights();
             if (mode != ReplayMode::Whirlpool) {
                 const SlopeRatios r = slopeRatios(h);
-                slopeMean.push_back(r.mean);
-                slopeP99.push_back(r.p99);
+                m.slopeMean.push_back(r.mean);
+                m.slopeP99.push_back(r.p99);
             }
-            needles.push_back(needleShare(h, threshold));
-            seeds.push_back(shareDiffering(h, other[i], threshold));
+            m.needles.push_back(needleShare(h, threshold));
+            m.seeds.push_back(shareDiffering(h, other[i], threshold));
             if (previous) {
-                change.push_back(meanChange(h, *previous));
-                bakeChange.push_back(meanChange(baked[i], baked[i - 1]));
+                m.change.push_back(meanChange(h, *previous));
+                m.bakeChange.push_back(meanChange(baked[i], baked[i - 1]));
             }
             if (mode == ReplayMode::Whirlpool) {
                 const double radius = 0.5 * m_o.modeParams.whirlpool.innerRadiusCells;
                 const double eye = discMean(h, 0.5 * grid.cellsX, 0.5 * grid.extentZ / grid.dz,
                                             radius * grid.dx / grid.dz);
                 if (previousEye)
-                    eyeStep.push_back(std::abs(eye - *previousEye));
+                    m.eyeStep.push_back(std::abs(eye - *previousEye));
                 previousEye = eye;
             }
             for (std::size_t k = 0; k < lines.size(); ++k)
@@ -160,59 +215,16 @@ public:
                     xs.push_back(p.x);
                     zs.push_back(p.z);
                 }
-                spriteCounts.push_back(static_cast<double>(xs.size()));
+                m.spriteCounts.push_back(static_cast<double>(xs.size()));
                 if (xs.size() >= 10)
-                    sprites.push_back(lineCoverage(xs, zs, SplashParams{}.spawnRadius,
-                                                   std::max(grid.cellsX * grid.dx, grid.extentZ)));
+                    m.sprites.push_back(
+                        lineCoverage(xs, zs, SplashParams{}.spawnRadius,
+                                     std::max(grid.cellsX * grid.dx, grid.extentZ)));
             }
             previous = h;
         }
 
-        std::vector<Measured> measures;
-        if (mode != ReplayMode::Whirlpool) {
-            const bool surging = mode == ReplayMode::Surging;
-            measures.push_back({"slope_ratio_mean", median(slopeMean), surging ? 0.15 : -INFINITY,
-                                surging ? 0.6 : INFINITY,
-                                "mean |dh/dz| / mean |dh/dx| (long crests: 0.15 - 0.6)"});
-            measures.push_back({"slope_ratio_p99", median(slopeP99), -INFINITY,
-                                surging ? 1.0 : INFINITY,
-                                "99th percentile of |dh/dz| / that of |dh/dx|"});
-        }
-        measures.push_back({"needle_share", median(needles), -INFINITY, 0.001,
-                            "share of cells more than l0/2 above or below all four neighbours"});
-        measures.push_back({"needle_share_max", largest(needles), -INFINITY, INFINITY,
-                            "the same in the worst frame"});
-        measures.push_back({"seed_difference", median(seeds),
-                            mode == ReplayMode::Surging ? 0.1 : -INFINITY, INFINITY,
-                            "share of cells where seed + 1 differs by more than l0/2"});
-        if (!change.empty()) {
-            measures.push_back({"frame_change_ratio", median(change) / median(bakeChange),
-                                -INFINITY, INFINITY,
-                                "mean frame-to-frame change / the bake's own (F = 0)"});
-        }
-        if (!eyeStep.empty()) {
-            measures.push_back({"eye_step_ratio", largest(eyeStep) / median(bakeChange), -INFINITY,
-                                1.0,
-                                "largest frame-to-frame change of the eye's mean height / the "
-                                "bake's own mean change"});
-        }
-        for (std::size_t k = 0; k < creases.size(); ++k) {
-            measures.push_back({fmt::format("crease_ratio_{}", k), median(creases[k]), -INFINITY,
-                                1.25,
-                                "|second difference| across a rotated direction's field end / "
-                                "3-8 cells beside it"});
-        }
-        if (!spriteCounts.empty()) {
-            measures.push_back({"sprites", median(spriteCounts), -INFINITY, INFINITY,
-                                "splash sprites per frame (the render's splash pass)"});
-        }
-        if (!sprites.empty()) {
-            measures.push_back({"sprite_line_coverage", median(sprites), -INFINITY,
-                                mode == ReplayMode::Ripple ? 0.25 : INFINITY,
-                                "share of the mesh's side that one straight row of splash "
-                                "sprites covers"});
-        }
-        print(measures, taus.size(), l0, context.renderer());
+        print(measuresOf(m, mode), taus.size(), l0, context.renderer());
         return 0;
     }
 
