@@ -1,5 +1,6 @@
 // swell-cache: inspect, verify, dump and synthesize .swell caches.
 #include "cache_cli.h"
+#include "disk_space.h"
 #include "exit_codes.h"
 #include "swell/cache/error.h"
 #include "swell/cache/output_lock.h"
@@ -9,7 +10,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
 #include <fmt/format.h>
 #include <iostream>
 #include <map>
@@ -188,29 +188,12 @@ void runRecode(const CacheOptions& o) {
                o.encoding, w.bytesWritten());
 }
 
-/// Throws std::invalid_argument naming OUT when `frames` frames of `rawPerFrame` bytes (the
-/// most a cache of them takes) exceed the free space of OUT's folder.
-void checkDiskSpace(const std::string& out, std::size_t frames, double rawPerFrame) {
-    namespace fs = std::filesystem;
-    std::error_code ec;
-    const fs::path folder = fs::absolute(fs::path(out), ec).parent_path();
-    const fs::space_info space = fs::space(folder, ec);
-    const double bytes = static_cast<double>(frames) * rawPerFrame;
-    if (ec || bytes <= static_cast<double>(space.available))
-        return;
-    throw std::invalid_argument(fmt::format(
-        "OUT {}: {} frames of {} bytes may take up to {:.3g} GB and {} has {:.3g} GB free: about "
-        "{:.0f} frames fit (lower --frames, --surface or --splash)",
-        out, frames, rawPerFrame, bytes / 1e9, folder.string(),
-        static_cast<double>(space.available) / 1e9,
-        std::floor(static_cast<double>(space.available) / rawPerFrame)));
-}
-
 void runSynth(const CacheOptions& o) {
     const SyntheticWave& wave = o.wave;
-    checkDiskSpace(o.path, o.frames,
-                   96.0 + 40.0 + 8.0 * static_cast<double>(wave.surfaceCount) +
-                       16.0 * static_cast<double>(wave.splashCount));
+    const double frameBytes = 96.0 + 40.0 + 8.0 * static_cast<double>(wave.surfaceCount) +
+                              16.0 * static_cast<double>(wave.splashCount);
+    swell::cli::checkDiskSpace("OUT", o.path, static_cast<double>(o.frames) * frameBytes, o.frames,
+                               "lower --frames, --surface or --splash");
     Header h;
     o.applyEncoding(h);
     h.domain = syntheticDomain(wave);

@@ -303,24 +303,6 @@ void checkSeconds(double seconds, double fps, const char* option) {
     }
 }
 
-void checkDiskSpace(const std::filesystem::path& out, double bytes, std::size_t frames) {
-    namespace fs = std::filesystem;
-    std::error_code ec;
-    fs::path folder = fs::absolute(out, ec);
-    while (!folder.empty() && !fs::is_directory(folder, ec) && folder != folder.parent_path())
-        folder = folder.parent_path();
-    const fs::space_info space = fs::space(folder, ec);
-    if (ec || bytes <= static_cast<double>(space.available))
-        return;
-    const double perFrame = bytes / static_cast<double>(std::max<std::size_t>(frames, 1));
-    throw std::invalid_argument(fmt::format(
-        "--out {}: {} frames may take up to {:.3g} GB (uncompressed) and {} has {:.3g} GB free: "
-        "about {:.0f} frames fit (lower --seconds, --fps or the resolution)",
-        out.string(), frames, bytes / 1e9, folder.string(),
-        static_cast<double>(space.available) / 1e9,
-        std::floor(static_cast<double>(space.available) / perFrame)));
-}
-
 double heightFrameBytes(const HeightSequenceParams& s, int cellsX, int cellsZ) {
     const double samples = (cellsX + 1.0) * (cellsZ + 1.0);
     const double sample = s.format == HeightFormat::ExrFloat ? 4.0 : 2.0;

@@ -14,6 +14,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "disk_space.h"
+
 #include <chrono>
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -93,9 +95,10 @@ inline constexpr double kMaxOutputFrames = 1e6;
 /// kMaxOutputFrames.
 void checkSeconds(double seconds, double fps, const char* option = "--seconds");
 /// Throws std::invalid_argument naming --out and what fits when `bytes` (the most `frames`
-/// output frames may take, uncompressed) exceed the free space of the file system of `out`
-/// (or of its nearest existing parent folder).
-void checkDiskSpace(const std::filesystem::path& out, double bytes, std::size_t frames);
+/// output frames may take, uncompressed) exceed the free space of `out`'s file system.
+inline void checkDiskSpace(const std::filesystem::path& out, double bytes, std::size_t frames) {
+    cli::checkDiskSpace("--out", out, bytes, frames, "lower --seconds, --fps or the resolution");
+}
 /// The most bytes one frame of a height sequence (height map, normals, displacement) takes on
 /// a mesh of cellsX x cellsZ cells, uncompressed.
 double heightFrameBytes(const runtime::HeightSequenceParams& s, int cellsX, int cellsZ);
