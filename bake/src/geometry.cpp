@@ -172,9 +172,7 @@ std::vector<SolidRegion> solidRegionsOf(const GeometryParams& g, int layers) {
         // Each block lays its own wall particles: two that overlap would stack particles on
         // one another (a clump the solver refuses at its first step).
         for (std::size_t o = 0; o < s; ++o) {
-            const Box& c = g.solids[o];
-            if (std::min(b.x1, c.x1) - std::max(b.x0, c.x0) > 1e-9 &&
-                std::min(b.y1, c.y1) - std::max(b.y0, c.y0) > 1e-9) {
+            if (b.overlaps(g.solids[o])) {
                 throw SceneError(key, fmt::format("overlaps geometry.solids[{}]: solid blocks "
                                                   "may touch, not overlap",
                                                   o));
@@ -205,17 +203,16 @@ void checkWaterTops(const GeometryParams& g) {
 
 /// Refuses water rectangle w overlapping an earlier one (each with its cosine top's amplitude).
 void checkWaterOverlap(const GeometryParams& g, std::size_t w, const std::string& key) {
-    const Box& b = g.water[w];
-    const CosineTop top = waterTop(g, w);
+    // Each rectangle reaches up to its cosine top's crest.
+    const auto reach = [&g](std::size_t v) {
+        Box b = g.water[v];
+        b.y1 += std::abs(waterTop(g, v).amplitude);
+        return b;
+    };
+    const Box b = reach(w);
     for (std::size_t v = 0; v < w; ++v) {
-        const Box& o = g.water[v];
-        const double ox = std::min(b.x1, o.x1) - std::max(b.x0, o.x0);
-        const double oy =
-            std::min(b.y1 + std::abs(top.amplitude), o.y1 + std::abs(waterTop(g, v).amplitude)) -
-            std::max(b.y0, o.y0);
-        if (ox > 1e-9 && oy > 1e-9) {
+        if (b.overlaps(reach(v)))
             throw SceneError(key, fmt::format("overlaps geometry.water[{}]", v));
-        }
     }
 }
 
