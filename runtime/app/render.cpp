@@ -96,9 +96,7 @@ struct RenderOptions {
         heights.format = parseHeightFormat(heightsFormat, "--heights-format");
         if (eye.empty() != target.empty())
             throw std::invalid_argument("--camera and --target go together");
-        if (!(fov > 0.0 && fov < 180.0))
-            throw std::invalid_argument(
-                fmt::format("--fov must be in (0, 180) degrees, got {}", fov));
+        Camera::checkFov(fov); // "camera fov ...": --fov in the user's words (option_words.h)
         if (!video.empty() && video.find(".mp4") == std::string::npos)
             throw std::invalid_argument(
                 fmt::format("--video must name an .mp4 file, got '{}'", video));

@@ -28,13 +28,16 @@ bool finite(const Vec3& a) {
 
 } // namespace
 
+void Camera::checkFov(double degrees) {
+    if (!(degrees > 0.0 && degrees < 180.0))
+        throw std::invalid_argument(
+            fmt::format("camera fov must be in (0, 180) degrees, got {}", degrees));
+}
+
 void Camera::validate() const {
     if (!finite(position) || !finite(target))
         throw std::invalid_argument("camera position and target must be finite");
-    if (!(fovYDegrees > 0.0 && fovYDegrees < 180.0)) {
-        throw std::invalid_argument(
-            fmt::format("camera fov must be in (0, 180) degrees, got {}", fovYDegrees));
-    }
+    checkFov(fovYDegrees);
     const Vec3 d = sub(target, position);
     const double len = std::sqrt(dot(d, d));
     if (!(len > 0.0))

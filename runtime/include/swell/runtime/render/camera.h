@@ -24,6 +24,9 @@ struct Camera {
     /// Throws std::invalid_argument naming the field (fov out of range, position == target,
     /// looking straight up or down, bad clip planes, non-finite values).
     void validate() const;
+    /// Throws std::invalid_argument ("camera fov ...") unless `degrees` is in (0, 180): the part
+    /// of validate() a field of view can be checked by before there is a camera.
+    static void checkFov(double degrees);
 };
 
 /// The default camera's height above the horizon for the surging and ripple waves: low enough
