@@ -3,7 +3,6 @@
 // swell-mps-bench, swell-capi-bench); README "Exit statuses" prints the same table.
 
 #include <exception>
-#include <new>
 #include <stdexcept>
 
 #include "swell/cache/error.h"

@@ -150,14 +150,14 @@ void WaterRenderer::createMeshBuffers() {
     // view ray, shaded colour and Fresnel weight, three vec4 per vertex; as many rows per
     // dispatch as one shader-storage block holds, starting at aligned offsets (writeVertices).
     // The heights the pass reads are bound whole: their 4 bytes per cell set the limit.
+    checkMeshFits(N, M);
     GLint64 maxBlock = 0;
     GLint align = 1;
     glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &maxBlock);
     glGetIntegerv(GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT, &align);
-    checkMeshFits(N, M);
+    const GLint64 alignment = std::max<GLint64>(align, 1);
     const GLint64 rowBytes = static_cast<GLint64>(N) * kVertexBytes;
-    const GLint64 rowStep =
-        std::max<GLint64>(align, 1) / std::gcd(rowBytes, std::max<GLint64>(align, 1));
+    const GLint64 rowStep = alignment / std::gcd(rowBytes, alignment); // rows per aligned offset
     const GLint64 fit = maxBlock / rowBytes / rowStep * rowStep;
     if (fit < 1)
         throw RuntimeError(fmt::format("a mesh row of {} cells exceeds this driver's {:.0f} MB "

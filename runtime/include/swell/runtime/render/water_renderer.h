@@ -60,14 +60,15 @@ struct ShadingParams {
 
 class WaterRenderer {
 public:
-    /// `grid` and `domain` place the mesh (bed at domain.yMin); `sky` is the environment
-    /// (proceduralSky or loadSkyImages), `sun` the direction of the highlight. Throws
-    /// std::invalid_argument (parameters) or RuntimeError (GL: shaders, framebuffer).
     /// Throws std::invalid_argument naming cells_x x cells_z and what fits when the current GL
     /// context cannot hold a mesh of cellsX x cellsZ cells (its height buffer, 4 bytes a cell,
     /// is bound whole as one shader-storage block). Needs a current context.
     static void checkMeshFits(int cellsX, int cellsZ);
 
+    /// `grid` and `domain` place the mesh (bed at domain.yMin); `sky` is the environment
+    /// (proceduralSky or loadSkyImages), `sun` the direction of the highlight. Throws
+    /// std::invalid_argument (parameters, a mesh beyond checkMeshFits) or RuntimeError (GL:
+    /// shaders, framebuffer).
     WaterRenderer(const Grid& grid, const cache::Domain& domain, const ShadingParams& shading,
                   const CubeFaces& sky, const Vec3& sun);
     ~WaterRenderer();
