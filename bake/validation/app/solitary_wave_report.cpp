@@ -7,19 +7,20 @@
 #include "swell/bake/solver_run.h"
 #include "swell/bake/validation/solitary_wave.h"
 
+using namespace swell::bake::validation;
 using nlohmann::json;
 
 namespace swell::bake {
 
 json solitaryWave(const Scene& scene, const std::string& csv) {
-    const validation::SolitaryWaveReport r = validation::runSolitaryWave(scene);
+    const SolitaryWaveReport r = runSolitaryWave(scene);
     json out = waveReportHead(scene, r.depth, r.height);
     out.update({{"stroke", r.stroke}, {"celerity_theory", r.theory.celerity}});
     addGaugeRun(out, r, r.gauges, csv, "eta");
     if (r.outcome == kStable) {
-        const validation::SolitaryWaveCheck& c = r.check;
+        const SolitaryWaveCheck& c = r.check;
         json crests = json::array();
-        for (const validation::SolitaryCrest& k : c.crests)
+        for (const SolitaryCrest& k : c.crests)
             crests.push_back({{"x", k.x},
                               {"time", k.time},
                               {"amplitude", k.amplitude},
